@@ -1,0 +1,3 @@
+from termpool.cli import main
+
+raise SystemExit(main())

@@ -1,0 +1,1 @@
+"""Physics core: closed-form motion, continuous contact detection, batched fixed-step engine."""

@@ -1,0 +1,34 @@
+"""Cue strike: speed, aim and tip offset -> the cue ball's velocity and spin."""
+
+from __future__ import annotations
+
+import math
+
+MISCUE_OFFSET = 0.5  # tip offsets beyond half a radius slip off the ball
+
+
+def strike(
+    speed: float, angle_deg: float, side: float = 0.0, top: float = 0.0, radius: float = 0.028575
+) -> tuple[tuple[float, float], tuple[float, float, float]]:
+    """Return ((vx, vy), (wx, wy, wz)) right after a level cue strike.
+
+    `speed` is the ball's speed after the strike; `side` and `top` are tip offsets in units of R
+    (side > 0 right of centre as the shooter sees it, top > 0 above centre). The impulse J = m v
+    acts at the offset, so the angular impulse gives w = (5 v / 2R) * offset about the matching
+    axis: top 0.4 is natural roll, right english spins counter-clockwise seen from above.
+    """
+    for name, val in (("speed", speed), ("angle", angle_deg), ("side", side), ("top", top)):
+        if not math.isfinite(val):
+            raise ValueError(f"shot.{name}: must be finite")
+    if speed < 0:
+        raise ValueError("shot.speed: must not be negative")
+    off = math.hypot(side, top)
+    if off > MISCUE_OFFSET:
+        raise ValueError(
+            f"shot: tip offset {off:.2f} R is a miscue (keep side and top within {MISCUE_OFFSET} R)"
+        )
+    a = math.radians(angle_deg)
+    dx, dy = math.cos(a), math.sin(a)
+    k = 2.5 * speed / radius
+    # Topspin axis is z x d = (-dy, dx); rolling then holds v = R (wy, -wx).
+    return (speed * dx, speed * dy), (-k * top * dy, k * top * dx, k * side)

@@ -1,0 +1,54 @@
+"""Physical constants of balls and cloth (SI units), with standard defaults."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+BALL_RADIUS = 0.028575  # 2.25 in diameter
+BALL_MASS = 0.170
+
+
+@dataclass(frozen=True)
+class Physics:
+    mu_slide: float = 0.2  # ball-cloth sliding friction
+    mu_roll: float = 0.01  # rolling resistance
+    mu_spin: float = 0.0127  # spin (z) decay; wz falls at 5 mu_spin g / (2 R)
+    e_ball: float = 0.95  # ball-ball restitution
+    e_cushion: float = 0.85  # horizontal normal restitution at the cushion
+    mu_cushion: float = 0.2  # friction at the cushion nose
+    cushion_height: float = 0.0366  # nose height above the slate (0.64 ball diameters)
+    g: float = 9.81
+    ball_ball: str = "frictional"  # or "frictionless"
+    # Closing speeds below this are treated as perfectly inelastic: touching balls then settle
+    # in a few contacts instead of an endless geometric series of bounces.
+    v_inelastic: float = 0.005
+
+    @classmethod
+    def from_dict(cls, d: dict) -> Physics:
+        """Build from a scene's `physics` object; raises ValueError naming a bad key."""
+        names = {f.name for f in fields(cls)}
+        kw = {}
+        for key, val in d.items():
+            if key not in names:
+                raise ValueError(f"physics: unknown key '{key}'")
+            if key == "ball_ball":
+                if val not in ("frictional", "frictionless"):
+                    raise ValueError("physics.ball_ball: must be 'frictional' or 'frictionless'")
+                kw[key] = val
+                continue
+            if isinstance(val, bool) or not isinstance(val, (int, float)):
+                raise ValueError(f"physics.{key}: must be a number")
+            val = float(val)
+            if not (val == val and abs(val) != float("inf")):
+                raise ValueError(f"physics.{key}: must be finite")
+            if val < 0:
+                raise ValueError(f"physics.{key}: must not be negative")
+            if key in ("e_ball", "e_cushion") and val > 1:
+                raise ValueError(f"physics.{key}: must be at most 1")
+            if key == "g" and val == 0:
+                raise ValueError("physics.g: must be positive")
+            kw[key] = val
+        return cls(**kw)
+
+    def to_dict(self) -> dict:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
