@@ -1,12 +1,13 @@
 """The engine: a batch of tables advanced by fixed steps, exact inside each step.
 
 State lives in arrays with a leading table axis (B) and a ball axis (N). Between events every
-ball moves on a closed-form quadratic. For every ball the engine keeps the time of its next
-motion transition, of its next cushion or pocket contact and, for every pair, of their next
-contact, and recomputes only the predictions of the balls an event touched. A step runs the
-events that fall inside it in time order (one per table per pass, all tables at once) and then
-moves every ball to the step's end; a step without events costs a few array operations, and
-tables at rest cost nothing.
+ball moves on a closed-form quadratic from its own reference time t0, so a ball nobody touches
+is never updated: its position at any time is evaluated from (t0, p0, v0, acc) when needed.
+For every ball the engine keeps the time of its next motion transition and of its next cushion
+or pocket contact, and for every pair the time of their next contact; an event renews only the
+predictions of the balls it touched. A step runs the events inside it in time order, one per
+table per pass and all tables at once; a step without events costs one comparison, and tables
+at rest cost nothing.
 """
 
 from __future__ import annotations
@@ -22,11 +23,14 @@ from termpool.physics.table import Table
 
 STATIONARY, SPINNING, SLIDING, ROLLING, POCKETED = range(5)
 STATE_NAMES = ("stationary", "spinning", "sliding", "rolling", "pocketed")
-HORIZON = 0.5  # s; pair and cushion predictions look this far ahead, then are renewed
-EPS_U = 1e-9  # m/s of contact-point slip below which a ball counts as rolling
+HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
+# A slip this small (m/s) would slide for under 0.15 ms and under 20 nm of path difference:
+# it is completed at once, with the velocity change friction would give (v -= u / 3.5), so a
+# pair pressed together cannot chatter through endless tiny slides.
+EPS_U = 1e-3
 EPS_V = 1e-9  # m/s below which a ball counts as not translating
 EPS_W = 1e-9  # rad/s of side spin below which a ball counts as still
-MAX_PASSES = 200_000  # guard against a run that would never finish a step
+MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
 
 _TRANSITION_NAMES = {
     (SLIDING, ROLLING): "slide_to_roll",
@@ -40,6 +44,11 @@ _TRANSITION_NAMES = {
 
 def _norm(v: np.ndarray) -> np.ndarray:
     return np.sqrt(v[..., 0] * v[..., 0] + v[..., 1] * v[..., 1])
+
+
+def _perp(v: np.ndarray) -> np.ndarray:
+    """z x v for horizontal vectors."""
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -72,16 +81,16 @@ class Engine:
         B, N = pos.shape[:2]
         self.B, self.N = B, N
         self.table, self.physics, self.record, self.horizon = table, physics, record, horizon
-        self.pos = pos.copy()
         lead = (B, N) if self.batched else (N,)
-        self.vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
-        self.w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
+        self.p0 = pos.copy()
+        self.v0 = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
+        self.w0 = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
         self.radius = _batch(radius, lead, "radius").reshape(B, N)
         self.mass = _batch(mass, lead, "mass").reshape(B, N)
         sin_t = np.clip((physics.cushion_height - self.radius) / self.radius, -0.95, 0.95)
         self.rc = self.radius * np.sqrt(1.0 - sin_t * sin_t)  # centre-to-nose distance at contact
-        g = physics.g
-        self.spin_rate = 5.0 * physics.mu_spin * g / (2.0 * self.radius)
+        self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
+        self.t0 = np.zeros((B, N))
         self.state = np.zeros((B, N), dtype=np.int8)
         self.pocket = np.full((B, N), -1, dtype=np.int16)
         self.acc = np.zeros((B, N, 2))
@@ -91,305 +100,293 @@ class Engine:
         self.t_cush = np.full((B, N), np.inf)
         self.f_cush = np.zeros((B, N), dtype=np.int64)
         self.t_pair = np.full((B, N, N), np.inf)
+        self.t_next = np.full(B, np.inf)  # each table's next event time and its code
+        self.c_next = np.zeros(B, dtype=np.int64)
         self.tb = np.zeros(B)  # each table's own clock inside a step
         self.time = 0.0
         self.steps = 0
-        self.passes = 0  # event passes run, a measure of work
+        self.passes = 0  # event passes run: the engine's measure of work
         self.events: list[list[dict]] = [[] for _ in range(B)]
-        nseg, npt = len(table.seg_a), len(table.points)
-        self._nseg, self._npt = nseg, npt
+        self._nseg, self._npt = len(table.seg_a), len(table.points)
         seg_d = table.seg_b - table.seg_a
         self._seg_len = _norm(seg_d)
         self._seg_dir = seg_d / self._seg_len[:, None]
-        self._arange = np.arange(B)
+        self._seg_off = (table.seg_a * table.seg_n).sum(axis=1)
+        self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
         b, i = np.divmod(np.arange(B * N), N)
-        self._set_motion(b, i)
-        self._predict(b, i)
+        with np.errstate(all="ignore"):
+            self._set(b, i, self.tb[b], self.p0[b, i], self.v0[b, i], self.w0[b, i].copy())
+            self._predict(b, i)
+            self._refresh(np.arange(B))
 
     # ----------------------------------------------------------------- motion between events
-    def _set_motion(self, b: np.ndarray, i: np.ndarray) -> None:
-        """Classify balls (b, i) from their v and w; set accelerations and transition times."""
+    def _eval(self, b, i, t):
+        """Position, velocity and spin of balls (b, i) at times t (any broadcastable shapes)."""
+        d = t - self.t0[b, i]
+        d2 = d[..., None]
+        v0 = self.v0[b, i]
+        acc = self.acc[b, i]
+        p = self.p0[b, i] + v0 * d2 + 0.5 * acc * (d2 * d2)
+        v = v0 + acc * d2
+        w = self.w0[b, i].copy()
+        w[..., :2] += self.alpha[b, i] * d2
+        wz = w[..., 2]
+        w[..., 2] = np.sign(wz) * np.maximum(np.abs(wz) - self.spin_rate[b, i] * d, 0.0)
+        return p, v, w
+
+    def _set(self, b, i, t, p, v, w) -> None:
+        """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
+        set accelerations and the time of the next transition."""
         ph = self.physics
         g = ph.g
-        v = self.vel[b, i]
-        w = self.w[b, i]
         R = self.radius[b, i]
-        t = self.tb[b]
-        u = np.stack([v[:, 0] - R * w[:, 1], v[:, 1] + R * w[:, 0]], axis=1)
-        us, vs, wz = _norm(u), _norm(v), np.abs(w[:, 2])
+        u = v + R[:, None] * _perp(w[:, :2])  # contact-point slip
+        us = _norm(u)
+        v = np.where((us <= EPS_U)[:, None], v - u / 3.5, v)
+        vs, wz = _norm(v), np.abs(w[:, 2])
         pocketed = self.state[b, i] == POCKETED
         sliding = (us > EPS_U) & ~pocketed
         rolling = ~sliding & (vs > EPS_V) & ~pocketed
         spinning = ~sliding & ~rolling & (wz > EPS_W) & ~pocketed
         still = ~(sliding | rolling)
         v = np.where(still[:, None], 0.0, v)
-        w[:, :2] = np.where(rolling[:, None], np.stack([-v[:, 1], v[:, 0]], 1) / R[:, None],
+        # Rolling is kept exact (slip zero); still balls keep only their side spin.
+        w[:, :2] = np.where(rolling[:, None], _perp(v) / R[:, None],
                             np.where(still[:, None], 0.0, w[:, :2]))
-        w[:, 2] = np.where(spinning | sliding | rolling, w[:, 2], 0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            uhat = np.where(sliding[:, None], u / us[:, None], 0.0)
-            vhat = np.where(rolling[:, None], v / vs[:, None], 0.0)
-            acc = -ph.mu_slide * g * uhat - ph.mu_roll * g * vhat
-            k = 2.5 * ph.mu_slide * g / R
-            alpha = np.where(
-                sliding[:, None],
-                k[:, None] * np.stack([-uhat[:, 1], uhat[:, 0]], 1),
-                np.stack([-acc[:, 1], acc[:, 0]], 1) / R[:, None],
-            )
-            dt_slide = 2.0 * us / (7.0 * ph.mu_slide * g)
-            dt_roll = vs / (ph.mu_roll * g)
-            dt_spin = wz / self.spin_rate[b, i]
-        dt = np.where(sliding, dt_slide, np.where(rolling, dt_roll, np.where(spinning, dt_spin, np.inf)))
-        state = np.where(sliding, SLIDING, np.where(rolling, ROLLING, np.where(spinning, SPINNING, STATIONARY)))
+        w[:, 2] = np.where(spinning | ~still, w[:, 2], 0.0)
+        uhat = np.where(sliding[:, None], u / us[:, None], 0.0)
+        vhat = np.where(rolling[:, None], v / vs[:, None], 0.0)
+        acc = -ph.mu_slide * g * uhat - ph.mu_roll * g * vhat
+        alpha = np.where(sliding[:, None], (2.5 * ph.mu_slide * g / R)[:, None] * _perp(uhat),
+                         _perp(acc) / R[:, None])
+        dt = np.where(sliding, us / (3.5 * ph.mu_slide * g),
+                      np.where(rolling, vs / (ph.mu_roll * g),
+                               np.where(spinning, wz / self.spin_rate[b, i], np.inf)))
+        dt = np.where(np.isnan(dt) | pocketed, np.inf, dt)
+        state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
+                                                     np.where(spinning, SPINNING, STATIONARY)))
         self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self.vel[b, i] = v
-        self.w[b, i] = w
+        self.t0[b, i] = t
+        self.p0[b, i] = p
+        self.v0[b, i] = v
+        self.w0[b, i] = w
         self.acc[b, i] = acc
         self.alpha[b, i] = alpha
-        self.t_trans[b, i] = np.where(pocketed, np.inf, t + np.where(np.isnan(dt), np.inf, dt))
-
-    def _advance(self, dtb: np.ndarray) -> None:
-        """Move every ball of every table along its current quadratic by dtb[b] seconds."""
-        d = dtb[:, None]
-        d3 = d[:, :, None]
-        self.pos += self.vel * d3 + 0.5 * self.acc * (d3 * d3)
-        self.vel += self.acc * d3
-        self.w[..., :2] += self.alpha * d3
-        wz = self.w[..., 2]
-        self.w[..., 2] = np.sign(wz) * np.maximum(np.abs(wz) - self.spin_rate * d, 0.0)
+        self.t_trans[b, i] = t + dt
 
     # ----------------------------------------------------------------- predictions
-    def _window_end(self, b, i) -> np.ndarray:
-        return np.minimum(self.t_trans[b, i], self.t_check[b, i])
-
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
-        """Renew the contact predictions of balls (b, i), whose tables' clocks are current."""
+        """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
+        N = self.N
+        t = self.tb[b]
         st = self.state[b, i]
         moving = (st == SLIDING) | (st == ROLLING)
-        t = self.tb[b]
         self.t_check[b, i] = np.where(moving, t + self.horizon, np.inf)
+        end = np.minimum(self.t_trans[b, i], self.t_check[b, i])
         self.t_cush[b, i] = np.inf
-        end = self._window_end(b, i)
-        mv = np.flatnonzero(moving)
-        if mv.size:
-            tc, fc = self._predict_cushions(b[mv], i[mv], end[mv] - t[mv])
-            self.t_cush[b[mv], i[mv]] = t[mv] + tc
-            self.f_cush[b[mv], i[mv]] = fc
-        self._predict_pairs(b, i, t, end, st)
-
-    def _predict_cushions(self, b, i, horizon):
-        tab = self.table
-        p, v, a = self.pos[b, i], self.vel[b, i], self.acc[b, i]
-        rc = self.rc[b, i]
-        parts = []
-        if self._nseg:
-            n = tab.seg_n
-            s0 = np.einsum("mkj,kj->mk", p[:, None, :] - tab.seg_a[None], n)
-            sv = v @ n.T
-            sa = a @ n.T
-            M, S = s0.shape
-            hz = np.broadcast_to(horizon[:, None], (M, S))
-            tl = first_line_contact(s0.ravel(), sv.ravel(), sa.ravel(),
-                                    np.broadcast_to(rc[:, None], (M, S)).ravel(), hz.ravel())
-            tl = tl.reshape(M, S)
-            # The contact must fall on the segment itself; its ends are the jaw-tip points.
-            fin = np.isfinite(tl)
-            if fin.any():
-                tt = np.where(fin, tl, 0.0)[..., None]
-                pt = p[:, None, :] + v[:, None, :] * tt + 0.5 * a[:, None, :] * tt * tt
-                along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self._seg_dir)
-                tl = np.where(fin & (along >= 0) & (along <= self._seg_len[None]), tl, np.inf)
-            parts.append(tl)
-        circ_c = []
-        if self._npt:
-            circ_c.append(tab.points)
-        if len(tab.hole_c):
-            circ_c.append(tab.hole_c)
-        if circ_c:
-            cc = np.concatenate(circ_c)
-            M, C = p.shape[0], cc.shape[0]
-            dist = np.concatenate([np.broadcast_to(rc[:, None], (M, self._npt)),
-                                   np.broadcast_to(tab.hole_r[None], (M, len(tab.hole_c)))], axis=1)
-            p0 = (p[:, None, :] - cc[None]).reshape(-1, 2)
-            vv = np.broadcast_to(v[:, None, :], (M, C, 2)).reshape(-1, 2)
-            aa = np.broadcast_to(a[:, None, :], (M, C, 2)).reshape(-1, 2)
-            hz = np.broadcast_to(horizon[:, None], (M, C)).ravel()
-            parts.append(first_contact(p0, vv, aa, dist.ravel(), hz).reshape(M, C))
-        allt = np.concatenate(parts, axis=1)
-        f = allt.argmin(axis=1)
-        return allt[np.arange(len(f)), f], f
-
-    def _predict_pairs(self, b, i, t, end, st) -> None:
-        N = self.N
-        M = len(b)
-        k = np.arange(N)
-        stk = self.state[b]  # (M, N)
-        moving_i = (st == SLIDING) | (st == ROLLING)
-        moving_k = (stk == SLIDING) | (stk == ROLLING)
-        valid = (stk != POCKETED) & (k[None] != i[:, None]) & (moving_i[:, None] | moving_k)
-        valid &= (st != POCKETED)[:, None]
         self.t_pair[b, i, :] = np.inf
         self.t_pair[b, :, i] = np.inf
-        mi, kk = np.nonzero(valid)
-        if mi.size == 0:
+        m = np.flatnonzero(st != POCKETED)
+        if m.size == 0:
             return
-        bb, ii = b[mi], i[mi]
-        p0 = self.pos[bb, kk] - self.pos[bb, ii]
-        v = self.vel[bb, kk] - self.vel[bb, ii]
-        a = self.acc[bb, kk] - self.acc[bb, ii]
-        dist = self.radius[bb, kk] + self.radius[bb, ii]
-        horizon = np.minimum(end[mi], self._window_end(bb, kk)) - t[mi]
-        tc = t[mi] + first_contact(p0, v, a, dist, horizon)
-        self.t_pair[bb, ii, kk] = tc
-        self.t_pair[bb, kk, ii] = tc
+        b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+        p, v, _ = self._eval(b, i, t)
+        a = self.acc[b, i]
+        # Pairs: every other ball on the table, where at least one of the two moves.
+        stk = self.state[b]
+        moving_k = (stk == SLIDING) | (stk == ROLLING)
+        valid = (stk != POCKETED) & (np.arange(N)[None] != i[:, None])
+        valid &= moving[:, None] | moving_k
+        mi, kk = np.nonzero(valid)
+        bb = b[mi]
+        pk, vk, _ = self._eval(bb, kk, t[mi])
+        end_k = np.minimum(self.t_trans[bb, kk], self.t_check[bb, kk])
+        rel_p = [pk - p[mi]]
+        rel_v = [vk - v[mi]]
+        rel_a = [self.acc[bb, kk] - a[mi]]
+        dist = [self.radius[bb, kk] + self.radius[b, i][mi]]
+        horizon = [np.minimum(end[mi], end_k) - t[mi]]
+        # Jaw tips and pocket holes, for moving balls: the same quartic as a pair.
+        mv = np.flatnonzero(moving)
+        nc = len(self._circles)
+        if mv.size and nc:
+            rc = self.rc[b[mv], i[mv]]
+            rel_p.append((self._circles[None] - p[mv, None]).reshape(-1, 2))
+            rel_v.append(np.repeat(-v[mv], nc, axis=0))
+            rel_a.append(np.repeat(-a[mv], nc, axis=0))
+            dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1),
+                                        np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))],
+                                       axis=1).ravel())
+            horizon.append(np.repeat(end[mv] - t[mv], nc))
+        tc = first_contact(np.concatenate(rel_p), np.concatenate(rel_v), np.concatenate(rel_a),
+                           np.concatenate(dist), np.concatenate(horizon))
+        npair = mi.size
+        tp = t[mi] + tc[:npair]
+        self.t_pair[bb, i[mi], kk] = tp
+        self.t_pair[bb, kk, i[mi]] = tp
+        if mv.size:
+            tcirc = tc[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
+            tline = self._lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], end[mv] - t[mv])
+            allt = np.concatenate([tline, tcirc], axis=1)
+            f = allt.argmin(axis=1)
+            self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
+            self.f_cush[b[mv], i[mv]] = f
+
+    def _lines(self, p, v, a, rc, horizon) -> np.ndarray:
+        """(M, S) first contact times of M balls with the cushion segments."""
+        tab = self.table
+        n = tab.seg_n
+        s0 = p @ n.T - self._seg_off
+        M, S = s0.shape
+        tl = first_line_contact(s0.ravel(), (v @ n.T).ravel(), (a @ n.T).ravel(),
+                                np.repeat(rc, S), np.repeat(horizon, S)).reshape(M, S)
+        # The contact must fall on the segment itself; its ends are the jaw-tip points.
+        fin = np.isfinite(tl)
+        if fin.any():
+            tt = np.where(fin, tl, 0.0)[..., None]
+            pt = p[:, None] + v[:, None] * tt + 0.5 * a[:, None] * (tt * tt)
+            along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self._seg_dir)
+            tl = np.where(fin & (along >= 0) & (along <= self._seg_len[None]), tl, np.inf)
+        return tl
+
+    def _refresh(self, tabs: np.ndarray) -> None:
+        """Recompute the next event of tables `tabs` from their predictions."""
+        N = self.N
+        allt = np.concatenate([self.t_trans[tabs], self.t_check[tabs], self.t_cush[tabs],
+                               self.t_pair[tabs].reshape(-1, N * N)], axis=1)
+        code = allt.argmin(axis=1)
+        self.t_next[tabs] = allt[np.arange(len(tabs)), code]
+        self.c_next[tabs] = code
 
     # ----------------------------------------------------------------- events
     def _run_until(self, t_end: float) -> None:
-        """Run every table's events up to t_end in time order, then move all to t_end."""
-        B, N = self.B, self.N
+        """Run every table's events up to t_end in time order; clocks end at t_end."""
+        if not (self.t_next <= t_end).any():
+            self.tb[:] = t_end
+            return
+        with np.errstate(all="ignore"):  # infinities stand for "never"
+            self._run_events(t_end)
+        if math.isfinite(t_end):
+            self.tb[:] = t_end
+
+    def _run_events(self, t_end: float) -> None:
         for _ in range(MAX_PASSES):
-            allt = np.concatenate(
-                [self.t_trans, self.t_check, self.t_cush, self.t_pair.reshape(B, N * N)], axis=1)
-            code = allt.argmin(axis=1)
-            tn = allt[self._arange, code]
-            act = (tn <= t_end) & (tn < math.inf)
-            if not act.any():
+            tabs = np.flatnonzero((self.t_next <= t_end) & (self.t_next < math.inf))
+            if tabs.size == 0:
                 break
             self.passes += 1
-            tabs = np.flatnonzero(act)
-            self._advance(np.where(act, np.maximum(tn - self.tb, 0.0), 0.0))
-            self.tb[tabs] = tn[tabs]
-            self._handle(tabs, code[tabs])
+            self.tb[tabs] = self.t_next[tabs]
+            self._handle(tabs, self.c_next[tabs])
+            self._refresh(tabs)
         else:
             raise RuntimeError("engine: too many events in one step (a contact that never resolves)")
-        if math.isfinite(t_end):
-            self._advance(np.maximum(t_end - self.tb, 0.0))
-            self.tb[:] = t_end
 
     def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
         N = self.N
         kind = np.minimum(code // N, 3)
         i = np.where(kind < 3, code % N, (code - 3 * N) // N)
         j = np.where(kind < 3, -1, (code - 3 * N) % N)
-        old_state = self.state[tabs, i].copy()
-        labels: list = [None] * len(tabs)
-
+        old_state = self.state[tabs, i]
+        labels: list = []
         tr = np.flatnonzero(kind == 0)
         if tr.size:
             self._transition(tabs[tr], i[tr])
         cu = np.flatnonzero(kind == 2)
         if cu.size:
-            feats = self._cushion(tabs[cu], i[cu])
-            if self.record:
-                for n, f in zip(cu, feats, strict=True):
-                    labels[n] = f
+            labels = self._cushion(tabs[cu], i[cu])
         pr = np.flatnonzero(kind == 3)
         if pr.size:
             self._collide(tabs[pr], i[pr], j[pr])
-        # Renew predictions for every ball an event touched.
-        bb = np.concatenate([tabs, tabs[pr]])
-        ii = np.concatenate([i, j[pr]])
-        self._predict(bb, ii)
+        self._predict(np.concatenate([tabs, tabs[pr]]), np.concatenate([i, j[pr]]))
         if self.record:
-            self._log(tabs, kind, i, j, old_state, labels)
+            self._log(tabs, kind, i, j, old_state, dict(zip(cu.tolist(), labels, strict=True)))
 
     def _transition(self, b, i) -> None:
+        t = self.tb[b]
         st = self.state[b, i]
+        p, v, w = self._eval(b, i, t)
         R = self.radius[b, i]
-        v = self.vel[b, i]
-        w = self.w[b, i]
-        sl = st == SLIDING
-        # End of sliding: slip is exactly zero; end of rolling: no translation; end of spin.
-        w[:, :2] = np.where(sl[:, None], np.stack([-v[:, 1], v[:, 0]], 1) / R[:, None], w[:, :2])
-        rl = st == ROLLING
-        v = np.where(rl[:, None], 0.0, v)
-        w[:, :2] = np.where(rl[:, None], 0.0, w[:, :2])
+        # End of sliding: slip exactly zero; end of rolling: no translation; end of spin.
+        w[:, :2] = np.where((st == SLIDING)[:, None], _perp(v) / R[:, None], w[:, :2])
+        rl = (st == ROLLING)[:, None]
+        v = np.where(rl, 0.0, v)
+        w[:, :2] = np.where(rl, 0.0, w[:, :2])
         w[:, 2] = np.where(st == SPINNING, 0.0, w[:, 2])
-        self.vel[b, i] = v
-        self.w[b, i] = w
-        self._set_motion(b, i)
+        self._set(b, i, t, p, v, w)
 
     def _cushion(self, b, i) -> list:
         tab, ph = self.table, self.physics
-        f = self.f_cush[b, i]
         nseg, npt = self._nseg, self._npt
-        p = self.pos[b, i]
-        rc = self.rc[b, i]
+        t = self.tb[b]
+        f = self.f_cush[b, i]
+        p, v, w = self._eval(b, i, t)
         hole = f >= nseg + npt
         seg = f < nseg
-        pt = ~hole & ~seg
-        n = np.zeros_like(p)
-        if seg.any():
-            n[seg] = tab.seg_n[f[seg]]
-        if pt.any():
-            d = p[pt] - tab.points[f[pt] - nseg]
-            n[pt] = d / _norm(d)[:, None]
+        rc = self.rc[b, i]
+        # Normal (into the table) and a point on the contact feature.
+        ref = np.where(seg[:, None], tab.seg_a[np.minimum(f, nseg - 1)], 0.0)
+        n = np.where(seg[:, None], tab.seg_n[np.minimum(f, nseg - 1)], 0.0)
+        tip = ~hole & ~seg
+        if tip.any():
+            ref[tip] = tab.points[f[tip] - nseg]
+            d = p[tip] - ref[tip]
+            n[tip] = d / _norm(d)[:, None]
         bounce = np.flatnonzero(~hole)
         if bounce.size:
             bb, ib = b[bounce], i[bounce]
-            v, w = contact.cushion(n[bounce], self.vel[bb, ib], self.w[bb, ib], self.radius[bb, ib],
-                                   self.mass[bb, ib], ph.e_cushion, ph.mu_cushion,
-                                   ph.cushion_height, ph.v_inelastic)
-            self.vel[bb, ib] = v
-            self.w[bb, ib] = w
-            # Undo any sub-micrometre sink so that the ball rests exactly at contact distance.
-            fb = f[bounce]
-            isseg = seg[bounce]
-            ref = np.where(isseg[:, None], tab.seg_a[np.where(isseg, fb, 0)],
-                           tab.points[np.clip(fb - nseg, 0, max(npt - 1, 0))] if npt else 0.0)
-            depth = rc[bounce] - np.einsum("ij,ij->i", p[bounce] - ref, n[bounce])
-            self.pos[bb, ib] = p[bounce] + np.maximum(depth, 0.0)[:, None] * n[bounce]
-            self._set_motion(bb, ib)
+            nb, pb = n[bounce], p[bounce]
+            vb, wb = contact.cushion(nb, v[bounce], w[bounce], self.radius[bb, ib],
+                                     self.mass[bb, ib], ph.e_cushion, ph.mu_cushion,
+                                     ph.cushion_height, ph.v_inelastic)
+            # Undo a resting contact's sub-micrometre sink: the ball ends exactly at contact.
+            depth = rc[bounce] - np.einsum("ij,ij->i", pb - ref[bounce], nb)
+            pb = pb + np.maximum(depth, 0.0)[:, None] * nb
+            self._set(bb, ib, t[bounce], pb, vb, wb)
         hl = np.flatnonzero(hole)
         if hl.size:
             bh, ih = b[hl], i[hl]
             k = f[hl] - nseg - npt
             self.state[bh, ih] = POCKETED
             self.pocket[bh, ih] = k
-            self.pos[bh, ih] = tab.hole_c[k]
-            self.vel[bh, ih] = 0.0
-            self.w[bh, ih] = 0.0
-            self.acc[bh, ih] = 0.0
-            self.alpha[bh, ih] = 0.0
-            self.t_trans[bh, ih] = np.inf
-        kinds = []
-        if self.record:
-            for fi in f:
-                if fi < nseg:
-                    kinds.append(tab.seg_kind[fi])
-                elif fi < nseg + npt:
-                    kinds.append("tip")
-                else:
-                    kinds.append(tab.hole_names[fi - nseg - npt])
-        return kinds
+            self._set(bh, ih, t[hl], tab.hole_c[k], np.zeros((hl.size, 2)), np.zeros((hl.size, 3)))
+        if not self.record:
+            return []
+        names = []
+        for fi in f.tolist():
+            if fi < nseg:
+                names.append(tab.seg_kind[fi])
+            elif fi < nseg + npt:
+                names.append("tip")
+            else:
+                names.append(tab.hole_names[fi - nseg - npt])
+        return names
 
     def _collide(self, b, i, j) -> None:
         ph = self.physics
-        pi, pj = self.pos[b, i], self.pos[b, j]
+        t = self.tb[b]
+        pi, vi, wi = self._eval(b, i, t)
+        pj, vj, wj = self._eval(b, j, t)
         ri, rj = self.radius[b, i], self.radius[b, j]
         mi, mj = self.mass[b, i], self.mass[b, j]
-        vi, vj, wi, wj = contact.ball_ball(
-            pi, pj, self.vel[b, i], self.vel[b, j], self.w[b, i], self.w[b, j], ri, rj, mi, mj,
-            ph.e_ball, ph.v_inelastic, ph.ball_ball == "frictional")
-        self.vel[b, i], self.vel[b, j] = vi, vj
-        self.w[b, i], self.w[b, j] = wi, wj
-        # Separate a resting contact that sank by up to SINK back to touching, by inverse mass.
+        vi, vj, wi, wj = contact.ball_ball(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph.e_ball,
+                                           ph.v_inelastic, ph.ball_ball == "frictional")
+        # Undo a resting contact's sub-micrometre sink, shared by inverse mass.
         d = pj - pi
         dist = _norm(d)
-        depth = np.maximum(ri + rj - dist, 0.0)
         n = d / dist[:, None]
-        share_i = (1.0 / mi) / (1.0 / mi + 1.0 / mj)
-        self.pos[b, i] = pi - (depth * share_i)[:, None] * n
-        self.pos[b, j] = pj + (depth * (1.0 - share_i))[:, None] * n
-        self._set_motion(np.concatenate([b, b]), np.concatenate([i, j]))
+        depth = np.maximum(ri + rj - dist, 0.0)
+        share = mj / (mi + mj)
+        pi = pi - (depth * share)[:, None] * n
+        pj = pj + (depth * (1.0 - share))[:, None] * n
+        self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
+                  np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
 
-    def _ball_dict(self, b: int, i: int) -> dict:
-        w = self.w[b, i]
+    def ball_state(self, b: int, i: int) -> dict:
+        """One ball's state now, as plain numbers (for events and output)."""
+        p, v, w = self._eval(np.array([b]), np.array([i]), np.array([self.tb[b]]))
         return {
-            "x": float(self.pos[b, i, 0]), "y": float(self.pos[b, i, 1]),
-            "vx": float(self.vel[b, i, 0]), "vy": float(self.vel[b, i, 1]),
-            "w": [float(w[0]), float(w[1]), float(w[2])],
-            "state": STATE_NAMES[self.state[b, i]],
+            "x": float(p[0, 0]), "y": float(p[0, 1]), "vx": float(v[0, 0]), "vy": float(v[0, 1]),
+            "w": [float(x) for x in w[0]], "state": STATE_NAMES[self.state[b, i]],
         }
 
     def _log(self, tabs, kind, i, j, old_state, labels) -> None:
@@ -414,37 +411,53 @@ class Engine:
             else:
                 ev["type"] = "ball_ball"
                 ev["i"] = [ib, int(j[n])]
-            ev["balls"] = [self._ball_dict(b, x) for x in ev["i"]]
+            ev["balls"] = [self.ball_state(b, x) for x in ev["i"]]
             self.events[b].append(ev)
 
-    # ----------------------------------------------------------------- public driving
+    # ----------------------------------------------------------------- public view and driving
+    def _now(self):
+        B, N = self.B, self.N
+        b, i = np.divmod(np.arange(B * N), N)
+        p, v, w = self._eval(b, i, self.tb[b])
+        return p.reshape(B, N, 2), v.reshape(B, N, 2), w.reshape(B, N, 3)
+
+    @property
+    def pos(self) -> np.ndarray:
+        """(B, N, 2) positions now (pocketed balls sit at their pocket's centre)."""
+        return self._now()[0]
+
+    @property
+    def vel(self) -> np.ndarray:
+        return self._now()[1]
+
+    @property
+    def w(self) -> np.ndarray:
+        return self._now()[2]
+
     def at_rest(self) -> np.ndarray:
         """(B,) True where every ball is stationary or pocketed."""
-        st = self.state
-        return ((st == STATIONARY) | (st == POCKETED)).all(axis=1)
+        return np.isinf(self.t_next)
 
     def step(self, dt: float) -> None:
-        """Advance every table by dt seconds (exact inside the step)."""
+        """Advance every table by dt seconds, exactly: every event inside the step is run at
+        its own time, however many there are."""
         if not (dt > 0 and math.isfinite(dt)):
             raise ValueError("dt: must be a positive finite number of seconds")
-        t_end = self.time + dt
-        if not self.at_rest().all():
-            self._run_until(t_end)
-        else:
-            self.tb[:] = t_end
-        self.time = t_end
+        self._run_until(self.time + dt)
+        self.time += dt
         self.steps += 1
 
     def _sample(self) -> tuple[float, np.ndarray, np.ndarray]:
-        return (self.time, self.pos.copy(), self.state.copy())
+        return (self.time, self.pos, self.state.copy())
 
     def run(self, dt: float, duration: float | None = None, sample_hz: float | None = None,
             max_steps: int | None = None) -> list:
-        """Fixed steps of dt until every table is at rest (or `duration` seconds have passed).
+        """Fixed steps of dt until every table is at rest, or `duration` seconds have passed.
 
-        With sample_hz, positions are also taken at multiples of 1/sample_hz (each step is
-        split at those instants; the engine is exact inside a step, so this changes nothing).
+        With sample_hz, positions are also taken at multiples of 1/sample_hz.
         """
+        if not (dt > 0 and math.isfinite(dt)):
+            raise ValueError("dt: must be a positive finite number of seconds")
         samples = []
         k = 0
         if sample_hz:
@@ -457,13 +470,12 @@ class Engine:
                 break
             h = dt if duration is None else min(dt, duration - self.time)
             t_end = self.time + h
-            if sample_hz:
-                while k / sample_hz < t_end and not self.at_rest().all():
-                    ts = k / sample_hz
-                    self._run_until(ts)
-                    self.time = ts
-                    samples.append(self._sample())
-                    k += 1
+            while sample_hz and k / sample_hz <= t_end:
+                ts = k / sample_hz
+                self._run_until(ts)
+                self.time = ts
+                samples.append(self._sample())
+                k += 1
             self._run_until(t_end)
             self.time = t_end
             self.steps += 1
@@ -482,8 +494,5 @@ class Engine:
                 samples.append(self._sample())
                 k += 1
         self._run_until(t_stop)
-        if math.isfinite(t_stop):
-            self.time = t_stop
-        else:
-            self.time = float(self.tb.max())
+        self.time = t_stop if math.isfinite(t_stop) else max(self.time, float(self.tb.max()))
         return samples
