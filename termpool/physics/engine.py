@@ -120,18 +120,19 @@ class Engine:
             self._refresh(np.arange(B))
 
     # ----------------------------------------------------------------- motion between events
-    def _eval(self, b, i, t):
-        """Position, velocity and spin of balls (b, i) at times t (any broadcastable shapes)."""
-        d = t - self.t0[b, i]
-        d2 = d[..., None]
+    def _eval(self, b, i, t, spin: bool = True):
+        """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
+        d = (t - self.t0[b, i])[..., None]
         v0 = self.v0[b, i]
         acc = self.acc[b, i]
-        p = self.p0[b, i] + v0 * d2 + 0.5 * acc * (d2 * d2)
-        v = v0 + acc * d2
-        w = self.w0[b, i].copy()
-        w[..., :2] += self.alpha[b, i] * d2
+        p = self.p0[b, i] + (v0 + 0.5 * acc * d) * d
+        v = v0 + acc * d
+        if not spin:
+            return p, v, None
+        w = self.w0[b, i]  # a fancy-indexed copy
+        w[..., :2] += self.alpha[b, i] * d
         wz = w[..., 2]
-        w[..., 2] = np.sign(wz) * np.maximum(np.abs(wz) - self.spin_rate[b, i] * d, 0.0)
+        w[..., 2] = np.copysign(np.maximum(np.abs(wz) - self.spin_rate[b, i] * d[..., 0], 0.0), wz)
         return p, v, w
 
     def _set(self, b, i, t, p, v, w) -> None:
@@ -190,7 +191,7 @@ class Engine:
         if m.size == 0:
             return
         b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
-        p, v, _ = self._eval(b, i, t)
+        p, v, _ = self._eval(b, i, t, spin=False)
         a = self.acc[b, i]
         # Pairs: every other ball on the table, where at least one of the two moves.
         stk = self.state[b]
@@ -199,7 +200,7 @@ class Engine:
         valid &= moving[:, None] | moving_k
         mi, kk = np.nonzero(valid)
         bb = b[mi]
-        pk, vk, _ = self._eval(bb, kk, t[mi])
+        pk, vk, _ = self._eval(bb, kk, t[mi], spin=False)
         end_k = np.minimum(self.t_trans[bb, kk], self.t_check[bb, kk])
         rel_p = [pk - p[mi]]
         rel_v = [vk - v[mi]]

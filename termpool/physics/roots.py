@@ -80,12 +80,13 @@ def first_contact(
         good = (disc >= 0) & (B < 0) & (A > 0) & (root >= -1e-9) & (root <= 1 + 1e-9)
         s[d] = np.where(good, root, np.inf)
     hit = s < np.inf
+    if not hit.any():
+        return out
     t = np.minimum(np.maximum(s, 0.0), 1.0) * T
-    # Newton polish on the unscaled quartic.
-    for _ in range(2):
-        f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
-        df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
-        t = np.minimum(np.maximum(t - np.where(hit & (df < 0), f / df, 0.0), 0.0), T)
+    # One Newton step on the unscaled quartic polishes the eigenvalue (or quadratic) root.
+    f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+    df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
+    t = np.minimum(np.maximum(t - np.where(hit & (df < 0), f / df, 0.0), 0.0), T)
     out[idx] = np.where(hit, t, np.inf)
     return out
 
