@@ -215,8 +215,8 @@ class Engine:
             rel_p.append((self._circles[None] - p[mv, None]).reshape(-1, 2))
             rel_v.append(np.repeat(-v[mv], nc, axis=0))
             rel_a.append(np.repeat(-a[mv], nc, axis=0))
-            dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1),
-                                        np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))],
+            holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))
+            dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1), holes],
                                        axis=1).ravel())
             horizon.append(np.repeat(end[mv] - t[mv], nc))
         tc = first_contact(np.concatenate(rel_p), np.concatenate(rel_v), np.concatenate(rel_a),
@@ -280,7 +280,7 @@ class Engine:
             self._handle(tabs, self.c_next[tabs])
             self._refresh(tabs)
         else:
-            raise RuntimeError("engine: too many events in one step (a contact that never resolves)")
+            raise RuntimeError("engine: too many events in one step (a contact never resolves)")
 
     def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
         N = self.N

@@ -1,0 +1,314 @@
+"""Command line: `termpool sim SCENE` runs a scene and prints JSON; `termpool bench` benchmarks.
+
+Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from typing import Any, NoReturn
+
+PROG = "termpool"
+METHODS = ("fixed", "event")
+
+
+class _Exit(Exception):
+    def __init__(self, code: int) -> None:
+        self.code = code
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but errors are one `termpool: ...` line on stderr and exit status 2."""
+
+    def error(self, message: str) -> NoReturn:
+        _say(" ".join(message.split()))
+        raise _Exit(2)
+
+    def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
+        if message:
+            sys.stderr.write(message)
+        raise _Exit(status)
+
+
+def _say(message: str) -> None:
+    sys.stderr.write(f"{PROG}: {' '.join(str(message).split())}\n")
+
+
+def _fail(message: str) -> int:
+    _say(message)
+    return 2
+
+
+def _positive(what: str):
+    def parse(text: str) -> float:
+        try:
+            val = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a number: '{text}'") from None
+        if not math.isfinite(val) or val <= 0:
+            raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text}'")
+        return val
+
+    parse.__name__ = what
+    return parse
+
+
+def bundled_example(name: str = "break.json") -> str:
+    """Path of an example scene shipped inside the package."""
+    from importlib.resources import files
+
+    return str(files("termpool").joinpath("examples", name))
+
+
+def _parser() -> _Parser:
+    p = _Parser(
+        prog=PROG,
+        description="Pool in the terminal on an exact, batched physics core.",
+        epilog=(
+            "With no arguments, termpool currently runs `termpool sim` on the bundled example "
+            "break scene (termpool/examples/break.json) and prints its JSON; the interactive "
+            "terminal game will take over that role."
+        ),
+    )
+    from termpool import __version__
+
+    p.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+    s = sub.add_parser(
+        "sim",
+        help="simulate a scene and print the result as JSON",
+        description=(
+            "Load a scene (JSON, see docs/scenes.md), run it until every ball is at rest (or for "
+            "--duration simulated seconds) and print the final balls, the event log and, with "
+            "--sample-hz, sampled positions as JSON on stdout."
+        ),
+    )
+    s.add_argument("scene", metavar="SCENE", help="scene file (JSON), or - for stdin")
+    s.add_argument(
+        "--dt",
+        type=_positive("--dt"),
+        default=1 / 60,
+        help="fixed time step in seconds (default 1/60; ignored by --method event)",
+    )
+    s.add_argument(
+        "--duration",
+        type=_positive("--duration"),
+        default=None,
+        help="stop after this many simulated seconds (default: run until all balls are at rest)",
+    )
+    s.add_argument(
+        "--method",
+        choices=METHODS,
+        default="fixed",
+        help="fixed: batched fixed-step engine (default); event: event-to-event reference driver",
+    )
+    s.add_argument(
+        "--sample-hz",
+        type=_positive("--sample-hz"),
+        default=None,
+        metavar="N",
+        help="also output ball positions sampled N times per simulated second",
+    )
+    sub.add_parser(
+        "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
+    )
+    return p
+
+
+# ---------------------------------------------------------------------------------- sim
+
+
+def _f(x: Any) -> float:
+    return float(x)
+
+
+def _ball_state(d: dict) -> dict:
+    out = {k: _f(d[k]) for k in ("x", "y", "vx", "vy") if k in d}
+    if "w" in d:
+        out["w"] = [_f(v) for v in d["w"]]
+    if "state" in d:
+        out["state"] = str(d["state"])
+    for k, v in d.items():  # anything else the engine reports, passed through
+        if k not in out and k != "id":
+            out[k] = v
+    return out
+
+
+def sim_result(
+    scene: Any, eng: Any, samples: list | None, method: str, dt: float | None, wall_time: float
+) -> dict:
+    """The JSON-able output of `termpool sim` for an engine that has finished running.
+
+    `samples` is what the run returned, or None to leave the "samples" key out.
+    """
+    import numpy as np
+
+    from termpool.physics.engine import STATE_NAMES
+
+    ids = scene.ids
+    n = len(ids)
+    pos = np.asarray(eng.pos, float).reshape(-1, n, 2)[0]
+    vel = np.asarray(eng.vel, float).reshape(-1, n, 2)[0]
+    w = np.asarray(eng.w, float).reshape(-1, n, 3)[0]
+    state = np.asarray(eng.state).reshape(-1, n)[0]
+    pocket = np.asarray(eng.pocket).reshape(-1, n)[0]
+    pocketed = STATE_NAMES.index("pocketed")
+    balls = []
+    for i, bid in enumerate(ids):
+        b = {
+            "id": bid,
+            "x": _f(pos[i, 0]),
+            "y": _f(pos[i, 1]),
+            "vx": _f(vel[i, 0]),
+            "vy": _f(vel[i, 1]),
+            "w": [_f(v) for v in w[i]],
+            "state": STATE_NAMES[int(state[i])],
+        }
+        if int(pocket[i]) >= 0:
+            b["pocket"] = scene.table.hole_names[int(pocket[i])]
+        balls.append(b)
+
+    log = eng.events[0] if eng.events and isinstance(eng.events[0], list) else eng.events
+    events = []
+    for ev in sorted(log, key=lambda e: e["t"]):
+        idx = [int(i) for i in ev["i"]]
+        out = {"t": _f(ev["t"]), "type": ev["type"], "ids": [ids[i] for i in idx]}
+        out["balls"] = [
+            {"id": ids[i], **_ball_state(b)} for i, b in zip(idx, ev.get("balls", []), strict=False)
+        ]
+        for k in ("pocket", "feature"):
+            if ev.get(k) is not None:
+                out[k] = ev[k]
+        events.append(out)
+
+    result: dict[str, Any] = {
+        "time": _f(eng.time),
+        "steps": int(eng.steps),
+        "wall_time": wall_time,
+        "method": method,
+        "dt": dt,
+        "balls": balls,
+        "events": events,
+    }
+    if samples is not None:
+        result["samples"] = _samples(samples, ids, pocketed)
+    return result
+
+
+def _samples(samples: list, ids: list[str], pocketed: int) -> list[dict]:
+    import numpy as np
+
+    n = len(ids)
+    out = []
+    for t, pos, state in samples:
+        p = np.asarray(pos, float).reshape(-1, n, 2)[0]
+        s = np.asarray(state).reshape(-1, n)[0]
+        out.append(
+            {
+                "t": _f(t),
+                "pos": {
+                    bid: [_f(p[i, 0]), _f(p[i, 1])]
+                    for i, bid in enumerate(ids)
+                    if int(s[i]) != pocketed
+                },
+            }
+        )
+    return out
+
+
+def dump_json(result: dict) -> str:
+    """JSON with one line per top-level scalar and per item of a top-level list."""
+
+    def one(v: Any) -> str:
+        return json.dumps(v, separators=(", ", ": "))
+
+    parts = []
+    for key, val in result.items():
+        if isinstance(val, list) and val:
+            items = ",\n".join("  " + one(v) for v in val)
+            parts.append(f" {one(key)}: [\n{items}\n ]")
+        else:
+            parts.append(f" {one(key)}: {one(val)}")
+    return "{\n" + ",\n".join(parts) + "\n}\n"
+
+
+def _sim(args: argparse.Namespace) -> int:
+    from termpool.scene import SceneError, load_scene, loads_scene
+
+    try:
+        scene = loads_scene(sys.stdin.read()) if args.scene == "-" else load_scene(args.scene)
+    except SceneError as e:
+        return _fail(str(e))
+    from termpool.physics.engine import Engine
+
+    try:
+        eng = Engine(
+            scene.table,
+            scene.physics,
+            scene.pos,
+            scene.vel,
+            scene.w,
+            scene.radius,
+            scene.mass,
+            record=True,
+        )
+    except ValueError as e:
+        return _fail(str(e))
+    t0 = time.perf_counter()
+    if args.method == "fixed":
+        samples = eng.run(args.dt, duration=args.duration, sample_hz=args.sample_hz)
+    else:
+        samples = eng.run_events(duration=args.duration, sample_hz=args.sample_hz)
+    wall = time.perf_counter() - t0
+    dt = args.dt if args.method == "fixed" else None
+    samples = (samples or []) if args.sample_hz is not None else None
+    result = sim_result(scene, eng, samples, args.method, dt, wall)
+    sys.stdout.write(dump_json(result))
+    sys.stdout.flush()
+    return 0
+
+
+# -------------------------------------------------------------------------------- bench
+
+
+def _bench(argv: list[str]) -> int:
+    import importlib
+
+    try:
+        bench = importlib.import_module("termpool.bench")
+    except ModuleNotFoundError as e:
+        if e.name in ("termpool.bench",):
+            return _fail("bench: the benchmark module is not available")
+        raise
+    rc = bench.main(argv)
+    return rc if isinstance(rc, int) else 0
+
+
+# --------------------------------------------------------------------------------- main
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the `termpool` command; returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        if argv and argv[0] == "bench":
+            return _bench(argv[1:])
+        args = _parser().parse_args(argv or ["sim", bundled_example()])
+        if args.command == "sim":
+            return _sim(args)
+        return _fail("missing command (try termpool --help)")
+    except _Exit as e:
+        return e.code
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:
+        # The reader went away (e.g. `| head`); silence the flush at exit.
+        import os
+
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1

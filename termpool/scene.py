@@ -1,0 +1,349 @@
+"""Scenes: a JSON description of a table, its physics and the balls on it, validated.
+
+Every problem is reported as one `SceneError` line naming the key path or the ball, e.g.
+``balls[3] (id '7'): overlaps ball '5'`` or ``physics.mu_slide: must not be negative``.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import os
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+import numpy as np
+
+from termpool.physics.cue import strike
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.table import PRESETS, Table
+
+
+class SceneError(ValueError):
+    """A scene that cannot be loaded; the message is a single line."""
+
+
+TOP_KEYS = ("description", "table", "physics", "balls", "shot")
+BALL_KEYS = ("id", "x", "y", "vx", "vy", "w", "radius", "mass")
+SHOT_KEYS = ("ball", "speed", "angle", "side", "top")
+TABLE_FIELDS = tuple(f.name for f in fields(Table) if f.init)
+TABLE_KEYS = ("preset", *TABLE_FIELDS)
+RACKS = ("8ball", "9ball")
+OVERLAP_TOL = 1e-6
+
+# Rows from the apex (on the foot spot) towards the foot rail; within a row, ids by increasing y.
+RACK_ROWS = {
+    "8ball": [
+        ["1"],
+        ["9", "2"],
+        ["10", "8", "3"],
+        ["11", "7", "14", "4"],
+        ["5", "13", "15", "6", "12"],
+    ],
+    "9ball": [["1"], ["2", "3"], ["4", "9", "5"], ["6", "7"], ["8"]],
+}
+
+
+@dataclass
+class Scene:
+    table: Table
+    physics: Physics
+    ids: list[str]
+    pos: np.ndarray  # (N, 2) m
+    vel: np.ndarray  # (N, 2) m/s
+    w: np.ndarray  # (N, 3) rad/s
+    radius: np.ndarray  # (N,) m
+    mass: np.ndarray  # (N,) kg
+    raw: dict = field(default_factory=dict, repr=False)
+
+    def index(self, ball_id: str) -> int:
+        return self.ids.index(ball_id)
+
+
+# ---------------------------------------------------------------------------------- helpers
+
+
+def _fmt(v: Any) -> str:
+    return repr(v) if isinstance(v, str) else json.dumps(v)
+
+
+def _check_keys(d: Any, allowed: tuple[str, ...], path: str) -> None:
+    if not isinstance(d, dict):
+        raise SceneError(f"{path}: must be an object")
+    for key in d:
+        if key not in allowed:
+            raise SceneError(f"{path}: unknown key '{key}' (allowed: {', '.join(allowed)})")
+
+
+def _number(val: Any, path: str, *, positive: bool = False, nonneg: bool = False) -> float:
+    if isinstance(val, bool) or not isinstance(val, (int, float)):
+        raise SceneError(f"{path}: must be a number, not {_fmt(val)}")
+    val = float(val)
+    if not math.isfinite(val):
+        raise SceneError(f"{path}: must be finite")
+    if positive and val <= 0:
+        raise SceneError(f"{path}: must be positive")
+    if nonneg and val < 0:
+        raise SceneError(f"{path}: must not be negative")
+    return val
+
+
+def _reject_duplicates(pairs: list[tuple[str, Any]]) -> dict:
+    out: dict = {}
+    for key, val in pairs:
+        if key in out:
+            raise SceneError(f"duplicate key '{key}'")
+        out[key] = val
+    return out
+
+
+def _parse_json(text: str, where: str) -> Any:
+    try:
+        return json.loads(text, object_pairs_hook=_reject_duplicates)
+    except json.JSONDecodeError as e:
+        raise SceneError(
+            f"{where}: invalid JSON at line {e.lineno} column {e.colno}: {e.msg}"
+        ) from None
+    except SceneError as e:
+        raise SceneError(f"{where}: invalid JSON: {e}") from None
+
+
+# ------------------------------------------------------------------------------------ table
+
+
+def _table(spec: Any) -> Table:
+    if isinstance(spec, str):
+        if spec not in PRESETS:
+            raise SceneError(f"table: unknown preset '{spec}' (use {', '.join(PRESETS)})")
+        return Table.preset(spec)
+    if not isinstance(spec, dict):
+        raise SceneError("table: must be a preset name ('7ft', '8ft', '9ft') or an object")
+    _check_keys(spec, TABLE_KEYS, "table")
+    kw: dict[str, Any] = {}
+    preset = spec.get("preset")
+    if preset is not None:
+        if not isinstance(preset, str) or preset not in PRESETS:
+            raise SceneError(
+                f"table.preset: unknown preset {_fmt(preset)} (use {', '.join(PRESETS)})"
+            )
+        kw["length"], kw["width"] = PRESETS[preset]
+    for key, val in spec.items():
+        if key == "preset":
+            continue
+        if key == "pockets":
+            if val not in ("standard", "none"):
+                raise SceneError("table.pockets: must be 'standard' or 'none'")
+            kw[key] = val
+        elif key == "hole_depth":
+            kw[key] = _number(val, f"table.{key}", nonneg=True)
+        else:
+            kw[key] = _number(val, f"table.{key}", positive=True)
+    for key in ("corner_jaw_angle", "side_jaw_angle"):
+        if key in kw and kw[key] > 180:
+            raise SceneError(f"table.{key}: must be at most 180 degrees")
+    try:
+        t = Table(**kw)
+    except ValueError as e:
+        raise SceneError(str(e)) from None
+    if t.pockets == "standard":
+        a = t.corner_mouth / math.sqrt(2)  # corner jaw tip distance from the corner
+        if 2 * a + t.side_mouth >= t.length:
+            raise SceneError("table: pocket mouths do not fit along the length")
+        if 2 * a >= t.width:
+            raise SceneError("table: corner pocket mouths do not fit across the width")
+    return t
+
+
+def table_to_dict(t: Table) -> dict:
+    return {name: getattr(t, name) for name in TABLE_FIELDS}
+
+
+# ------------------------------------------------------------------------------------ balls
+
+
+def _ball_id(val: Any, path: str) -> str:
+    if isinstance(val, bool):
+        raise SceneError(f"{path}: must be a string or a number")
+    if isinstance(val, int):
+        return str(val)
+    if isinstance(val, float):
+        if not math.isfinite(val):
+            raise SceneError(f"{path}: must be finite")
+        return str(int(val)) if val.is_integer() else repr(val)
+    if isinstance(val, str):
+        if not val.strip():
+            raise SceneError(f"{path}: must not be empty")
+        return val
+    raise SceneError(f"{path}: must be a string or a number")
+
+
+def _ball(spec: Any, i: int) -> dict:
+    path = f"balls[{i}]"
+    _check_keys(spec, BALL_KEYS, path)
+    bid = _ball_id(spec["id"], f"{path}.id") if "id" in spec else ("cue" if i == 0 else str(i))
+    for key in ("x", "y"):
+        if key not in spec:
+            raise SceneError(f"{path} (id '{bid}'): missing key '{key}'")
+    b = {"id": bid}
+    for key in ("x", "y", "vx", "vy"):
+        b[key] = _number(spec.get(key, 0.0), f"{path}.{key}")
+    w = spec.get("w", [0.0, 0.0, 0.0])
+    if not isinstance(w, list) or len(w) != 3:
+        raise SceneError(f"{path}.w: must be a list of 3 numbers [wx, wy, wz]")
+    b["w"] = [_number(v, f"{path}.w[{k}]") for k, v in enumerate(w)]
+    b["radius"] = _number(spec.get("radius", BALL_RADIUS), f"{path}.radius", positive=True)
+    b["mass"] = _number(spec.get("mass", BALL_MASS), f"{path}.mass", positive=True)
+    return b
+
+
+def rack(kind: str, table: Table, radius: float = BALL_RADIUS) -> list[dict]:
+    """Cue ball on the head spot plus touching racked balls, apex on the foot spot."""
+    if kind not in RACK_ROWS:
+        raise SceneError(f"balls: unknown rack '{kind}' (use {', '.join(RACKS)} or a list)")
+    hx, hy = table.head_spot
+    fx, fy = table.foot_spot
+    dx = math.sqrt(3.0) * radius
+    placed = {}
+    for k, row in enumerate(RACK_ROWS[kind]):
+        n = len(row)
+        for j, bid in enumerate(row):
+            placed[bid] = (fx + k * dx, fy + (2 * j - (n - 1)) * radius)
+    out = [{"id": "cue", "x": hx, "y": hy}]
+    for bid in sorted(placed, key=int):
+        x, y = placed[bid]
+        out.append({"id": bid, "x": x, "y": y})
+    for b in out:
+        b.update(vx=0.0, vy=0.0, w=[0.0, 0.0, 0.0], radius=radius, mass=BALL_MASS)
+        if not table.inside(b["x"], b["y"], radius):
+            raise SceneError(f"balls: rack '{kind}' does not fit on the table (ball '{b['id']}')")
+    return out
+
+
+def _balls(spec: Any, table: Table) -> list[dict]:
+    if isinstance(spec, str):
+        return rack(spec, table)
+    if not isinstance(spec, list):
+        raise SceneError("balls: must be a list of balls or a rack name ('8ball' or '9ball')")
+    if not spec:
+        raise SceneError("balls: must list at least one ball")
+    return [_ball(b, i) for i, b in enumerate(spec)]
+
+
+def _check_layout(balls: list[dict], table: Table) -> None:
+    seen: dict[str, int] = {}
+    for i, b in enumerate(balls):
+        tag = f"balls[{i}] (id '{b['id']}')"
+        if b["id"] in seen:
+            raise SceneError(f"{tag}: duplicate id (also balls[{seen[b['id']]}])")
+        seen[b["id"]] = i
+        if not table.inside(b["x"], b["y"], b["radius"]):
+            raise SceneError(
+                f"{tag}: off the table at ({b['x']:g}, {b['y']:g}); the centre must lie within "
+                f"[{b['radius']:g}, {table.length - b['radius']:g}] x "
+                f"[{b['radius']:g}, {table.width - b['radius']:g}]"
+            )
+        for j in range(i):
+            o = balls[j]
+            d = math.hypot(b["x"] - o["x"], b["y"] - o["y"])
+            if d < b["radius"] + o["radius"] - OVERLAP_TOL:
+                raise SceneError(f"{tag}: overlaps ball '{o['id']}' (centres {d:.6g} m apart)")
+
+
+# ------------------------------------------------------------------------------------- shot
+
+
+def _apply_shot(spec: Any, balls: list[dict]) -> None:
+    _check_keys(spec, SHOT_KEYS, "shot")
+    bid = _ball_id(spec.get("ball", "cue"), "shot.ball")
+    match = [b for b in balls if b["id"] == bid]
+    if not match:
+        raise SceneError(f"shot.ball: no ball with id '{bid}' in the scene")
+    if "speed" not in spec:
+        raise SceneError("shot: missing key 'speed'")
+    speed = _number(spec["speed"], "shot.speed", nonneg=True)
+    angle = _number(spec.get("angle", 0.0), "shot.angle")
+    side = _number(spec.get("side", 0.0), "shot.side")
+    top = _number(spec.get("top", 0.0), "shot.top")
+    b = match[0]
+    try:
+        (vx, vy), w = strike(speed, angle, side, top, b["radius"])
+    except ValueError as e:
+        raise SceneError(str(e)) from None
+    b["vx"], b["vy"], b["w"] = vx, vy, list(w)
+
+
+# -------------------------------------------------------------------------------------- API
+
+
+def _read(path: str | os.PathLike) -> dict:
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except OSError as e:
+        raise SceneError(f"cannot read scene '{os.fspath(path)}': {e.strerror or e}") from None
+    except UnicodeDecodeError:
+        raise SceneError(f"{os.fspath(path)}: not a UTF-8 text file") from None
+    return _parse_json(text, os.fspath(path))
+
+
+def load_scene(src: str | os.PathLike | dict) -> Scene:
+    """Load and validate a scene from a JSON file path or an already parsed dict."""
+    raw = src if isinstance(src, dict) else _read(src)
+    if not isinstance(raw, dict):
+        raise SceneError("scene: must be a JSON object")
+    raw = copy.deepcopy(raw)
+    _check_keys(raw, TOP_KEYS, "scene")
+    if "description" in raw and not isinstance(raw["description"], str):
+        raise SceneError("description: must be a string")
+    table = _table(raw.get("table", "9ft"))
+    phys_spec = raw.get("physics", {})
+    if not isinstance(phys_spec, dict):
+        raise SceneError("physics: must be an object")
+    try:
+        physics = Physics.from_dict(phys_spec)
+    except ValueError as e:
+        raise SceneError(str(e)) from None
+    balls = _balls(raw.get("balls", "8ball"), table)
+    _check_layout(balls, table)
+    if "shot" in raw:
+        _apply_shot(raw["shot"], balls)
+    return Scene(
+        table=table,
+        physics=physics,
+        ids=[b["id"] for b in balls],
+        pos=np.array([[b["x"], b["y"]] for b in balls], dtype=float),
+        vel=np.array([[b["vx"], b["vy"]] for b in balls], dtype=float),
+        w=np.array([b["w"] for b in balls], dtype=float),
+        radius=np.array([b["radius"] for b in balls], dtype=float),
+        mass=np.array([b["mass"] for b in balls], dtype=float),
+        raw=raw,
+    )
+
+
+def scene_to_dict(scene: Scene) -> dict:
+    """A JSON-able dict with an explicit balls list (any shot already applied)."""
+    out: dict[str, Any] = {}
+    if isinstance(scene.raw.get("description"), str):
+        out["description"] = scene.raw["description"]
+    out["table"] = table_to_dict(scene.table)
+    out["physics"] = scene.physics.to_dict()
+    out["balls"] = [
+        {
+            "id": bid,
+            "x": float(scene.pos[i, 0]),
+            "y": float(scene.pos[i, 1]),
+            "vx": float(scene.vel[i, 0]),
+            "vy": float(scene.vel[i, 1]),
+            "w": [float(v) for v in scene.w[i]],
+            "radius": float(scene.radius[i]),
+            "mass": float(scene.mass[i]),
+        }
+        for i, bid in enumerate(scene.ids)
+    ]
+    return out
+
+
+def loads_scene(text: str) -> Scene:
+    """Load a scene from JSON text."""
+    return load_scene(_parse_json(text, "scene"))
