@@ -17,8 +17,9 @@ import math
 import numpy as np
 
 from termpool.physics import contact
+from termpool.physics.cluster import solve_inelastic
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
-from termpool.physics.roots import first_contact, first_line_contact
+from termpool.physics.roots import V_MIN, first_contact, first_line_contact
 from termpool.physics.table import Table
 
 STATIONARY, SPINNING, SLIDING, ROLLING, POCKETED = range(5)
@@ -31,6 +32,7 @@ EPS_U = 1e-3
 EPS_V = 1e-9  # m/s below which a ball counts as not translating
 EPS_W = 1e-9  # rad/s of side spin below which a ball counts as still
 MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
+CLUSTER_GAP = 1e-6  # m: balls (and cushions) this close count as touching in a cluster
 
 _TRANSITION_NAMES = {
     (SLIDING, ROLLING): "slide_to_roll",
@@ -296,9 +298,23 @@ class Engine:
         if cu.size:
             labels = self._cushion(tabs[cu], i[cu])
         pr = np.flatnonzero(kind == 3)
+        more_b, more_i = [tabs[pr]], [j[pr]]
         if pr.size:
-            self._collide(tabs[pr], i[pr], j[pr])
-        self._predict(np.concatenate([tabs, tabs[pr]]), np.concatenate([i, j[pr]]))
+            slow = self._closing(tabs[pr], i[pr], j[pr]) < self.physics.v_inelastic
+            fast = pr[~slow]
+            if fast.size:
+                self._collide(tabs[fast], i[fast], j[fast])
+            sl = pr[slow]
+            if sl.size:
+                alone = self._alone(tabs[sl], i[sl], j[sl])
+                if alone.any():
+                    self._settle(tabs[sl[alone]], i[sl[alone]], j[sl[alone]])
+                sl = sl[~alone]
+            for n in sl.tolist():
+                members = self._cluster(int(tabs[n]), [int(i[n]), int(j[n])])
+                more_b.append(np.full(len(members), tabs[n]))
+                more_i.append(np.array(members, dtype=np.int64))
+        self._predict(np.concatenate([tabs] + more_b), np.concatenate([i] + more_i))
         if self.record:
             self._log(tabs, kind, i, j, old_state, dict(zip(cu.tolist(), labels, strict=True)))
 
@@ -361,6 +377,148 @@ class Engine:
             else:
                 names.append(tab.hole_names[fi - nseg - npt])
         return names
+
+    def _closing(self, b, i, j) -> np.ndarray:
+        """Normal closing speed of pairs (b, i, j) at their tables' clocks."""
+        t = self.tb[b]
+        pi, vi, _ = self._eval(b, i, t, spin=False)
+        pj, vj, _ = self._eval(b, j, t, spin=False)
+        d = pj - pi
+        return ((vi - vj) * d).sum(axis=1) / _norm(d)
+
+    def _alone(self, b, i, j) -> np.ndarray:
+        """True for pairs (b, i, j) that touch no third ball and no cushion."""
+        N, tab = self.N, self.table
+        t = self.tb[b]
+        k = np.arange(N)[None, :]
+        p, _, _ = self._eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
+        R = self.radius[b]
+        live = (self.state[b] != POCKETED) & (k != i[:, None]) & (k != j[:, None])
+        crowded = np.zeros(len(b), dtype=bool)
+        for x in (i, j):
+            px = p[np.arange(len(b)), x]
+            gap = _norm(p - px[:, None]) - R - R[np.arange(len(b)), x][:, None]
+            crowded |= (live & (gap < CLUSTER_GAP)).any(axis=1)
+            rc = self.rc[b, x][:, None]
+            if self._nseg:
+                s = px @ tab.seg_n.T - self._seg_off - rc
+                along = px @ self._seg_dir.T - (tab.seg_a * self._seg_dir).sum(axis=1)
+                crowded |= ((s < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len)).any(1)
+            if self._npt:
+                d = _norm(px[:, None] - tab.points[None]) - rc
+                crowded |= (d < CLUSTER_GAP).any(axis=1)
+        return ~crowded
+
+    def _settle(self, b, i, j) -> None:
+        """Slow contact of an isolated pair: perfectly inelastic along the normal, repeated
+        with the slip completion of _set until the pair no longer closes."""
+        t = self.tb[b]
+        pi, vi, wi = self._eval(b, i, t)
+        pj, vj, wj = self._eval(b, j, t)
+        ri, rj = self.radius[b, i], self.radius[b, j]
+        mi, mj = self.mass[b, i], self.mass[b, j]
+        d = pj - pi
+        dist = _norm(d)
+        n = d / dist[:, None]
+        for _ in range(20):
+            closing = ((vi - vj) * n).sum(axis=1)
+            if not (closing > V_MIN).any():
+                break
+            jn = np.maximum(closing, 0.0) / (1.0 / mi + 1.0 / mj)
+            vi = vi - (jn / mi)[:, None] * n
+            vj = vj + (jn / mj)[:, None] * n
+            for v, w, r in ((vi, wi, ri), (vj, wj, rj)):
+                u = v + r[:, None] * _perp(w[:, :2])
+                small = (_norm(u) <= EPS_U)[:, None]
+                v[:] = np.where(small, v - u / 3.5, v)
+                w[:, :2] = np.where(small, _perp(v) / r[:, None], w[:, :2])
+        depth = np.maximum(ri + rj - dist, 0.0)
+        share = mj / (mi + mj)
+        pi = pi - (depth * share)[:, None] * n
+        pj = pj + (depth * (1.0 - share))[:, None] * n
+        self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
+                  np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
+
+    def _cluster(self, b: int, seeds: list[int]) -> list[int]:
+        """Resolve a slow contact together with every ball and cushion touching its cluster."""
+        N, tab = self.N, self.table
+        t = self.tb[b]
+        k = np.arange(N)
+        p, v, w = self._eval(np.full(N, b), k, np.full(N, t))
+        R, m = self.radius[b], self.mass[b]
+        live = self.state[b] != POCKETED
+        d = p[None, :, :] - p[:, None, :]
+        dist = _norm(d)
+        touch = (dist - (R[:, None] + R[None, :]) < CLUSTER_GAP) & live[:, None] & live[None, :]
+        np.fill_diagonal(touch, False)
+        near = touch.tolist()
+        members = list(dict.fromkeys(seeds))
+        seen = set(members)
+        for a in members:  # grows while we walk it
+            for c in range(N):
+                if near[a][c] and c not in seen:
+                    seen.add(c)
+                    members.append(c)
+        mem = np.array(members)
+        # Contact rows: ball a, ball c (or -1: a cushion), normal pushing a away, gap.
+        ia, ic = np.nonzero(np.triu(touch[np.ix_(mem, mem)]))
+        a, c = mem[ia], mem[ic]
+        ra, rc_, rn, rg = [a], [c], [-d[a, c] / dist[a, c][:, None]], [np.zeros(a.size)]
+        pm, rcm = p[mem], self.rc[b, mem]
+
+        def cushion_rows(x, normals, gaps):
+            ra.append(mem[x])
+            rc_.append(np.full(x.size, -1))
+            rn.append(normals)
+            rg.append(gaps)
+
+        if self._nseg:
+            gap = pm @ tab.seg_n.T - self._seg_off - rcm[:, None]
+            along = pm @ self._seg_dir.T - (tab.seg_a * self._seg_dir).sum(axis=1)
+            x, f = np.nonzero((np.abs(gap) < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len))
+            cushion_rows(x, tab.seg_n[f], gap[x, f])
+        if self._npt:
+            dp = pm[:, None] - tab.points[None]
+            dd = _norm(dp)
+            gap = dd - rcm[:, None]
+            x, f = np.nonzero(gap < CLUSTER_GAP)
+            cushion_rows(x, dp[x, f] / dd[x, f][:, None], gap[x, f])
+        ra, rc_, rn, rg = (np.concatenate(z) for z in (ra, rc_, rn, rg))
+        nc = len(ra)
+        J = np.zeros((nc, N, 2))  # u = J v: separating speed along each contact normal
+        rows = np.arange(nc)
+        J[rows, ra] = rn
+        ball = rc_ >= 0
+        J[rows[ball], rc_[ball]] = -rn[ball]
+        J = J.reshape(nc, 2 * N)
+        inv_m = np.repeat(1.0 / m, 2)
+        A = (J * inv_m) @ J.T
+        for _ in range(20):
+            vflat = v.reshape(-1)
+            u0 = J @ vflat
+            if not (u0 < -V_MIN).any():
+                break
+            lam = solve_inelastic(A, u0)
+            v = (vflat + inv_m * (J.T @ lam)).reshape(N, 2)
+            # A push leaves a rolling ball with a tiny slip that _set completes at once
+            # (v -= u / 3.5); do it here so the solve sees the velocities that result.
+            u = v[mem] + R[mem, None] * _perp(w[mem, :2])
+            small = (_norm(u) <= EPS_U)[:, None]
+            v[mem] = np.where(small, v[mem] - u / 3.5, v[mem])
+            w[mem, :2] = np.where(small, _perp(v[mem]) / R[mem, None], w[mem, :2])
+        # Undo sub-micrometre sinks contact by contact (pairs share it by inverse mass).
+        for a, c, n, gap in zip(ra.tolist(), rc_.tolist(), rn, rg.tolist(), strict=True):
+            if c < 0:
+                if gap < 0:
+                    p[a] -= gap * n
+                continue
+            depth = R[a] + R[c] - _norm(p[c] - p[a])
+            if depth > 0:
+                share = m[c] / (m[a] + m[c])
+                p[a] += depth * share * n
+                p[c] -= depth * (1.0 - share) * n
+        self._set(np.full(len(mem), b), mem, np.full(len(mem), t), p[mem], v[mem], w[mem])
+        return members
 
     def _collide(self, b, i, j) -> None:
         ph = self.physics

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 TOUCH = 1e-9  # gaps below this (m) count as touching
-SINK = 4e-7  # a resting contact pushed together is caught after this much overlap (m)
+SINK = 8e-7  # a resting contact pushed together is caught after this much overlap (m)
 V_MIN = 1e-6  # closing speeds below this (m/s) are not an immediate contact
 
 

@@ -1,0 +1,337 @@
+"""Known billiards results, checked against closed-form laws (not against the code's output)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from termpool.physics.cue import strike
+from termpool.physics.engine import Engine
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.table import Table
+
+R = BALL_RADIUS
+G = 9.81
+BIG = Table(length=20.0, width=10.0, pockets="none")  # no cushion gets in the way
+
+
+def single(v, w, physics=None, table=BIG, start=(2.0, 5.0)):
+    return Engine(table, physics or Physics(), [start], [v], [w])
+
+
+def first(events, kind):
+    return next(ev for ev in events if ev["type"] == kind)
+
+
+@pytest.mark.parametrize("v0", [0.5, 2.0, 6.0])
+@pytest.mark.parametrize("mu", [0.1, 0.2, 0.4])
+def test_centre_ball_rolls_at_five_sevenths_after_sliding_distance(v0, mu):
+    ph = Physics(mu_slide=mu)
+    v, w = strike(v0, 30.0, 0, 0)
+    eng = single(v, w, ph)
+    eng.run(1 / 60)
+    ev = first(eng.events[0], "slide_to_roll")
+    speed = math.hypot(ev["balls"][0]["vx"], ev["balls"][0]["vy"])
+    assert speed == pytest.approx(5 / 7 * v0, rel=1e-12)
+    assert ev["t"] == pytest.approx(2 * v0 / (7 * mu * G), rel=1e-12)
+    dist = math.hypot(ev["balls"][0]["x"] - 2.0, ev["balls"][0]["y"] - 5.0)
+    assert dist == pytest.approx(12 * v0**2 / (49 * mu * G), rel=1e-12)
+
+
+@pytest.mark.parametrize("v0", [0.3, 1.0, 2.5])
+def test_rolling_ball_stops_after_v2_over_2_mu_roll_g(v0):
+    ph = Physics(mu_roll=0.01)
+    v, w = strike(v0, 0.0, 0, 0.4)  # top 0.4 R: natural roll from the start
+    long = Table(length=40.0, width=10.0, pockets="none")
+    eng = single(v, w, ph, table=long, start=(1.0, 5.0))
+    eng.run(1 / 60)
+    types = [ev["type"] for ev in eng.events[0]]
+    assert types == ["roll_to_stop"]
+    x = eng.pos[0, 0, 0]
+    assert x - 1.0 == pytest.approx(v0**2 / (2 * 0.01 * G), rel=1e-12)
+    assert eng.events[0][0]["t"] == pytest.approx(v0 / (0.01 * G), rel=1e-12)
+
+
+def test_side_spin_decays_then_stops():
+    ph = Physics(mu_spin=0.0127)
+    eng = single((0.0, 0.0), (0.0, 0.0, 30.0), ph)
+    eng.run(1 / 60)
+    ev = first(eng.events[0], "spin_to_stop")
+    assert ev["t"] == pytest.approx(30.0 * 2 * R / (5 * 0.0127 * G), rel=1e-12)
+    assert eng.pos[0, 0] == pytest.approx([2.0, 5.0], abs=0)
+
+
+def two_ball_cut(cut_deg, cue_v, cue_w, physics, gap=0.5):
+    """Cue ball travelling +x, object ball placed for a cut of `cut_deg` at contact."""
+    c = math.radians(cut_deg)
+    obj = np.array([6.0, 5.0])
+    contact = obj - 2 * R * np.array([math.cos(c), math.sin(c)])
+    cue = contact - np.array([gap, 0.0])
+    vel = np.array([cue_v, [0.0, 0.0]])
+    w = np.array([cue_w, [0.0, 0.0, 0.0]])
+    return Engine(BIG, physics, np.array([cue, obj]), vel, w)
+
+
+@pytest.mark.parametrize("cut", [5.0, 20.0, 30.0, 45.0, 60.0, 80.0])
+def test_frictionless_elastic_stun_splits_at_ninety_degrees(cut):
+    ph = Physics(ball_ball="frictionless", e_ball=1.0)
+    eng = two_ball_cut(cut, (2.0, 0.0), (0.0, 0.0, 0.0), ph, gap=1e-4)
+    eng.run(1 / 60)
+    ev = first(eng.events[0], "ball_ball")
+    a, b = ev["balls"]
+    va = np.array([a["vx"], a["vy"]])
+    vb = np.array([b["vx"], b["vy"]])
+    cosang = va @ vb / (np.linalg.norm(va) * np.linalg.norm(vb))
+    assert abs(cosang) < 1e-9
+    # Object ball leaves along the line of centres, at the cut angle.
+    assert math.degrees(math.atan2(vb[1], vb[0])) == pytest.approx(cut, abs=1e-6)
+
+
+@pytest.mark.parametrize("cut", [10.0, 30.0, 45.0, 60.0])
+def test_rolling_cue_ball_final_deflection_matches_thirty_degree_rule(cut):
+    # A naturally rolling cue ball, frictionless elastic contact: once friction has restored
+    # rolling, its path is deflected from the original line by atan(sin c cos c/(sin^2 c+2/5)).
+    ph = Physics(ball_ball="frictionless", e_ball=1.0, mu_roll=0.0)
+    v, w = strike(1.5, 0.0, 0, 0.4)
+    eng = two_ball_cut(cut, v, w, ph, gap=0.3)
+    eng.run(1 / 60, duration=5.0)
+    evs = eng.events[0]
+    k = next(n for n, ev in enumerate(evs) if ev["type"] == "ball_ball")
+    roll = next(ev for ev in evs[k:] if ev["type"] == "slide_to_roll" and ev["i"] == [0])
+    vx, vy = roll["balls"][0]["vx"], roll["balls"][0]["vy"]
+    c = math.radians(cut)
+    expected = math.degrees(math.atan(math.sin(c) * math.cos(c) / (math.sin(c) ** 2 + 0.4)))
+    assert abs(math.degrees(math.atan2(vy, vx))) == pytest.approx(expected, abs=1e-6)
+
+
+@pytest.mark.parametrize("spin", [1.0, -1.0, 0.5, -0.3])
+def test_straight_follow_and_draw_end_at_two_sevenths(spin):
+    # Cue ball arrives with top (spin > 0) or back spin R w = spin * v; after a full hit it
+    # stops, then friction turns the spin into 2/7 of R w (forward for follow, back for draw).
+    ph = Physics(ball_ball="frictionless", e_ball=1.0, mu_roll=0.0)
+    v0 = 2.0
+    eng = two_ball_cut(0.0, (v0, 0.0), (0.0, spin * v0 / R, 0.0), ph, gap=1e-9)
+    eng.run(1 / 60, duration=3.0)
+    evs = eng.events[0]
+    hit = first(evs, "ball_ball")
+    cue_after = hit["balls"][0]
+    assert cue_after["vx"] == pytest.approx(0.0, abs=1e-6)
+    rw = R * cue_after["w"][1]
+    roll = next(ev for ev in evs if ev["type"] == "slide_to_roll" and ev["i"] == [0])
+    assert roll["balls"][0]["vx"] == pytest.approx(2 / 7 * rw, rel=1e-9)
+    assert rw == pytest.approx(spin * v0, rel=1e-3)  # barely any spin lost on the way
+
+
+def test_ball_ball_momentum_kept_and_energy_not_gained_with_friction():
+    ph = Physics(ball_ball="frictional")
+    v, w = strike(3.0, 0.0, 0.3, 0.2)
+    eng = two_ball_cut(35.0, v, w, ph, gap=1e-9)
+    p_before = BALL_MASS * np.array(v)
+    eng.run(1 / 60, duration=0.01)
+    ev = first(eng.events[0], "ball_ball")
+    a, b = ev["balls"]
+    p_after = BALL_MASS * np.array([a["vx"] + b["vx"], a["vy"] + b["vy"]])
+    assert p_after == pytest.approx(p_before, abs=1e-9)
+    inertia = 0.4 * BALL_MASS * R * R
+
+    def energy(vx, vy, w):
+        return 0.5 * BALL_MASS * (vx * vx + vy * vy) + 0.5 * inertia * float(np.dot(w, w))
+
+    e_before = energy(*v, np.array(w))
+    e_after = energy(a["vx"], a["vy"], a["w"]) + energy(b["vx"], b["vy"], b["w"])
+    assert e_after <= e_before * (1 + 1e-12)
+
+
+def test_cut_induced_throw_is_a_few_degrees_and_larger_when_slow():
+    def throw(speed):
+        ph = Physics(ball_ball="frictional")
+        eng = two_ball_cut(30.0, (speed, 0.0), (0.0, 0.0, 0.0), ph, gap=1e-9)
+        eng.run(1 / 60, duration=0.01)
+        b = first(eng.events[0], "ball_ball")["balls"][1]
+        return 30.0 - math.degrees(math.atan2(b["vy"], b["vx"]))
+
+    slow, fast = throw(0.5), throw(5.0)
+    assert 0.5 < fast < slow < 6.0
+
+
+def rail_bounce(side, physics, angle=45.0):
+    """A rolling ball hits the far rail (y = W) at `angle` to it, travelling +x."""
+    tab = Table(length=4.0, width=1.27, pockets="none")
+    v, w = strike(1.0, angle, side, 0.0)
+    eng = Engine(tab, physics, [[1.0, 0.5]], [v], [w])
+    eng.run(1 / 60, duration=5.0)
+    ev = first(eng.events[0], "cushion")
+    return ev["balls"][0], np.array(v)
+
+
+def test_cushion_without_friction_reflects_normal_speed_times_e():
+    ph = Physics(mu_cushion=0.0, e_cushion=0.85)
+    after, before_dir = rail_bounce(0.0, ph)
+    # The ball slides a little on the way: compare with its velocity just before the rail.
+    vx, vy = after["vx"], after["vy"]
+    assert vy < 0
+    # Horizontal tangential speed unchanged; normal speed reversed times e (|vy| / vx is
+    # e * tan of the incoming angle, since the incoming ball keeps its direction on the way).
+    assert -vy / vx == pytest.approx(0.85 * before_dir[1] / before_dir[0], rel=1e-9)
+
+
+def test_running_english_widens_and_reverse_narrows_the_rebound():
+    ph = Physics()
+
+    def out_angle(side):
+        after, _ = rail_bounce(side, ph)
+        return math.degrees(math.atan2(-after["vy"], after["vx"]))  # angle from the rail
+
+    plain, right, left = out_angle(0.0), out_angle(0.4), out_angle(-0.4)
+    # Travelling +x into the far rail, right english (wz > 0) is running: the ball leaves
+    # flatter along the rail; left english is reverse and sends it back more steeply.
+    assert right < plain < left
+
+
+def test_cushion_never_adds_energy_whatever_the_spin():
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        ph = Physics(mu_cushion=float(rng.uniform(0, 1)), e_cushion=float(rng.uniform(0, 1)))
+        w = rng.normal(0, 200, 3)
+        v = np.array([rng.uniform(-1, 1), rng.uniform(0.1, 3.0)])
+        tab = Table(length=4.0, width=1.27, pockets="none")
+        eng = Engine(tab, ph, [[2.0, 1.27 - R - 1e-4]], [v], [w])
+        inertia = 0.4 * BALL_MASS * R * R
+        e0 = 0.5 * BALL_MASS * v @ v + 0.5 * inertia * w @ w
+        eng.run(1 / 60, duration=0.02)
+        ev = first(eng.events[0], "cushion")["balls"][0]
+        e1 = 0.5 * BALL_MASS * (ev["vx"] ** 2 + ev["vy"] ** 2) + 0.5 * inertia * np.dot(
+            ev["w"], ev["w"])
+        assert e1 <= e0 * (1 + 1e-12)
+
+
+def test_fast_ball_does_not_tunnel_with_a_long_step():
+    # 20 m/s with dt = 1/30: 0.67 m per step, the object ball is 0.3 m away.
+    ph = Physics()
+    eng = Engine(BIG, ph, [[2.0, 5.0], [2.3, 5.0]], [[20.0, 0.0], [0.0, 0.0]])
+    eng.step(1 / 30)
+    assert [ev["type"] for ev in eng.events[0]][:1] == ["ball_ball"]
+    assert eng.pos[0, 1, 0] > 2.3
+    tab = Table(length=2.54, width=1.27, pockets="none")
+    eng = Engine(tab, ph, [[2.3, 0.6]], [[20.0, 0.0]])
+    eng.step(1 / 30)
+    assert eng.events[0][0]["type"] == "cushion"
+    assert eng.pos[0, 0, 0] < 2.54 - R * 0.9
+
+
+def test_pocketing_rattling_in_and_staying_out():
+    tab = Table.preset("9ft")
+    ph = Physics()
+    # Straight down the diagonal into the foot-right corner (x = L, y = 0).
+    start = np.array([2.0, 0.54])
+    target = np.array([2.54, 0.0])
+    d = target - start
+    ang = math.degrees(math.atan2(d[1], d[0]))
+    v, w = strike(2.0, ang, 0, 0.4)
+    eng = Engine(tab, ph, [start], [v], [w])
+    eng.run(1 / 60)
+    assert eng.state[0, 0] == 4
+    assert tab.hole_names[eng.pocket[0, 0]] == "foot_right"
+    # Rolling along the long rail into the corner: close to the rail it meets the far jaw
+    # and rattles in; a little further out it strikes the jaw's tip and stays out.
+    def along_rail(y):
+        v, w = strike(1.5, 0.0, 0, 0.4)
+        eng = Engine(tab, ph, [[2.0, y]], [v], [w])
+        eng.run(1 / 60)
+        feats = [ev.get("feature") for ev in eng.events[0] if ev["type"] == "cushion"]
+        return feats, eng.state[0, 0]
+
+    feats, state = along_rail(0.06)
+    assert feats[0] == "jaw" and state == 4
+    feats, state = along_rail(0.075)
+    assert feats[0] == "tip" and state != 4
+
+
+def test_fixed_step_is_exact_whatever_the_step():
+    tab = Table.preset("9ft")
+    ph = Physics()
+    v, w = strike(3.0, 10.0, 0.2, -0.3)
+    pos = [[0.6, 0.6], [1.4, 0.75], [1.8, 0.4], [2.0, 0.9]]
+    vel = [v, [0, 0], [0, 0], [0, 0]]
+    spin = [w, [0, 0, 0], [0, 0, 0], [0, 0, 0]]
+    ref = Engine(tab, ph, pos, vel, spin)
+    ref.run_events()
+    for dt in (1 / 15, 1 / 60, 1 / 1000):
+        eng = Engine(tab, ph, pos, vel, spin)
+        eng.run(dt)
+        assert np.array_equal(eng.pos, ref.pos)
+        assert [e["t"] for e in eng.events[0]] == [e["t"] for e in ref.events[0]]
+
+
+def test_newtons_cradle_takes_a_handful_of_contacts():
+    # A stun ball into a row of five frozen balls, elastic and frictionless between balls:
+    # the wave passes in one contact per ball and the last ball leaves with the speed.
+    ph = Physics(ball_ball="frictionless", e_ball=1.0, mu_slide=0.0, mu_roll=0.0)
+    row = [[3.0 + 2 * R * k, 5.0] for k in range(5)]
+    pos = [[2.9, 5.0]] + row
+    vel = [[2.0, 0.0]] + [[0.0, 0.0]] * 5
+    eng = Engine(BIG, ph, pos, vel)
+    eng.run(1 / 60, duration=0.5)
+    hits = [ev for ev in eng.events[0] if ev["type"] == "ball_ball"]
+    assert len(hits) == 5
+    v = eng.vel[0]
+    assert v[5] == pytest.approx([2.0, 0.0], abs=1e-12)
+    assert np.abs(v[:5]).max() < 1e-12
+
+
+@pytest.mark.parametrize("e", [0.95, 0.8])
+def test_newtons_cradle_on_cloth_settles_in_bounded_work(e):
+    # With cloth friction the cue ball follows into the row and pushes it: the pushing is
+    # resolved as one inelastic cluster at a time, not as thousands of pair contacts.
+    ph = Physics(e_ball=e)
+    row = [[3.0 + 2 * R * k, 5.0] for k in range(5)]
+    eng = Engine(BIG, ph, [[2.9, 5.0]] + row, [[2.0, 0.0]] + [[0.0, 0.0]] * 5)
+    eng.run(1 / 60)
+    hits = [ev for ev in eng.events[0] if ev["type"] == "ball_ball"]
+    assert len(hits) < 150
+    assert eng.passes < 400
+    p = eng.pos[0]
+    gaps = np.linalg.norm(p[:, None] - p[None], axis=2) + np.eye(6) - 2 * R
+    assert gaps.min() > -1e-6
+
+
+def test_balls_at_rest_cost_nothing():
+    tab = Table.preset("9ft")
+    eng = Engine(tab, Physics(), [[0.5, 0.5], [1.0, 0.5]])
+    for _ in range(100):
+        eng.step(1 / 60)
+    assert eng.passes == 0
+    assert eng.at_rest().all()
+
+
+def test_batch_matches_tables_run_alone():
+    tab = Table.preset("9ft")
+    ph = Physics()
+    rng = np.random.default_rng(3)
+    B = 5
+    pos = np.array([[[0.6, 0.6], [1.4, 0.75], [1.8, 0.4]]] * B)
+    vel = np.zeros((B, 3, 2))
+    spin = np.zeros((B, 3, 3))
+    for b in range(B):
+        v, w = strike(float(rng.uniform(1, 5)), float(rng.uniform(-20, 20)), 0.1, 0.1)
+        vel[b, 0], spin[b, 0] = v, w
+    batch = Engine(tab, ph, pos, vel, spin)
+    batch.run(1 / 60)
+    for b in range(B):
+        one = Engine(tab, ph, pos[b], vel[b], spin[b])
+        one.run(1 / 60)
+        assert np.array_equal(one.pos[0], batch.pos[b])
+        assert one.events[0] == batch.events[b]
+
+
+def test_heavier_cue_ball_follows_through_on_a_full_hit():
+    ph = Physics(ball_ball="frictionless", e_ball=1.0, mu_slide=0.0)
+    m1, m2 = 0.2, 0.17
+    eng = Engine(BIG, ph, [[2.0, 5.0], [2.0 + 2 * R + 1e-9, 5.0]], [[1.0, 0.0], [0, 0]],
+                 mass=[m1, m2])
+    eng.run(1 / 60, duration=1e-3)
+    a, b = first(eng.events[0], "ball_ball")["balls"]
+    assert a["vx"] == pytest.approx((m1 - m2) / (m1 + m2), rel=1e-9)
+    assert b["vx"] == pytest.approx(2 * m1 / (m1 + m2), rel=1e-9)
