@@ -245,6 +245,12 @@ def _sim(args: argparse.Namespace) -> int:
         return _fail(str(e))
     from termpool.physics.engine import Engine
 
+    ph = scene.physics
+    frictionless = [k for k in ("mu_slide", "mu_roll", "mu_spin") if getattr(ph, k) == 0]
+    moving = bool(abs(scene.vel).any() or abs(scene.w).any())
+    if args.duration is None and moving and frictionless:
+        return _fail(f"physics.{frictionless[0]} is 0, so the balls never come to rest: "
+                     "pass --duration")
     try:
         eng = Engine(
             scene.table,

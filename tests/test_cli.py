@@ -291,3 +291,17 @@ def test_dump_json_is_valid_and_stable() -> None:
     text = cli.dump_json(result)
     assert json.loads(text) == result
     assert text == cli.dump_json(json.loads(text))
+
+
+def test_scene_that_never_rests_needs_a_duration(tmp_path: Path) -> None:
+    scene = {
+        "table": {"length": 2.54, "width": 1.27, "pockets": "none"},
+        "physics": {"mu_roll": 0},
+        "balls": [{"id": "cue", "x": 0.5, "y": 0.5, "vx": 1.0, "vy": 0.3}],
+    }
+    path = tmp_path / "endless.json"
+    path.write_text(json.dumps(scene))
+    assert_usage_error(run("sim", str(path)), "physics.mu_roll", "--duration")
+    out = sim(str(path), "--duration", "2")
+    assert out["time"] == pytest.approx(2.0)
+    assert out["balls"][0]["state"] in ("sliding", "rolling")
