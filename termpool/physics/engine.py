@@ -491,8 +491,12 @@ class Engine:
         ball = rc_ >= 0
         J[rows[ball], rc_[ball]] = -rn[ball]
         J = J.reshape(nc, 2 * N)
-        inv_m = np.repeat(1.0 / m, 2)
+        # A rolling ball given a small push slides for an instant and then rolls on with 5/7
+        # of the push (the slip completion in _set): it answers as if 7/5 as heavy.
+        slip = _norm(v + R[:, None] * _perp(w[:, :2]))
+        inv_m = np.repeat(np.where(slip <= EPS_U, 5.0 / 7.0, 1.0) / m, 2)
         A = (J * inv_m) @ J.T
+        inv_m = np.repeat(1.0 / m, 2)
         for _ in range(20):
             vflat = v.reshape(-1)
             u0 = J @ vflat

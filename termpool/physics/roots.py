@@ -15,6 +15,8 @@ import numpy as np
 TOUCH = 1e-9  # gaps below this (m) count as touching
 SINK = 8e-7  # a resting contact pushed together is caught after this much overlap (m)
 V_MIN = 1e-6  # closing speeds below this (m/s) are not an immediate contact
+PIECES = 2  # straight pieces of the window in the cull
+_FRACTIONS = np.arange(PIECES, dtype=float)
 
 
 def first_contact(
@@ -33,13 +35,23 @@ def first_contact(
     touching = r0 - dist < TOUCH
     now = touching & (pv < -V_MIN * r0)
     target = np.where(touching, np.minimum(dist, r0) - SINK, dist)
-    # Cull: straight-line closest approach, widened by the most the acceleration can bend it.
+    # Cull: the window in PIECES straight pieces, each widened by the most the acceleration
+    # can bend the path within it; a pair none of whose pieces comes close cannot meet.
     vv = vx * vx + vy * vy
-    ts = np.where(vv > 0, np.minimum(np.maximum(-pv / vv, 0.0), horizon), 0.0)
-    cx, cy = px + vx * ts, py + vy * ts
     aa = ax * ax + ay * ay
-    reach = target + 0.5 * np.sqrt(aa) * horizon * horizon
-    cand = (cx * cx + cy * cy <= reach * reach) & ~now & (horizon > 0) & ((vv > 0) | (aa > 0))
+    h = horizon / PIECES
+    s0 = h[:, None] * _FRACTIONS  # (K, PIECES) piece start times
+    qx = px[:, None] + (vx[:, None] + 0.5 * ax[:, None] * s0) * s0
+    qy = py[:, None] + (vy[:, None] + 0.5 * ay[:, None] * s0) * s0
+    wx = vx[:, None] + ax[:, None] * s0
+    wy = vy[:, None] + ay[:, None] * s0
+    ww = wx * wx + wy * wy
+    ts = np.minimum(np.maximum(-(qx * wx + qy * wy) / ww, 0.0), h[:, None])
+    ts = np.where(ww > 0, ts, 0.0)
+    cx, cy = qx + wx * ts, qy + wy * ts
+    reach = (target + 0.5 * np.sqrt(aa) * h * h)[:, None]
+    close = (cx * cx + cy * cy <= reach * reach).any(axis=1)
+    cand = close & ~now & (horizon > 0) & ((vv > 0) | (aa > 0))
     out = np.where(now, 0.0, np.inf)
     idx = np.flatnonzero(cand)
     if idx.size == 0:
