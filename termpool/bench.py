@@ -169,22 +169,35 @@ def batch_breaks(scene, batch: int, seed: int = SEED):
 
 
 def time_batch(scene, dt: float, batch: int) -> dict:
-    """Wall time for `batch` different breaks in one Engine, construction to rest."""
+    """Wall time for `batch` different breaks in one Engine, construction to rest.
+
+    Two ways: to rest in one call (event to event, as the computer opponent and shot previews
+    use a batch: only the outcome matters), and in fixed steps of dt (as the game draws
+    frames). The engine is exact inside a step, so both give the same final tables.
+    """
     pos, vel, w = batch_breaks(scene, batch)
     t0 = time.perf_counter()
     eng = _engine(scene, pos, vel, w)
     t1 = time.perf_counter()
-    eng.run(dt)
+    eng.run_events()
     wall = time.perf_counter() - t0
+    t2 = time.perf_counter()
+    stepped = _engine(scene, pos, vel, w)
+    stepped.run(dt)
+    wall_stepped = time.perf_counter() - t2
     return {
         "batch": batch,
         "batch_breaks_per_s": batch / wall,
         "batch_wall_s": wall,
         "batch_build_s": t1 - t0,
         "batch_passes": int(eng.passes),
-        "batch_steps": int(eng.steps),
         "batch_sim_s": float(eng.time),
         "batch_at_rest": int(eng.at_rest().sum()),
+        "batch_stepped_breaks_per_s": batch / wall_stepped,
+        "batch_stepped_wall_s": wall_stepped,
+        "batch_steps": int(stepped.steps),
+        "batch_stepped_passes": int(stepped.passes),
+        "batch_same_result": bool((stepped.pos == eng.pos).all()),
     }
 
 
@@ -286,8 +299,16 @@ def format_speed(r: dict) -> str:
             f"{r['batch_breaks_per_s']:.0f} /s",
             TARGETS["batch_breaks_per_s"],
             "batch_breaks_per_s",
-            f"B={r['batch']} in {r['batch_wall_s']:.2f} s; "
-            f"{r['batch_passes']} passes, {r['batch_steps']} steps",
+            f"B={r['batch']} to rest in one call, {r['batch_wall_s']:.2f} s, "
+            f"{r['batch_passes']} passes",
+        ),
+        (
+            "  in 1/60 s steps",
+            f"{r['batch_stepped_breaks_per_s']:.0f} /s",
+            ("", float("nan")),
+            None,
+            f"{r['batch_stepped_wall_s']:.2f} s, {r['batch_steps']} steps, "
+            f"{r['batch_stepped_passes']} passes; same tables: {r['batch_same_result']}",
         ),
         (
             "import core",
@@ -299,7 +320,8 @@ def format_speed(r: dict) -> str:
     ]
     table = [("figure", "value", "target", "result", "notes")]
     for label, value, (op, bound), key, note in rows:
-        table.append((label, value, f"{op} {bound:g}", ok[r["pass"][key]], note))
+        target = f"{op} {bound:g}" if key else ""
+        table.append((label, value, target, ok[r["pass"][key]] if key else "", note))
     widths = [max(len(row[c]) for row in table) for c in range(4)]
     lines = [f"termpool bench speed: 8-ball break, 9-ft table, 8 m/s, dt {r['dt']:.6g} s", ""]
     for row in table:

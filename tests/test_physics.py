@@ -335,3 +335,24 @@ def test_heavier_cue_ball_follows_through_on_a_full_hit():
     a, b = first(eng.events[0], "ball_ball")["balls"]
     assert a["vx"] == pytest.approx((m1 - m2) / (m1 + m2), rel=1e-9)
     assert b["vx"] == pytest.approx(2 * m1 / (m1 + m2), rel=1e-9)
+
+
+def test_batch_of_breaks_is_step_independent_and_matches_single_tables():
+    # Racked breaks are full of slow contacts and touching clusters; a table's result must
+    # depend neither on the step nor on which other tables share its batch.
+    from termpool import bench
+
+    scene = bench._break_scene()
+    pos, vel, w = bench.batch_breaks(scene, 64)
+    args = (scene.table, scene.physics)
+    kw = {"radius": scene.radius, "mass": scene.mass}
+    events = Engine(*args, pos, vel, w, **kw)
+    events.run_events()
+    stepped = Engine(*args, pos, vel, w, **kw)
+    stepped.run(1 / 60)
+    assert np.array_equal(events.pos, stepped.pos)
+    for b in (0, 7):
+        alone = Engine(*args, pos[b], vel[b], w[b], **kw)
+        alone.run(1 / 30)
+        assert np.array_equal(alone.pos[0], events.pos[b])
+        assert alone.events[0] == events.events[b]

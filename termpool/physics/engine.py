@@ -421,15 +421,17 @@ class Engine:
         dist = _norm(d)
         n = d / dist[:, None]
         for _ in range(20):
-            closing = ((vi - vj) * n).sum(axis=1)
-            if not (closing > V_MIN).any():
+            # Each pair stops as soon as it no longer closes, whatever the other tables do.
+            live = ((vi - vj) * n).sum(axis=1) > V_MIN
+            if not live.any():
                 break
-            jn = np.maximum(closing, 0.0) / (1.0 / mi + 1.0 / mj)
+            closing = ((vi - vj) * n).sum(axis=1)
+            jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
             vi = vi - (jn / mi)[:, None] * n
             vj = vj + (jn / mj)[:, None] * n
             for v, w, r in ((vi, wi, ri), (vj, wj, rj)):
                 u = v + r[:, None] * _perp(w[:, :2])
-                small = (_norm(u) <= EPS_U)[:, None]
+                small = ((_norm(u) <= EPS_U) & live)[:, None]
                 v[:] = np.where(small, v - u / 3.5, v)
                 w[:, :2] = np.where(small, _perp(v) / r[:, None], w[:, :2])
         depth = np.maximum(ri + rj - dist, 0.0)
