@@ -356,3 +356,10 @@ def test_batch_of_breaks_is_step_independent_and_matches_single_tables():
         alone.run(1 / 30)
         assert np.array_equal(alone.pos[0], events.pos[b])
         assert alone.events[0] == events.events[b]
+
+
+def test_reference_driver_on_a_table_already_at_rest():
+    eng = Engine(BIG, Physics(), [[1.0, 1.0], [2.0, 2.0]])
+    eng.run_events()
+    assert eng.time == 0.0
+    assert np.array_equal(eng.pos[0], [[1.0, 1.0], [2.0, 2.0]])

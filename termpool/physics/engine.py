@@ -264,11 +264,9 @@ class Engine:
     # ----------------------------------------------------------------- events
     def _run_until(self, t_end: float) -> None:
         """Run every table's events up to t_end in time order; clocks end at t_end."""
-        if not (self.t_next <= t_end).any():
-            self.tb[:] = t_end
-            return
-        with np.errstate(all="ignore"):  # infinities stand for "never"
-            self._run_events(t_end)
+        if (self.t_next <= t_end).any():
+            with np.errstate(all="ignore"):  # infinities stand for "never"
+                self._run_events(t_end)
         if math.isfinite(t_end):
             self.tb[:] = t_end
 
