@@ -1,0 +1,1 @@
+"""Terminal user interface: half-block pixel canvas, diffed screen output, table drawing."""

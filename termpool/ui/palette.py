@@ -1,0 +1,101 @@
+"""Colours of the table and the balls, with hand-picked 256- and 16-colour equivalents.
+
+Every pixel of a canvas carries an RGB colour and a semantic tag (felt, cushion, ball...). The
+colour depths "truecolor" and "256" use the RGB (256 through `HAND256`, else the nearest xterm
+colour); "16" uses `HAND16`, picked so the felt stays green and the balls stay apart as far as
+16 colours allow; "mono" ignores colour and draws each cell's most important tag as a glyph.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+# Tags: what a pixel shows. Mono mode draws a cell as the glyph of its higher-priority pixel.
+BACKDROP, FELT, CUSHION, RAIL, DIAMOND, POCKET, SOLID, STRIPE, EIGHT, CUE, TEXT = range(11)
+MONO_GLYPH = {
+    BACKDROP: " ",
+    FELT: " ",
+    CUSHION: "▒",
+    RAIL: "░",
+    DIAMOND: "◆",
+    POCKET: "█",
+    SOLID: "●",
+    STRIPE: "◐",
+    EIGHT: "◉",
+    CUE: "○",
+    TEXT: " ",
+}
+MONO_PRIORITY = {
+    BACKDROP: 0, FELT: 1, TEXT: 1, CUSHION: 2, RAIL: 3, POCKET: 4, DIAMOND: 5,
+    SOLID: 6, STRIPE: 7, EIGHT: 8, CUE: 9,
+}
+
+
+class Colour(NamedTuple):
+    rgb: tuple[int, int, int]
+    c256: int  # xterm-256 index (16..255: the cube and the greys, not the themable 0..15)
+    c16: int  # 0..7 normal, 8..15 bright
+
+
+BACKDROP_C = Colour((0, 0, 0), 16, 0)
+FELT_C = Colour((22, 110, 54), 28, 2)
+CUSHION_C = Colour((13, 74, 36), 22, 8)
+RAIL_C = Colour((108, 58, 26), 94, 3)
+DIAMOND_C = Colour((236, 228, 196), 230, 15)
+POCKET_C = Colour((6, 6, 6), 232, 0)
+CUE_C = Colour((246, 246, 238), 231, 15)
+STRIPE_WHITE_C = Colour((240, 238, 226), 255, 15)
+TEXT_C = Colour((210, 210, 210), 252, 7)
+DIM_TEXT_C = Colour((130, 130, 130), 244, 8)
+
+# Standard ball colours, 1..8; 9..15 are striped 1..7.
+BALL_C = {
+    1: Colour((246, 196, 0), 220, 11),  # yellow
+    2: Colour((28, 72, 204), 26, 12),  # blue
+    3: Colour((214, 28, 36), 160, 9),  # red
+    4: Colour((106, 38, 156), 91, 5),  # purple
+    5: Colour((246, 114, 18), 208, 3),  # orange
+    6: Colour((40, 196, 92), 41, 10),  # green, brighter than the felt
+    7: Colour((128, 20, 34), 88, 1),  # maroon
+    8: Colour((30, 30, 34), 234, 0),  # black
+}
+
+ALL_COLOURS = (
+    BACKDROP_C, FELT_C, CUSHION_C, RAIL_C, DIAMOND_C, POCKET_C, CUE_C, STRIPE_WHITE_C,
+    TEXT_C, DIM_TEXT_C, *BALL_C.values(),
+)
+
+
+def pack(rgb: tuple[int, int, int]) -> int:
+    r, g, b = rgb
+    return (r << 16) | (g << 8) | b
+
+
+HAND256 = {pack(c.rgb): c.c256 for c in ALL_COLOURS}
+HAND16 = {pack(c.rgb): c.c16 for c in ALL_COLOURS}
+
+CUE_IDS = ("cue", "0", "white", "c")
+
+
+class BallStyle(NamedTuple):
+    tag: int  # SOLID, STRIPE, EIGHT or CUE
+    colour: Colour
+    number: str  # the label shown in panels
+
+
+def ball_style(ball_id: str, index: int = 0) -> BallStyle:
+    """Standard colours for ids 'cue' and '1'..'15'; other ids cycle through the solids."""
+    bid = str(ball_id)
+    if bid.lower() in CUE_IDS:
+        return BallStyle(CUE, CUE_C, "c")
+    try:
+        n = int(bid)
+    except ValueError:
+        n = -1
+    if 1 <= n <= 15:
+        if n == 8:
+            return BallStyle(EIGHT, BALL_C[8], "8")
+        if n > 8:
+            return BallStyle(STRIPE, BALL_C[n - 8], str(n))
+        return BallStyle(SOLID, BALL_C[n], str(n))
+    return BallStyle(SOLID, BALL_C[1 + index % 7], bid[:2])
