@@ -84,7 +84,8 @@ def _parser() -> _Parser:
         description=(
             "Load a scene (JSON, see docs/scenes.md), run it until every ball is at rest (or for "
             "--duration simulated seconds) and print the final balls, the event log and, with "
-            "--sample-hz, sampled positions as JSON on stdout."
+            "--sample-hz, sampled positions as JSON on stdout. A scene with a `game` block "
+            "also gets the referee's \"outcome\" of the shot."
         ),
     )
     s.add_argument("scene", metavar="SCENE", help="scene file (JSON), or - for stdin")
@@ -273,6 +274,10 @@ def _sim(args: argparse.Namespace) -> int:
     dt = args.dt if args.method == "fixed" else None
     samples = (samples or []) if args.sample_hz is not None else None
     result = sim_result(scene, eng, samples, args.method, dt, wall)
+    if scene.game is not None:
+        from termpool.rules.referee import referee
+
+        result["outcome"] = referee(scene.game, scene.ids, eng.events[0])
     sys.stdout.write(dump_json(result))
     sys.stdout.flush()
     return 0

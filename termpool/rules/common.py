@@ -1,0 +1,173 @@
+"""Shared pieces of the rules: the game state before a shot and the outcome of a shot.
+
+Players are 0 and 1. Ball ids are strings: "cue" and "1".."15" (1-7 solids, 8, 9-15 stripes).
+Everything here is plain data: the judges are pure functions ``judge(state, summary) ->
+(Outcome, new_state)`` that never touch the state they are given.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+SOLIDS = tuple(str(n) for n in range(1, 8))
+STRIPES = tuple(str(n) for n in range(9, 16))
+GROUPS = {"solids": SOLIDS, "stripes": STRIPES}
+EIGHT_BALLS = (*SOLIDS, "8", *STRIPES)
+NINE_BALLS = tuple(str(n) for n in range(1, 10))
+MODES = ("8ball", "9ball", "practice")
+MODE_BALLS = {"8ball": EIGHT_BALLS, "9ball": NINE_BALLS, "practice": EIGHT_BALLS}
+PUSH_OUT = ("none", "available", "declared")
+AREAS = ("anywhere", "kitchen")
+
+# Foul names, in the order `Outcome.foul` reports them when a shot commits several.
+FOULS = (
+    "scratch",
+    "off_table",
+    "illegal_break",
+    "no_hit",
+    "wrong_ball_first",
+    "no_rail",
+)
+
+
+def group_of(ball: str) -> str | None:
+    """The group of a ball: "solids", "stripes" or None (the 8, the cue ball, others)."""
+    for name, balls in GROUPS.items():
+        if ball in balls:
+            return name
+    return None
+
+
+def other_group(group: str) -> str:
+    return "stripes" if group == "solids" else "solids"
+
+
+@dataclass(frozen=True)
+class State:
+    """A game between two shots: what the referee needs to judge the next one.
+
+    `groups` is None while the table is open, else ``{0: "solids", 1: "stripes"}`` (or the other
+    way round). `fouls` counts each player's consecutive fouls. `pocketed` lists the object balls
+    already down in this rack (balls of the mode's set that are not on the table). `push_out`
+    (9-ball) is "available" on the shot after the break, "declared" when the shooter has
+    announced a push-out for this shot, else "none". `called` is (ball, pocket) when the shooter
+    has named a pocket (8-ball: needed to pot the 8). `three_foul` turns on 9-ball's three
+    consecutive fouls rule.
+    """
+
+    mode: str = "8ball"
+    shooter: int = 0
+    groups: dict[int, str] | None = None
+    fouls: tuple[int, int] = (0, 0)
+    pocketed: tuple[str, ...] = ()
+    is_break: bool = False
+    push_out: str = "none"
+    called: tuple[str, str] | None = None
+    three_foul: bool = False
+
+    def __post_init__(self) -> None:
+        if self.mode not in MODES:
+            raise ValueError(f"mode: must be one of {', '.join(MODES)}, not {self.mode!r}")
+        if self.shooter not in (0, 1):
+            raise ValueError(f"shooter: must be 0 or 1, not {self.shooter!r}")
+        if self.push_out not in PUSH_OUT:
+            raise ValueError(f"push_out: must be one of {', '.join(PUSH_OUT)}")
+        if self.groups is not None:
+            if sorted(self.groups) != [0, 1] or sorted(self.groups.values()) != sorted(GROUPS):
+                raise ValueError("groups: must give one player solids and the other stripes")
+
+    @property
+    def opponent(self) -> int:
+        return 1 - self.shooter
+
+    def on_table(self) -> list[str]:
+        """Object balls of this mode still on the table before the shot."""
+        down = set(self.pocketed)
+        return [b for b in MODE_BALLS[self.mode] if b not in down]
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What a shot means.
+
+    `foul` is None or the name of the foul ("scratch", "off_table", "illegal_break", "no_hit",
+    "wrong_ball_first", "no_rail"); `fouls` lists every foul the shot committed. After a foul
+    the incoming player has ball in hand in `ball_in_hand_area` ("anywhere", or "kitchen":
+    behind the head string); when there is no ball in hand the area is None. `groups` are the
+    groups after the shot (None while the table is open). `winner` is None while the game goes
+    on, else the player who won. `respot` lists balls to put back on the table (the 8 pocketed
+    on the break, the 9 pocketed on a foul). `continue_turn` is True when the shooter shoots
+    again. `option` names a choice the incoming player has: "rerack_or_accept" (8-ball illegal
+    break) or "shoot_or_pass" (9-ball, after a push-out). Once `winner` is set the game is over
+    and `next_shooter` is simply the shooter; the match decides who breaks next.
+    """
+
+    foul: str | None
+    next_shooter: int
+    ball_in_hand: bool
+    groups: dict[int, str] | None
+    winner: int | None
+    reason: str
+    respot: tuple[str, ...] = ()
+    continue_turn: bool = False
+    ball_in_hand_area: str | None = None
+    fouls: tuple[str, ...] = ()
+    option: str | None = None
+
+    def to_json(self) -> dict:
+        """A JSON-able dict (player keys of `groups` become "0" and "1")."""
+        return {
+            "foul": self.foul,
+            "next_shooter": self.next_shooter,
+            "ball_in_hand": self.ball_in_hand,
+            "groups": groups_to_json(self.groups),
+            "winner": self.winner,
+            "reason": self.reason,
+            "ball_in_hand_area": self.ball_in_hand_area,
+            "continue_turn": self.continue_turn,
+            "respot": list(self.respot),
+            "fouls": list(self.fouls),
+            "option": self.option,
+        }
+
+
+def groups_to_json(groups: dict[int, str] | None) -> dict[str, str] | None:
+    return None if groups is None else {str(p): g for p, g in sorted(groups.items())}
+
+
+def order_fouls(fouls: set[str] | list[str]) -> tuple[str, ...]:
+    return tuple(f for f in FOULS if f in fouls)
+
+
+def count_fouls(state: State, fouled: bool) -> tuple[int, int]:
+    """Consecutive fouls after the shot: the shooter's count grows on a foul, else resets."""
+    f = list(state.fouls)
+    f[state.shooter] = f[state.shooter] + 1 if fouled else 0
+    return (f[0], f[1])
+
+
+def after(state: State, **changes) -> State:
+    """The state for the next shot: no break, no call, no declared push-out unless given."""
+    base = {"is_break": False, "called": None, "push_out": "none"}
+    base.update(changes)
+    return replace(state, **base)
+
+
+__all__ = [
+    "AREAS",
+    "EIGHT_BALLS",
+    "FOULS",
+    "GROUPS",
+    "MODES",
+    "NINE_BALLS",
+    "Outcome",
+    "SOLIDS",
+    "STRIPES",
+    "State",
+    "after",
+    "count_fouls",
+    "group_of",
+    "groups_to_json",
+    "order_fouls",
+    "other_group",
+]

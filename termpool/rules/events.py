@@ -1,0 +1,107 @@
+"""What the rules need to know about one shot, read from the engine's event list.
+
+The engine records, per table, a list of event dicts in time order: ``{"t", "type", "i", ...}``
+where ``i`` holds ball indices into the scene's ids. The rules use three types:
+
+- ``ball_ball`` (``i`` = the two balls),
+- ``cushion`` (``i`` = one ball, ``feature`` = ``"rail"``, ``"jaw"`` or ``"tip"``; a jaw or a
+  jaw tip is part of the cushion, so each counts as a ball driven to a rail),
+- ``pocket`` (``i`` = one ball, ``pocket`` = the pocket's name, e.g. ``"foot_left"``).
+
+Events as printed by ``termpool sim`` (with ``ids`` instead of ``i``) are read as well.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class ShotSummary:
+    """One shot as the referee sees it. Ball ids are strings ("cue", "1".."15")."""
+
+    first_contact: str | None = None
+    """The first ball the cue ball touched, or None when it touched no ball."""
+    cushions_after_contact: int = 0
+    """Cushion contacts (rail, jaw or jaw tip, any ball) after the first contact."""
+    rail_balls: tuple[str, ...] = ()
+    """Distinct balls (the cue ball included) that touched a cushion after the first contact,
+    in the order of their first such touch."""
+    pocketed: dict[str, str] = field(default_factory=dict)
+    """Ball id -> pocket name for every ball pocketed, in the order they dropped (cue included)."""
+    scratch: bool = False
+    """The cue ball was pocketed."""
+    off_table: tuple[str, ...] = ()
+    """Balls that left the table (jumped over a rail). The physics core never lets a ball leave
+    the table, so `summarize` always leaves this empty; it is kept so the rules for balls off
+    the table are complete and can be tested, and so a future engine (or a hand-made summary)
+    can report them."""
+    is_break: bool = False
+    """The shot was a break shot."""
+    cue_id: str = "cue"
+
+    @property
+    def object_pocketed(self) -> list[str]:
+        """Pocketed balls other than the cue ball, in order."""
+        return [b for b in self.pocketed if b != self.cue_id]
+
+    @property
+    def object_rail_balls(self) -> list[str]:
+        """Distinct object balls that touched a cushion after the first contact."""
+        return [b for b in self.rail_balls if b != self.cue_id]
+
+    @property
+    def cue_off_table(self) -> bool:
+        return self.cue_id in self.off_table
+
+    @property
+    def scratch_words(self) -> str:
+        """Where the cue ball went, in words (for the reasons)."""
+        pocket = self.pocketed.get(self.cue_id)
+        if pocket is None:
+            return "the cue ball was pocketed"
+        return f"the cue ball went into the {pocket} pocket"
+
+
+def _ball_ids(ev: dict, ids: Sequence[str]) -> list[str]:
+    if "i" in ev:
+        return [ids[int(k)] for k in ev["i"]]
+    return [str(b) for b in ev["ids"]]
+
+
+def summarize(
+    events: Iterable[dict],
+    ids: Sequence[str],
+    cue_id: str = "cue",
+    is_break: bool = False,
+) -> ShotSummary:
+    """Summarize one shot from its events (engine dicts or `termpool sim` output events)."""
+    evs = sorted(events, key=lambda e: e["t"])  # stable: same-time events keep their order
+    first: str | None = None
+    cushions = 0
+    rail: dict[str, None] = {}
+    pocketed: dict[str, str] = {}
+    for ev in evs:
+        kind = ev["type"]
+        balls = _ball_ids(ev, ids)
+        if kind == "ball_ball":
+            if first is None and cue_id in balls:
+                others = [b for b in balls if b != cue_id]
+                first = others[0] if others else None
+        elif kind == "cushion":
+            if first is not None:
+                cushions += 1
+                rail.setdefault(balls[0], None)
+        elif kind == "pocket":
+            pocketed.setdefault(balls[0], str(ev["pocket"]))
+    return ShotSummary(
+        first_contact=first,
+        cushions_after_contact=cushions,
+        rail_balls=tuple(rail),
+        pocketed=pocketed,
+        scratch=cue_id in pocketed,
+        off_table=(),
+        is_break=is_break,
+        cue_id=cue_id,
+    )

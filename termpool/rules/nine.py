@@ -1,0 +1,137 @@
+"""9-ball (WPA rules) as a pure function of the state and one shot's summary.
+
+- **Legal shot.** The cue ball first hits the lowest-numbered ball on the table; afterwards a
+  ball is pocketed or some ball (the cue ball included) touches a cushion. Any object ball
+  pocketed on a legal shot counts and the shooter continues; the 9 pocketed on a legal shot
+  wins, on the break too.
+- **Break.** The cue ball must hit the lowest ball (the 1) first, and a ball must be pocketed or
+  at least four distinct object balls must touch a cushion; otherwise it is a foul
+  ("wrong_ball_first", "no_hit" or "illegal_break").
+- **Fouls** ("scratch", "off_table", "no_hit", "wrong_ball_first", "no_rail", "illegal_break")
+  give the opponent ball in hand anywhere (the break included). Balls pocketed on a foul stay
+  down, except the 9, which is re-spotted (``respot=("9",)``); so is a 9 that left the table.
+- **Push-out.** After a break that met the break requirements (even with a scratch), the next
+  shot may be declared a push-out (``state.push_out == "available"``; the shooter declares it by
+  setting "declared"). On a push-out the cue ball need not hit the lowest ball or any ball and
+  nothing need reach a cushion; a scratch or a ball off the table is still a foul. Balls pocketed
+  on a push-out stay down (the 9 is re-spotted) and the opponent chooses to shoot or to pass the
+  shot back: ``option="shoot_or_pass"``, and the new state has the opponent to shoot (passing
+  back is for the match to do).
+- **Three fouls** (optional, ``state.three_foul``): a third consecutive foul by the same player
+  loses the game. The warning the WPA requires before the third foul is left to the match.
+"""
+
+from __future__ import annotations
+
+from termpool.rules.common import Outcome, State, after, count_fouls, order_fouls
+from termpool.rules.events import ShotSummary
+
+BREAK_RAIL_BALLS = 4
+
+
+def _ball(b: str | None) -> str:
+    return "the cue ball" if b == "cue" else f"the {b}"
+
+
+def _names(balls: list[str]) -> str:
+    names = [_ball(b) for b in balls]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
+    """Judge one 9-ball shot: the outcome and the state for the next shot."""
+    if state.mode != "9ball":
+        raise ValueError(f"nine.judge: state.mode is {state.mode!r}, not '9ball'")
+    is_break = state.is_break or s.is_break
+    push = state.push_out == "declared"
+    if push and is_break:
+        raise ValueError("nine.judge: a break shot cannot be a push-out")
+    me, you = state.shooter, state.opponent
+    on = state.on_table()
+    lowest = min(on, key=int) if on else None
+    potted = s.object_pocketed
+    rails = len(s.object_rail_balls)
+
+    fouls: set[str] = set()
+    words: list[str] = []
+    if s.scratch:
+        fouls.add("scratch")
+        words.append(f"scratch: {s.scratch_words}")
+    if s.off_table:
+        fouls.add("off_table")
+        words.append(f"{_names(list(s.off_table))} left the table")
+    if not push:
+        if s.first_contact is None:
+            fouls.add("no_hit")
+            words.append("the cue ball hit no ball")
+        elif s.first_contact != lowest:
+            fouls.add("wrong_ball_first")
+            words.append(f"the cue ball hit {_ball(s.first_contact)} first, "
+                         f"not the lowest ball, {_ball(lowest)}")
+        if is_break:
+            if not potted and rails < BREAK_RAIL_BALLS:
+                fouls.add("illegal_break")
+                words.append(f"illegal break: nothing pocketed and {rails} object "
+                             f"{'ball' if rails == 1 else 'balls'} reached a cushion "
+                             f"({BREAK_RAIL_BALLS} needed)")
+        elif s.first_contact is not None and not s.rail_balls and not potted:
+            fouls.add("no_rail")
+            words.append("no ball reached a cushion after contact and nothing was pocketed")
+    order = order_fouls(fouls)
+    nine = "9" in s.pocketed or "9" in s.off_table
+    gone = [*potted, *(b for b in s.off_table if b != s.cue_id)]
+    # Pushing out becomes possible after a break that met its requirements (1 first, and a
+    # pocket or four balls to a cushion), for whoever shoots next.
+    break_ok = is_break and not ({"no_hit", "wrong_ball_first", "illegal_break"} & fouls)
+    push_next = "available" if break_ok else "none"
+
+    def new_state(shooter: int, respot: tuple[str, ...]) -> State:
+        down = [b for b in dict.fromkeys(gone) if b not in respot and b not in state.pocketed]
+        return after(state, shooter=shooter, groups=None, push_out=push_next,
+                     fouls=count_fouls(state, bool(order)), pocketed=(*state.pocketed, *down))
+
+    if order:
+        respot = ("9",) if nine else ()
+        if potted:
+            words.append(f"{_names(potted)} pocketed on a foul")
+        if nine:
+            words.append("the 9 is re-spotted")
+        nxt = new_state(you, respot)
+        if state.three_foul and nxt.fouls[me] >= 3:
+            words.append(f"third consecutive foul: player {me} loses")
+            out = Outcome(foul=order[0], fouls=order, next_shooter=me, ball_in_hand=False,
+                          groups=None, winner=you, reason="; ".join(words), respot=respot)
+            return out, after(nxt, shooter=me)
+        words.append(f"player {you} has ball in hand")
+        out = Outcome(foul=order[0], fouls=order, next_shooter=you, ball_in_hand=True,
+                      ball_in_hand_area="anywhere", groups=None, winner=None,
+                      reason="; ".join(words), respot=respot)
+        return out, nxt
+
+    if push:
+        respot = ("9",) if nine else ()
+        text = "push-out"
+        if potted:
+            text += f": {_names(potted)} pocketed, not counted" + (
+                "; the 9 is re-spotted" if nine else "")
+        text += f"; player {you} chooses to shoot or to pass the shot back"
+        out = Outcome(foul=None, next_shooter=you, ball_in_hand=False, groups=None,
+                      winner=None, reason=text, respot=respot, option="shoot_or_pass")
+        return out, new_state(you, respot)
+
+    if nine:
+        text = f"the 9 went into the {s.pocketed['9']} pocket"
+        text += " on the break" if is_break else " on a legal shot"
+        out = Outcome(foul=None, next_shooter=me, ball_in_hand=False, groups=None, winner=me,
+                      reason=f"{text}: player {me} wins")
+        return out, new_state(me, ())
+
+    if potted:
+        nxt, why = me, f"{_names(potted)} pocketed: player {me} continues"
+    else:
+        nxt, why = you, f"nothing pocketed: player {you}'s turn"
+    if is_break:
+        why = "legal break; " + why
+    out = Outcome(foul=None, next_shooter=nxt, ball_in_hand=False, groups=None, winner=None,
+                  reason=why, continue_turn=nxt == me)
+    return out, new_state(nxt, ())
