@@ -25,14 +25,19 @@ from termpool.physics.table import Table
 STATIONARY, SPINNING, SLIDING, ROLLING, POCKETED = range(5)
 STATE_NAMES = ("stationary", "spinning", "sliding", "rolling", "pocketed")
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
-# A slip this small (m/s) would slide for under 0.15 ms and under 20 nm of path difference:
-# it is completed at once, with the velocity change friction would give (v -= u / 3.5), so a
-# pair pressed together cannot chatter through endless tiny slides.
+# A slip this small (m/s) would slide for under 0.15 ms: it is completed at once (see _snap),
+# so a pair pressed together cannot chatter through endless tiny slides.
 EPS_U = 1e-3
 EPS_V = 1e-9  # m/s below which a ball counts as not translating
 EPS_W = 1e-9  # rad/s of side spin below which a ball counts as still
 MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
 CLUSTER_GAP = 1e-6  # m: balls (and cushions) this close count as touching in a cluster
+# Work bound: after BUDGET events of one table within a WINDOW of simulated time, its further
+# contacts in that window are solved as clusters, inelastically (a light ball squeezed
+# between a heavy one and a rail would otherwise bounce without end). Windows are fixed in
+# simulated time, so the bound does not depend on the step.
+BUDGET = 200
+WINDOW = 1 / 60
 
 _TRANSITION_NAMES = {
     (SLIDING, ROLLING): "slide_to_roll",
@@ -105,6 +110,8 @@ class Engine:
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self.tb = np.zeros(B)  # each table's own clock inside a step
+        self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
+        self._count = np.zeros(B, dtype=np.int64)
         self.time = 0.0
         self.steps = 0
         self.passes = 0  # event passes run: the engine's measure of work
@@ -114,6 +121,7 @@ class Engine:
         self._seg_len = _norm(seg_d)
         self._seg_dir = seg_d / self._seg_len[:, None]
         self._seg_off = (table.seg_a * table.seg_n).sum(axis=1)
+        self._seg_start = (table.seg_a * self._seg_dir).sum(axis=1)
         self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
@@ -134,8 +142,41 @@ class Engine:
         w = self.w0[b, i]  # a fancy-indexed copy
         w[..., :2] += self.alpha[b, i] * d
         wz = w[..., 2]
-        w[..., 2] = np.copysign(np.maximum(np.abs(wz) - self.spin_rate[b, i] * d[..., 0], 0.0), wz)
+        # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
+        decay = self.spin_rate[b, i] * np.maximum(d[..., 0], 0.0)
+        w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
         return p, v, w
+
+    def _snap(self, p, v, w, R, only=None):
+        """Complete tiny slides at once: returns (p, v, w, t_s), t_s = 0 where nothing changed.
+
+        A slip u with |u| <= EPS_U ends after t_s = |u| / (3.5 mu_s g) with v -= u / 3.5 and
+        the ball rolling. The returned p is where the slide ends, p + v t_s - mu_s g t_s^2 u/2|u|:
+        a ball started rolling from there at t + t_s follows the exact path from then on, and
+        before then (extrapolated back) strays from the slide by under 20 nm at 1 mm/s.
+        No snap on frictionless cloth, where a slide never ends.
+        """
+        ph = self.physics
+        u = v + R[:, None] * _perp(w[:, :2])
+        us = _norm(u)
+        small = (us <= EPS_U) & (us > 0) & (ph.mu_slide > 0)
+        if only is not None:
+            small &= only
+        ts = np.where(small, us / (3.5 * ph.mu_slide * ph.g), 0.0)
+        if not small.any():
+            return p, v, w, ts
+        s = small[:, None]
+        uhat = u / np.where(us > 0, us, 1.0)[:, None]
+        p = np.where(s, p + (v - 0.5 * ph.mu_slide * ph.g * ts[:, None] * uhat) * ts[:, None], p)
+        v = np.where(s, v - u / 3.5, v)
+        w[:, :2] = np.where(s, _perp(v) / R[:, None], w[:, :2])
+        # Side spin keeps decaying through the slide.
+        wz = w[:, 2]
+        w[:, 2] = np.copysign(np.maximum(np.abs(wz) - self._spin_rate_of(R) * ts, 0.0), wz)
+        return p, v, w, ts
+
+    def _spin_rate_of(self, R: np.ndarray) -> np.ndarray:
+        return 2.5 * self.physics.mu_spin * self.physics.g / R
 
     def _set(self, b, i, t, p, v, w) -> None:
         """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
@@ -143,12 +184,14 @@ class Engine:
         ph = self.physics
         g = ph.g
         R = self.radius[b, i]
+        # A tiny slide is completed at once: the ball starts rolling where and when it ends.
+        p, v, w, ts = self._snap(p, v, w, R)
+        t = t + ts
         u = v + R[:, None] * _perp(w[:, :2])  # contact-point slip
         us = _norm(u)
-        v = np.where((us <= EPS_U)[:, None], v - u / 3.5, v)
         vs, wz = _norm(v), np.abs(w[:, 2])
         pocketed = self.state[b, i] == POCKETED
-        sliding = (us > EPS_U) & ~pocketed
+        sliding = (us > (EPS_U if ph.mu_slide > 0 else 0.0)) & ~pocketed
         rolling = ~sliding & (vs > EPS_V) & ~pocketed
         spinning = ~sliding & ~rolling & (wz > EPS_W) & ~pocketed
         still = ~(sliding | rolling)
@@ -241,8 +284,11 @@ class Engine:
         n = tab.seg_n
         s0 = p @ n.T - self._seg_off
         M, S = s0.shape
+        along0 = p @ self._seg_dir.T - self._seg_start
+        beside = (along0 >= 0) & (along0 <= self._seg_len)
         tl = first_line_contact(s0.ravel(), (v @ n.T).ravel(), (a @ n.T).ravel(),
-                                np.repeat(rc, S), np.repeat(horizon, S)).reshape(M, S)
+                                np.repeat(rc, S), np.repeat(horizon, S),
+                                beside.ravel()).reshape(M, S)
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
         fin = np.isfinite(tl)
         if fin.any():
@@ -288,33 +334,54 @@ class Engine:
         i = np.where(kind < 3, code % N, (code - 3 * N) // N)
         j = np.where(kind < 3, -1, (code - 3 * N) % N)
         old_state = self.state[tabs, i]
-        labels: list = []
+        win = np.floor(self.tb[tabs] / WINDOW).astype(np.int64)
+        fresh = win != self._win[tabs]
+        self._win[tabs] = win
+        self._count[tabs] = np.where(fresh, 1, self._count[tabs] + 1)
+        busy = self._count[tabs] > BUDGET
+        labels: dict = {}
+        clusters: list[tuple[int, list[int], bool]] = []
         tr = np.flatnonzero(kind == 0)
         if tr.size:
             self._transition(tabs[tr], i[tr])
         cu = np.flatnonzero(kind == 2)
         if cu.size:
-            labels = self._cushion(tabs[cu], i[cu])
+            # A slow bounce of a ball that touches another ball (pressed into the rail), or
+            # any bounce over the work bound, is solved with its cluster.
+            squeeze = busy[cu] | self._squeezed(tabs[cu], i[cu])
+            for n in cu[squeeze].tolist():
+                clusters.append((n, [int(i[n])], bool(busy[n])))
+            if self.record:
+                labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
+                                  strict=True))
+            cu = cu[~squeeze]
+            if cu.size:
+                self._cushion(tabs[cu], i[cu])
         pr = np.flatnonzero(kind == 3)
         more_b, more_i = [tabs[pr]], [j[pr]]
         if pr.size:
-            slow = self._closing(tabs[pr], i[pr], j[pr]) < self.physics.v_inelastic
+            slow = (self._closing(tabs[pr], i[pr], j[pr]) < self.physics.v_inelastic) | busy[pr]
             fast = pr[~slow]
             if fast.size:
                 self._collide(tabs[fast], i[fast], j[fast])
-            sl = pr[slow]
+            sl = pr[slow & ~busy[pr]]
             if sl.size:
                 alone = self._alone(tabs[sl], i[sl], j[sl])
                 if alone.any():
                     self._settle(tabs[sl[alone]], i[sl[alone]], j[sl[alone]])
                 sl = sl[~alone]
-            for n in sl.tolist():
-                members = self._cluster(int(tabs[n]), [int(i[n]), int(j[n])])
-                more_b.append(np.full(len(members), tabs[n]))
-                more_i.append(np.array(members, dtype=np.int64))
+            for n in sl.tolist() + pr[busy[pr]].tolist():
+                clusters.append((n, [int(i[n]), int(j[n])], bool(busy[n])))
+        extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
+        for n, seeds, every in clusters:
+            b = int(tabs[n])
+            members, moved = self._cluster(b, seeds, every)
+            more_b.append(np.full(len(members), b))
+            more_i.append(np.array(members, dtype=np.int64))
+            extra[n] = [k for k in moved if k not in seeds]
         self._predict(np.concatenate([tabs] + more_b), np.concatenate([i] + more_i))
         if self.record:
-            self._log(tabs, kind, i, j, old_state, dict(zip(cu.tolist(), labels, strict=True)))
+            self._log(tabs, kind, i, j, old_state, labels, extra)
 
     def _transition(self, b, i) -> None:
         t = self.tb[b]
@@ -329,7 +396,7 @@ class Engine:
         w[:, 2] = np.where(st == SPINNING, 0.0, w[:, 2])
         self._set(b, i, t, p, v, w)
 
-    def _cushion(self, b, i) -> list:
+    def _cushion(self, b, i) -> None:
         tab, ph = self.table, self.physics
         nseg, npt = self._nseg, self._npt
         t = self.tb[b]
@@ -364,8 +431,10 @@ class Engine:
             self.state[bh, ih] = POCKETED
             self.pocket[bh, ih] = k
             self._set(bh, ih, t[hl], tab.hole_c[k], np.zeros((hl.size, 2)), np.zeros((hl.size, 3)))
-        if not self.record:
-            return []
+
+    def _features(self, f) -> list[str]:
+        """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
+        tab, nseg, npt = self.table, self._nseg, self._npt
         names = []
         for fi in f.tolist():
             if fi < nseg:
@@ -375,6 +444,20 @@ class Engine:
             else:
                 names.append(tab.hole_names[fi - nseg - npt])
         return names
+
+    def _squeezed(self, b, i) -> np.ndarray:
+        """True for balls (b, i) about to bounce slowly off a cushion while touching a ball."""
+        t = self.tb[b]
+        f = self.f_cush[b, i]
+        out = f < self._nseg + self._npt  # a pocket is never a squeeze
+        k = np.arange(self.N)[None, :]
+        p, v, _ = self._eval(b[:, None], k, t[:, None], spin=False)
+        own = p[np.arange(len(b)), i]
+        gap = _norm(p - own[:, None]) - self.radius[b] - self.radius[b, i][:, None]
+        other = (self.state[b] != POCKETED) & (k != i[:, None])
+        out &= (other & (gap < CLUSTER_GAP)).any(axis=1)
+        speed = _norm(v[np.arange(len(b)), i])
+        return out & (speed < self.physics.v_inelastic)
 
     def _closing(self, b, i, j) -> np.ndarray:
         """Normal closing speed of pairs (b, i, j) at their tables' clocks."""
@@ -400,7 +483,7 @@ class Engine:
             rc = self.rc[b, x][:, None]
             if self._nseg:
                 s = px @ tab.seg_n.T - self._seg_off - rc
-                along = px @ self._seg_dir.T - (tab.seg_a * self._seg_dir).sum(axis=1)
+                along = px @ self._seg_dir.T - self._seg_start
                 crowded |= ((s < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len)).any(1)
             if self._npt:
                 d = _norm(px[:, None] - tab.points[None]) - rc
@@ -427,11 +510,11 @@ class Engine:
             jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
             vi = vi - (jn / mi)[:, None] * n
             vj = vj + (jn / mj)[:, None] * n
-            for v, w, r in ((vi, wi, ri), (vj, wj, rj)):
-                u = v + r[:, None] * _perp(w[:, :2])
-                small = ((_norm(u) <= EPS_U) & live)[:, None]
-                v[:] = np.where(small, v - u / 3.5, v)
-                w[:, :2] = np.where(small, _perp(v) / r[:, None], w[:, :2])
+            _, vi, wi, _ = self._snap(pi, vi, wi, ri, live)
+            _, vj, wj, _ = self._snap(pj, vj, wj, rj, live)
+        d = pj - pi
+        dist = _norm(d)
+        n = d / dist[:, None]
         depth = np.maximum(ri + rj - dist, 0.0)
         share = mj / (mi + mj)
         pi = pi - (depth * share)[:, None] * n
@@ -439,18 +522,25 @@ class Engine:
         self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
                   np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
 
-    def _cluster(self, b: int, seeds: list[int]) -> list[int]:
-        """Resolve a slow contact together with every ball and cushion touching its cluster."""
+    def _cluster(self, b: int, seeds: list[int], every: bool = False):
+        """Resolve a slow contact together with every ball and cushion touching its cluster
+        (with `every`, fast contacts too: the work bound's inelastic fallback)."""
         N, tab = self.N, self.table
         t = self.tb[b]
         k = np.arange(N)
         p, v, w = self._eval(np.full(N, b), k, np.full(N, t))
+        p0, v_in = p.copy(), v.copy()
         R, m = self.radius[b], self.mass[b]
         live = self.state[b] != POCKETED
         d = p[None, :, :] - p[:, None, :]
         dist = _norm(d)
         touch = (dist - (R[:, None] + R[None, :]) < CLUSTER_GAP) & live[:, None] & live[None, :]
         np.fill_diagonal(touch, False)
+        # A contact that closes fast is a collision of its own, handled pair by pair (this is
+        # what carries a cradle's wave down the row); only slow contacts join the cluster.
+        closing = -((v[None, :, :] - v[:, None, :]) * d).sum(axis=2) / np.where(dist > 0, dist, 1)
+        cap = np.inf if every else self.physics.v_inelastic
+        touch &= closing <= cap
         near = touch.tolist()
         members = list(dict.fromkeys(seeds))
         seen = set(members)
@@ -474,14 +564,17 @@ class Engine:
 
         if self._nseg:
             gap = pm @ tab.seg_n.T - self._seg_off - rcm[:, None]
-            along = pm @ self._seg_dir.T - (tab.seg_a * self._seg_dir).sum(axis=1)
-            x, f = np.nonzero((np.abs(gap) < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len))
+            along = pm @ self._seg_dir.T - self._seg_start
+            slow = v[mem] @ tab.seg_n.T >= -cap
+            on = (np.abs(gap) < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len) & slow
+            x, f = np.nonzero(on)
             cushion_rows(x, tab.seg_n[f], gap[x, f])
         if self._npt:
             dp = pm[:, None] - tab.points[None]
             dd = _norm(dp)
             gap = dd - rcm[:, None]
-            x, f = np.nonzero(gap < CLUSTER_GAP)
+            slow = (v[mem][:, None] * dp).sum(axis=2) / dd >= -cap
+            x, f = np.nonzero((gap < CLUSTER_GAP) & slow)
             cushion_rows(x, dp[x, f] / dd[x, f][:, None], gap[x, f])
         ra, rc_, rn, rg = (np.concatenate(z) for z in (ra, rc_, rn, rg))
         nc = len(ra)
@@ -494,7 +587,8 @@ class Engine:
         # A rolling ball given a small push slides for an instant and then rolls on with 5/7
         # of the push (the slip completion in _set): it answers as if 7/5 as heavy.
         slip = _norm(v + R[:, None] * _perp(w[:, :2]))
-        inv_m = np.repeat(np.where(slip <= EPS_U, 5.0 / 7.0, 1.0) / m, 2)
+        snaps = (slip <= EPS_U) & (self.physics.mu_slide > 0)
+        inv_m = np.repeat(np.where(snaps, 5.0 / 7.0, 1.0) / m, 2)
         A = (J * inv_m) @ J.T
         inv_m = np.repeat(1.0 / m, 2)
         for _ in range(20):
@@ -504,25 +598,26 @@ class Engine:
                 break
             lam = solve_inelastic(A, u0)
             v = (vflat + inv_m * (J.T @ lam)).reshape(N, 2)
-            # A push leaves a rolling ball with a tiny slip that _set completes at once
-            # (v -= u / 3.5); do it here so the solve sees the velocities that result.
-            u = v[mem] + R[mem, None] * _perp(w[mem, :2])
-            small = (_norm(u) <= EPS_U)[:, None]
-            v[mem] = np.where(small, v[mem] - u / 3.5, v[mem])
-            w[mem, :2] = np.where(small, _perp(v[mem]) / R[mem, None], w[mem, :2])
-        # Undo sub-micrometre sinks contact by contact (pairs share it by inverse mass).
-        for a, c, n, gap in zip(ra.tolist(), rc_.tolist(), rn, rg.tolist(), strict=True):
-            if c < 0:
-                if gap < 0:
-                    p[a] -= gap * n
-                continue
-            depth = R[a] + R[c] - _norm(p[c] - p[a])
-            if depth > 0:
-                share = m[c] / (m[a] + m[c])
-                p[a] += depth * share * n
-                p[c] -= depth * (1.0 - share) * n
+            # A push leaves a rolling ball with a tiny slip that is completed at once; do it
+            # here so that the solve sees the velocities that result.
+            _, v[mem], w[mem], _ = self._snap(p[mem], v[mem], w[mem], R[mem])
+        # Undo sub-micrometre sinks: the smallest mass-weighted moves that leave no contact
+        # overlapping (the same complementarity problem, on positions), so a light ball
+        # squeezed against a rail by a heavy one moves the heavy one back.
+        A_pos = (J * inv_m) @ J.T
+        ball = rc_ >= 0
+        for _ in range(3):
+            gaps = np.empty(nc)
+            gaps[ball] = _norm(p[rc_[ball]] - p[ra[ball]]) - R[ra[ball]] - R[rc_[ball]]
+            cush = ~ball
+            gaps[cush] = rg[cush] + ((p[ra[cush]] - p0[ra[cush]]) * rn[cush]).sum(axis=1)
+            if not (gaps < 0).any():
+                break
+            lam = solve_inelastic(A_pos, np.minimum(gaps, 0.0))
+            p = p + (inv_m * (J.T @ lam)).reshape(N, 2)
+        moved = (v[mem] != v_in[mem]).any(axis=1) | (p[mem] != p0[mem]).any(axis=1)
         self._set(np.full(len(mem), b), mem, np.full(len(mem), t), p[mem], v[mem], w[mem])
-        return members
+        return members, mem[moved].tolist()
 
     def _collide(self, b, i, j) -> None:
         ph = self.physics
@@ -552,7 +647,9 @@ class Engine:
             "w": [float(x) for x in w[0]], "state": STATE_NAMES[self.state[b, i]],
         }
 
-    def _log(self, tabs, kind, i, j, old_state, labels) -> None:
+    def _log(self, tabs, kind, i, j, old_state, labels, extra) -> None:
+        """Record events; a contact solved with its cluster also names the other balls of the
+        cluster it set moving (after the contact's own one or two)."""
         for n, b in enumerate(tabs.tolist()):
             k = int(kind[n])
             if k == 1:
@@ -574,6 +671,7 @@ class Engine:
             else:
                 ev["type"] = "ball_ball"
                 ev["i"] = [ib, int(j[n])]
+            ev["i"] += extra.get(n, [])
             ev["balls"] = [self.ball_state(b, x) for x in ev["i"]]
             self.events[b].append(ev)
 

@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 TOUCH = 1e-9  # gaps below this (m) count as touching
-SINK = 8e-7  # a resting contact pushed together is caught after this much overlap (m)
+SINK = 4.5e-7  # a resting contact pushed together is caught after this much overlap (m):
+# with anything deeper than SINK resolved at once, no overlap can pass 2 SINK < 1 micrometre
 V_MIN = 1e-6  # closing speeds below this (m/s) are not an immediate contact
 PIECES = 2  # straight pieces of the window in the cull
 _FRACTIONS = np.arange(PIECES, dtype=float)
@@ -33,7 +34,8 @@ def first_contact(
     pv = px * vx + py * vy
     r0 = np.sqrt(px * px + py * py)
     touching = r0 - dist < TOUCH
-    now = touching & (pv < -V_MIN * r0)
+    # Closing, or sunk deeper than SINK (left so by another contact): resolve at once.
+    now = touching & ((pv < -V_MIN * r0) | (r0 < dist - SINK))
     target = np.where(touching, np.minimum(dist, r0) - SINK, dist)
     # Cull: the window in PIECES straight pieces, each widened by the most the acceleration
     # can bend the path within it; a pair none of whose pieces comes close cannot meet.
@@ -104,17 +106,21 @@ def first_contact(
 
 
 def first_line_contact(
-    s0: np.ndarray, sv: np.ndarray, sa: np.ndarray, dist: np.ndarray, horizon: np.ndarray
+    s0: np.ndarray, sv: np.ndarray, sa: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
+    beside: np.ndarray,
 ) -> np.ndarray:
     """First t in [0, horizon] at which s0 + sv t + sa t^2/2 falls to `dist`; inf if none.
 
     s is a ball's signed distance from a cushion line (positive on the playing side).
-    Touching and resting contacts are treated as in `first_contact`.
+    Touching and resting contacts are treated as in `first_contact`, but only where the ball
+    is `beside` the cushion segment now: a ball off its end (just off a jaw tip, say) may be
+    nearer the line than `dist` without touching anything, and meets the segment when it
+    comes down to `dist` over it.
     """
     gap = s0 - dist
-    touching = gap < TOUCH
+    touching = (gap < TOUCH) & beside
     front = s0 > 0  # the ball's centre is on the playing side of the line
-    now = touching & (sv < -V_MIN) & front
+    now = touching & ((sv < -V_MIN) | (gap < -SINK)) & front
     C = np.where(touching, np.maximum(gap, 0.0) + SINK, gap)  # distance still to go
     A = 0.5 * sa
     disc = sv * sv - 4 * A * C
@@ -125,6 +131,6 @@ def first_line_contact(
     for r in (q / A, C / q):
         ok = (r >= 0) & (2 * A * r + sv < 0)
         best = np.where(ok & (r < best), r, best)
-    best = np.where((A == 0) & (sv < 0), -C / sv, best)
+    best = np.where((A == 0) & (sv < 0) & (C >= 0), -C / sv, best)
     best = np.where((best <= horizon) & front, best, np.inf)
     return np.where(now, 0.0, best)

@@ -3,7 +3,8 @@
 The engine records, per table, a list of event dicts in time order: ``{"t", "type", "i", ...}``
 where ``i`` holds ball indices into the scene's ids. The rules use three types:
 
-- ``ball_ball`` (``i`` = the two balls),
+- ``ball_ball`` (``i`` = the two balls, then any other balls of a touching cluster that the
+  contact set moving),
 - ``cushion`` (``i`` = one ball, ``feature`` = ``"rail"``, ``"jaw"`` or ``"tip"``; a jaw or a
   jaw tip is part of the cushion, so each counts as a ball driven to a rail),
 - ``pocket`` (``i`` = one ball, ``pocket`` = the pocket's name, e.g. ``"foot_left"``).
@@ -86,8 +87,9 @@ def summarize(
         kind = ev["type"]
         balls = _ball_ids(ev, ids)
         if kind == "ball_ball":
-            if first is None and cue_id in balls:
-                others = [b for b in balls if b != cue_id]
+            pair = balls[:2]  # further ids are other balls of a touching cluster
+            if first is None and cue_id in pair:
+                others = [b for b in pair if b != cue_id]
                 first = others[0] if others else None
         elif kind == "cushion":
             if first is not None:
