@@ -1,14 +1,18 @@
 """`termpool bench`: benchmarks of the physics core.
 
     termpool bench speed [--json] [--repeat N] [--batch B] [--dt S]
+    termpool bench accuracy [--json] [--scenes DIR] [--dts S ...] [--schemes A,B] [--png PATH]
 
 `speed` times the standard 8-ball break on a 9-ft table: one table from Engine construction to
 rest, B slightly different breaks batched in one Engine, and the import of the core in a fresh
 interpreter; it prints a small table with targets and PASS/MISS, or one JSON object with --json.
 
+`accuracy` (in bench_accuracy.py) runs a set of scenes with every stepping scheme at every dt
+against the event-to-event reference and prints errors, wall times and a work-precision chart.
+
 Subcommands are registered in SUBCOMMANDS (name -> handler taking the remaining arguments and
-returning an exit status), so `accuracy` and `stability` can join `speed` later. Like the CLI,
-numpy and the engine are imported only inside the handlers.
+returning an exit status), so `stability` can join them later. Like the CLI, numpy and the
+engine are imported only inside the handlers.
 """
 
 from __future__ import annotations
@@ -391,10 +395,21 @@ def speed(argv: list[str]) -> int:
     return 0
 
 
+# --------------------------------------------------------------------------------- accuracy
+
+
+def accuracy(argv: list[str]) -> int:
+    """`termpool bench accuracy`: see termpool/bench_accuracy.py."""
+    from termpool.bench_accuracy import main as accuracy_main
+
+    return accuracy_main(argv)
+
+
 # ------------------------------------------------------------------------------------- main
 
 SUBCOMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "speed": (speed, "time the standard break, a batch of breaks and the core import"),
+    "accuracy": (accuracy, "every stepping scheme against the event-to-event reference"),
 }
 
 USAGE = f"usage: {PROG} {{{','.join(SUBCOMMANDS)}}} [options]   (try {PROG} SUBCOMMAND --help)\n"
