@@ -23,23 +23,32 @@ def solve_inelastic(A: np.ndarray, u0: np.ndarray, tol: float = 1e-12) -> np.nda
     if k == 0:
         return lam
     scale = max(float(np.abs(u0).max()), 1e-300)
-    active = u0 < -tol * scale
-    for _ in range(4 * k + 8):
+    tol = tol * scale
+    active = u0 < -tol
+    for n in range(4 * k + 8):
+        # Early passes move every offending contact at once; later ones one at a time, which
+        # cannot cycle.
+        bulk = n < 8
         lam[:] = 0.0
-        a = np.flatnonzero(active)
+        a = np.nonzero(active)[0]
         if a.size:
             sub = A[np.ix_(a, a)]
             try:
                 sol = np.linalg.solve(sub, -u0[a])
             except np.linalg.LinAlgError:  # redundant contacts (e.g. a ball in a corner)
                 sol = np.linalg.lstsq(sub, -u0[a], rcond=None)[0]
-            if (sol < -tol * scale).any():
-                active[a[np.argmin(sol)]] = False
+            neg = sol < -tol
+            if neg.any():
+                active[a[neg] if bulk else a[np.argmin(sol)]] = False
                 continue
             lam[a] = np.maximum(sol, 0.0)
         u = u0 + A @ lam
-        bad = np.flatnonzero(~active & (u < -tol * scale))
-        if bad.size == 0:
+        bad = ~active & (u < -tol)
+        if not bad.any():
             break
-        active[bad[np.argmin(u[bad])]] = True
+        if bulk:
+            active |= bad
+        else:
+            idx = np.nonzero(bad)[0]
+            active[idx[np.argmin(u[idx])]] = True
     return lam

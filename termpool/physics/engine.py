@@ -49,13 +49,16 @@ _TRANSITION_NAMES = {
 }
 
 
+_FLIP = np.array([-1.0, 1.0])
+
+
 def _norm(v: np.ndarray) -> np.ndarray:
-    return np.sqrt(v[..., 0] * v[..., 0] + v[..., 1] * v[..., 1])
+    return np.hypot(v[..., 0], v[..., 1])
 
 
 def _perp(v: np.ndarray) -> np.ndarray:
     """z x v for horizontal vectors."""
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    return v[..., ::-1] * _FLIP
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -232,7 +235,7 @@ class Engine:
         self.t_cush[b, i] = np.inf
         self.t_pair[b, i, :] = np.inf
         self.t_pair[b, :, i] = np.inf
-        m = np.flatnonzero(st != POCKETED)
+        m = np.nonzero(st != POCKETED)[0]
         if m.size == 0:
             return
         b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
@@ -252,8 +255,15 @@ class Engine:
         rel_a = [self.acc[bb, kk] - a[mi]]
         dist = [self.radius[bb, kk] + self.radius[b, i][mi]]
         horizon = [np.minimum(end[mi], end_k) - t[mi]]
-        # Jaw tips and pocket holes, for moving balls: the same quartic as a pair.
-        mv = np.flatnonzero(moving)
+        # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
+        # noses within their window (a ball in open felt costs nothing here); tips and holes
+        # are the same quartic as a pair.
+        T = end - t
+        reach = _norm(v) * T + 0.5 * _norm(a) * T * T + self.rc[b, i]
+        tab = self.table
+        x, y = p[:, 0], p[:, 1]
+        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
+        mv = np.nonzero(moving & near)[0]
         nc = len(self._circles)
         if mv.size and nc:
             rc = self.rc[b[mv], i[mv]]
@@ -318,7 +328,7 @@ class Engine:
 
     def _run_events(self, t_end: float) -> None:
         for _ in range(MAX_PASSES):
-            tabs = np.flatnonzero((self.t_next <= t_end) & (self.t_next < math.inf))
+            tabs = np.nonzero((self.t_next <= t_end) & (self.t_next < math.inf))[0]
             if tabs.size == 0:
                 break
             self.passes += 1
@@ -341,10 +351,10 @@ class Engine:
         busy = self._count[tabs] > BUDGET
         labels: dict = {}
         clusters: list[tuple[int, list[int], bool]] = []
-        tr = np.flatnonzero(kind == 0)
+        tr = np.nonzero(kind == 0)[0]
         if tr.size:
             self._transition(tabs[tr], i[tr])
-        cu = np.flatnonzero(kind == 2)
+        cu = np.nonzero(kind == 2)[0]
         if cu.size:
             # A slow bounce of a ball that touches another ball (pressed into the rail), or
             # any bounce over the work bound, is solved with its cluster.
@@ -357,7 +367,7 @@ class Engine:
             cu = cu[~squeeze]
             if cu.size:
                 self._cushion(tabs[cu], i[cu])
-        pr = np.flatnonzero(kind == 3)
+        pr = np.nonzero(kind == 3)[0]
         more_b, more_i = [tabs[pr]], [j[pr]]
         if pr.size:
             slow = (self._closing(tabs[pr], i[pr], j[pr]) < self.physics.v_inelastic) | busy[pr]
@@ -413,7 +423,7 @@ class Engine:
             ref[tip] = tab.points[f[tip] - nseg]
             d = p[tip] - ref[tip]
             n[tip] = d / _norm(d)[:, None]
-        bounce = np.flatnonzero(~hole)
+        bounce = np.nonzero(~hole)[0]
         if bounce.size:
             bb, ib = b[bounce], i[bounce]
             nb, pb = n[bounce], p[bounce]
@@ -424,7 +434,7 @@ class Engine:
             depth = rc[bounce] - np.einsum("ij,ij->i", pb - ref[bounce], nb)
             pb = pb + np.maximum(depth, 0.0)[:, None] * nb
             self._set(bb, ib, t[bounce], pb, vb, wb)
-        hl = np.flatnonzero(hole)
+        hl = np.nonzero(hole)[0]
         if hl.size:
             bh, ih = b[hl], i[hl]
             k = f[hl] - nseg - npt
@@ -611,7 +621,7 @@ class Engine:
             gaps[ball] = _norm(p[rc_[ball]] - p[ra[ball]]) - R[ra[ball]] - R[rc_[ball]]
             cush = ~ball
             gaps[cush] = rg[cush] + ((p[ra[cush]] - p0[ra[cush]]) * rn[cush]).sum(axis=1)
-            if not (gaps < 0).any():
+            if not (gaps < -1e-12).any():  # rounding is not an overlap
                 break
             lam = solve_inelastic(A_pos, np.minimum(gaps, 0.0))
             p = p + (inv_m * (J.T @ lam)).reshape(N, 2)
