@@ -513,24 +513,16 @@ class Engine:
         n = d / dist[:, None]
         for _ in range(20):
             # Each pair stops as soon as it no longer closes, whatever the other tables do.
-            live = ((vi - vj) * n).sum(axis=1) > V_MIN
+            closing = ((vi - vj) * n).sum(axis=1)
+            live = closing > V_MIN
             if not live.any():
                 break
-            closing = ((vi - vj) * n).sum(axis=1)
             jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
             vi = vi - (jn / mi)[:, None] * n
             vj = vj + (jn / mj)[:, None] * n
             _, vi, wi, _ = self._snap(pi, vi, wi, ri, live)
             _, vj, wj, _ = self._snap(pj, vj, wj, rj, live)
-        d = pj - pi
-        dist = _norm(d)
-        n = d / dist[:, None]
-        depth = np.maximum(ri + rj - dist, 0.0)
-        share = mj / (mi + mj)
-        pi = pi - (depth * share)[:, None] * n
-        pj = pj + (depth * (1.0 - share))[:, None] * n
-        self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
-                  np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
+        self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
 
     def _cluster(self, b: int, seeds: list[int], every: bool = False):
         """Resolve a slow contact together with every ball and cushion touching its cluster
@@ -638,7 +630,13 @@ class Engine:
         mi, mj = self.mass[b, i], self.mass[b, j]
         vi, vj, wi, wj = contact.ball_ball(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph.e_ball,
                                            ph.v_inelastic, ph.ball_ball == "frictional")
-        # Undo a resting contact's sub-micrometre sink, shared by inverse mass.
+        self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
+
+    def _part(self, b, i, j, t, pi, pj, vi, vj, wi, wj) -> None:
+        """Start both balls of contacts (b, i, j) on their new motion, first undoing a resting
+        contact's sub-micrometre sink (shared by inverse mass)."""
+        ri, rj = self.radius[b, i], self.radius[b, j]
+        mi, mj = self.mass[b, i], self.mass[b, j]
         d = pj - pi
         dist = _norm(d)
         n = d / dist[:, None]
