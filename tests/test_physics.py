@@ -363,3 +363,10 @@ def test_reference_driver_on_a_table_already_at_rest():
     eng.run_events()
     assert eng.time == 0.0
     assert np.array_equal(eng.pos[0], [[1.0, 1.0], [2.0, 2.0]])
+
+
+def test_duration_takes_whole_steps_despite_rounding():
+    eng = Engine(BIG, Physics(), [[1.0, 1.0]], [[1.0, 0.0]])
+    eng.run(0.001, duration=2.0)
+    assert eng.steps == 2000
+    assert eng.time == 2.0

@@ -721,7 +721,8 @@ class Engine:
 
     def run(self, dt: float, duration: float | None = None, sample_hz: float | None = None,
             max_steps: int | None = None) -> list:
-        """Fixed steps of dt until every table is at rest, or `duration` seconds have passed.
+        """Fixed steps of dt until every table is at rest, or until the clock reaches
+        `duration` (simulated seconds since the start, not since this call).
 
         With sample_hz, positions are also taken at multiples of 1/sample_hz.
         """
@@ -732,13 +733,18 @@ class Engine:
         if sample_hz:
             samples.append(self._sample())
             k = 1
+        start, n = self.time, 0
         while not self.at_rest().all():
-            if duration is not None and self.time >= duration:
+            # Step ends are start + n dt (no drift from summing steps); a sliver left by
+            # rounding is not another step.
+            if duration is not None and self.time >= duration - 1e-9 * dt:
                 break
             if max_steps is not None and self.steps >= max_steps:
                 break
-            h = dt if duration is None else min(dt, duration - self.time)
-            t_end = self.time + h
+            n += 1
+            t_end = start + n * dt
+            if duration is not None and t_end > duration - 1e-9 * dt:
+                t_end = duration
             while sample_hz and k / sample_hz <= t_end:
                 ts = k / sample_hz
                 self._run_until(ts)
