@@ -2,6 +2,7 @@
 
     termpool bench speed [--json] [--repeat N] [--batch B] [--dt S]
     termpool bench accuracy [--json] [--scenes DIR] [--dts S ...] [--schemes A,B] [--png PATH]
+    termpool bench stability [--json] [--quick] [--case TEXT ...]
 
 `speed` times the standard 8-ball break on a 9-ft table: one table from Engine construction to
 rest, B slightly different breaks batched in one Engine, and the import of the core in a fresh
@@ -10,9 +11,12 @@ interpreter; it prints a small table with targets and PASS/MISS, or one JSON obj
 `accuracy` (in bench_accuracy.py) runs a set of scenes with every stepping scheme at every dt
 against the event-to-event reference and prints errors, wall times and a work-precision chart.
 
+`stability` (in bench_stability.py, cases in stability_cases.py) runs the stiff and extreme
+cases of issue 3 twice each and prints PASS/FAIL per case with the figure that decided it.
+
 Subcommands are registered in SUBCOMMANDS (name -> handler taking the remaining arguments and
-returning an exit status), so `stability` can join them later. Like the CLI, numpy and the
-engine are imported only inside the handlers.
+returning an exit status). Like the CLI, numpy and the engine are imported only inside the
+handlers.
 """
 
 from __future__ import annotations
@@ -405,11 +409,22 @@ def accuracy(argv: list[str]) -> int:
     return accuracy_main(argv)
 
 
+# -------------------------------------------------------------------------------- stability
+
+
+def stability(argv: list[str]) -> int:
+    """`termpool bench stability`: see termpool/bench_stability.py."""
+    from termpool.bench_stability import main as stability_main
+
+    return stability_main(argv)
+
+
 # ------------------------------------------------------------------------------------- main
 
 SUBCOMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "speed": (speed, "time the standard break, a batch of breaks and the core import"),
     "accuracy": (accuracy, "every stepping scheme against the event-to-event reference"),
+    "stability": (stability, "stiff and extreme cases: PASS/FAIL with the deciding figure"),
 }
 
 USAGE = f"usage: {PROG} {{{','.join(SUBCOMMANDS)}}} [options]   (try {PROG} SUBCOMMAND --help)\n"

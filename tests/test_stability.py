@@ -4,7 +4,8 @@ travelling-together and three-way contacts; a ball in the jaws; absurd spin; and
 frictionless run.
 
 Every assertion states a law (conservation, a closed-form motion, a bound) and its message
-gives the deciding figure.
+gives the deciding figure. The scenes, closed forms and laws are shared with
+`termpool bench stability` through termpool/stability_cases.py, which runs the same cases.
 """
 
 from __future__ import annotations
@@ -17,53 +18,68 @@ from physics_laws import (
     check_state,
     kinetic,
     momentum,
-    nose_reach,
     run_checked,
     seg_distance,
 )
 
 from termpool.physics.engine import POCKETED, Engine
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
-from termpool.physics.table import Table
-from termpool.scene import load_scene, rack
-
-R = BALL_RADIUS
-M = BALL_MASS
-G = 9.81
-PLAIN = Table(pockets="none")
-POCKETS = Table(pockets="standard")
-L, W = PLAIN.length, PLAIN.width
-RC = nose_reach(R, Physics())  # centre-to-nose distance of a standard ball at contact
-FRICTIONLESS_CLOTH = dict(mu_slide=0.0, mu_roll=0.0, mu_spin=0.0)
-ELASTIC = dict(e_ball=1.0, ball_ball="frictionless")
-
-
-def first_event_state(eng: Engine) -> list[dict]:
-    """Run exactly up to the table's next event instant (every event at that instant)."""
-    n = len(eng.events[0])
-    eng.run_events(duration=float(eng.t_next[0]))
-    return eng.events[0][n:]
-
-
-def run_to_first(eng: Engine, kind: str, limit: int = 1000) -> list[dict]:
-    """Hop from event instant to event instant until one contains an event of `kind`;
-    returns the events of that instant."""
-    for _ in range(limit):
-        assert not eng.at_rest().all(), f"came to rest before any {kind} event"
-        evs = first_event_state(eng)
-        if any(e["type"] == kind for e in evs):
-            return evs
-    raise AssertionError(f"no {kind} event in {limit} event instants")
-
-
-def slide_roll_distance(v: float, ph: Physics) -> float:
-    """Distance a centre-struck ball (no spin) covers before stopping: slide then roll."""
-    return 12 * v * v / (49 * ph.mu_slide * ph.g) + (5 * v / 7) ** 2 / (2 * ph.mu_roll * ph.g)
-
-
-def slide_roll_time(v: float, ph: Physics) -> float:
-    return 2 * v / (7 * ph.mu_slide * ph.g) + (5 * v / 7) / (ph.mu_roll * ph.g)
-
+from termpool.physics.params import Physics
+from termpool.stability_cases import (  # the shared scenes and closed forms
+    ELASTIC,
+    FIFTY_ANGLES,
+    FRICTIONLESS_CLOTH,
+    HEAD_ON_V,
+    HUGE_SHOTS,
+    LONG_RUN_DRIFT,
+    LONG_RUN_DT,
+    LONG_RUN_S,
+    MEET_CENTRE,
+    MEET_D,
+    POCKETS,
+    RC,
+    REFLECT,
+    SPIN,
+    STEP_RUNS,
+    WEDGE_ELASTIC,
+    L,
+    M,
+    R,
+    W,
+    back_spin,
+    close_break,
+    cradle,
+    cushion_rebound,
+    fifty_free,
+    fifty_graze,
+    fifty_hit,
+    fifty_hit_time,
+    first_event_state,
+    head_on,
+    head_on_law,
+    huge_friction,
+    huge_friction_collision,
+    jaw_ball,
+    jaw_hit,
+    jaw_tip,
+    long_run,
+    mass_ratio,
+    nudge,
+    rack_break,
+    radius_break,
+    reflection,
+    roll,
+    run_to_first,
+    side_spin,
+    slide_roll_distance,
+    slide_roll_stop,
+    slide_roll_time,
+    spin_for,
+    spin_rack,
+    three_meet,
+    travelling_pair,
+    unfolded_x,
+    wedge,
+)
 
 # ------------------------------------------------------------------------------ speeds
 
@@ -74,8 +90,8 @@ def test_millimetres_per_second_roll_their_closed_form_distance(v, tol):
     12 v^2/(49 mu_s g) + (5v/7)^2/(2 mu_r g) (2.73 micrometres at 1 mm/s). At 2 mm/s the slip is
     above the engine's 1 mm/s completion threshold: exact to 1e-12 m. At 1 mm/s the engine
     completes the slip at once, documented as "under 20 nm of path difference": 50 nm allowed."""
-    ph = Physics()
-    eng = Engine(PLAIN, ph, [[L / 2, W / 2]], [[v, 0.0]])
+    eng = roll(v)
+    ph = eng.physics
     run_checked(eng, 1 / 60)
     d = float(eng.pos[0, 0, 0] - L / 2)
     expect = slide_roll_distance(v, ph)
@@ -90,9 +106,7 @@ def test_millimetres_per_second_roll_their_closed_form_distance(v, tol):
 def test_one_millimetre_per_second_nudges_a_ball_a_micrometre_away():
     """A 1 mm/s ball with 1 micrometre to go reaches the next ball; nothing overlaps, the
     object ball moves forward only, and the pair stops."""
-    x0 = L / 2
-    pos = [[x0, W / 2], [x0 + 2 * R + 1e-6, W / 2]]
-    eng = Engine(PLAIN, Physics(), pos, [[1e-3, 0.0], [0.0, 0.0]])
+    eng, pos = nudge()
     run_checked(eng, 1 / 60)
     kinds = [e["type"] for e in eng.events[0]]
     assert "ball_ball" in kinds, f"the balls never met: {kinds}"
@@ -104,18 +118,14 @@ def test_one_millimetre_per_second_nudges_a_ball_a_micrometre_away():
 def test_fifty_metres_per_second_hits_the_ball_in_its_way(dt):
     """50 m/s crosses 5 m in one 0.1 s step: the ball 1.94 m ahead must still be hit, before
     any cushion, and the cue ball must not pass through it."""
-    ph = Physics()
-    pos = np.array([[0.3, W / 2], [L - 0.3, W / 2]])
-    eng = Engine(PLAIN, ph, pos, [[50.0, 0.0], [0.0, 0.0]])
+    eng, pos = fifty_hit()
     while eng.time < 0.1 - 1e-12:
         eng.step(dt)
     contacts = [e for e in eng.events[0] if e["type"] in ("ball_ball", "cushion")]
     assert contacts and contacts[0]["type"] == "ball_ball" and sorted(contacts[0]["i"]) == [0, 1], (
         f"first contact: {contacts[:1]}")
     # Distance to contact is 1.94 - 2R; time from the sliding law x = v t - mu g t^2 / 2.
-    gap = pos[1, 0] - pos[0, 0] - 2 * R
-    a = ph.mu_slide * ph.g
-    t_hit = (50.0 - math.sqrt(50.0**2 - 2 * a * gap)) / a
+    t_hit = fifty_hit_time(pos, eng.physics)
     assert abs(contacts[0]["t"] - t_hit) <= 1e-9, f"hit at {contacts[0]['t']!r}, law {t_hit!r}"
     run_checked(eng, dt, duration=3.0)
 
@@ -124,8 +134,7 @@ def test_fifty_metres_per_second_hits_the_ball_in_its_way(dt):
 def test_fifty_metres_per_second_grazing_pass(offset):
     """A 50 m/s ball passing another at a centre offset of 1.999 R hits it, at 2.001 R misses
     it, with 0.1 s steps (29 micrometres of offset decide)."""
-    pos = np.array([[0.3, W / 2], [L - 0.5, W / 2 + offset * R]])
-    eng = Engine(PLAIN, Physics(), pos, [[50.0, 0.0], [0.0, 0.0]])
+    eng = fifty_graze(offset)
     eng.step(0.1)
     hit = any(e["type"] == "ball_ball" for e in eng.events[0])
     assert hit == (offset < 2), f"offset {offset} R: ball_ball event {hit}"
@@ -133,34 +142,21 @@ def test_fifty_metres_per_second_grazing_pass(offset):
 
 
 @pytest.mark.parametrize("pockets", ["none", "standard"])
-@pytest.mark.parametrize("angle", [0.0, 27.0, 45.0, 90.0, 133.7])
+@pytest.mark.parametrize("angle", FIFTY_ANGLES)
 def test_fifty_metres_per_second_stays_on_the_table(pockets, angle):
     """50 m/s in any direction with 0.1 s steps: every step inside the cushions (or potted)."""
-    tab = Table(pockets=pockets)
-    a = math.radians(angle)
-    eng = Engine(tab, Physics(), [[L / 2 + 0.1, W / 2 - 0.05]],
-                 [[50 * math.cos(a), 50 * math.sin(a)]])
+    eng = fifty_free(pockets, angle)
     run_checked(eng, 0.1, duration=5.0)
 
 
 # ------------------------------------------------------------------------------ steps
 
 
-def _close_break() -> dict:
-    """The 8-ball rack with the cue ball 0.1 m from the apex at 8 m/s: the break happens in
-    the first 20 ms."""
-    sc = load_scene({"table": "9ft", "balls": "8ball", "shot": {"speed": 8.0}})
-    pos = sc.pos.copy()
-    pos[0] = (pos[1, 0] - 0.1, pos[1, 1])
-    return dict(table=sc.table, physics=sc.physics, pos=pos, vel=sc.vel, w=sc.w)
-
-
-@pytest.mark.parametrize("dt, duration", [(1e-5, 0.02), (1e-4, 0.05), (1e-3, 0.3),
-                                          (1e-2, 1.0), (0.1, 2.0)])
+@pytest.mark.parametrize("dt, duration", STEP_RUNS)
 def test_step_length_from_ten_microseconds_to_a_tenth(dt, duration):
     """The break with steps of 1e-5 to 0.1 s: laws at every step, and the positions after
     `duration` equal the event-to-event reference's (the engine is exact inside a step)."""
-    sc = _close_break()
+    sc = close_break()  # the cue ball 0.1 m from the apex: the break is in the first 20 ms
     eng = Engine(sc["table"], sc["physics"], sc["pos"], sc["vel"], sc["w"])
     run_checked(eng, dt, duration=duration, every_first=10**9)
     ref = Engine(sc["table"], sc["physics"], sc["pos"], sc["vel"], sc["w"])
@@ -180,14 +176,12 @@ def test_step_length_from_ten_microseconds_to_a_tenth(dt, duration):
 def test_head_on_restitution_limits(e, m2):
     """Head-on, frictionless balls on frictionless cloth: v1' = (m1 v1 + m2 v2 - e m2 u)/(m1+m2),
     v2' = (m1 v1 + m2 v2 + e m1 u)/(m1+m2), u = v1 - v2 (e=0: they move together)."""
-    ph = Physics(e_ball=e, ball_ball="frictionless", **FRICTIONLESS_CLOTH)
-    v1, v2 = 2.0, -0.5
-    eng = Engine(PLAIN, ph, [[0.8, W / 2], [1.6, W / 2]], [[v1, 0.0], [v2, 0.0]], mass=[M, m2])
+    v1, v2 = HEAD_ON_V
+    eng = head_on(e, m2)
     evs = first_event_state(eng)
     assert [e_["type"] for e_ in evs] == ["ball_ball"], evs
     u = v1 - v2
-    p = M * v1 + m2 * v2
-    expect = np.array([(p - e * m2 * u) / (M + m2), (p + e * M * u) / (M + m2)])
+    expect = head_on_law(v1, v2, M, m2, e)
     got = eng.vel[0, :, 0]
     assert np.abs(got - expect).max() <= 1e-12, f"velocities {got}, law {expect}"
     assert np.abs(eng.vel[0, :, 1]).max() == 0.0
@@ -203,8 +197,7 @@ def test_head_on_restitution_limits(e, m2):
 @pytest.mark.parametrize("e", [0.0, 1.0])
 def test_cushion_restitution_limits(e):
     """Straight into the rail without cushion friction: the normal speed comes back times e."""
-    ph = Physics(e_cushion=e, mu_cushion=0.0, **FRICTIONLESS_CLOTH)
-    eng = Engine(PLAIN, ph, [[L - 0.5, W / 2]], [[3.0, 0.0]])
+    eng = cushion_rebound(e)
     evs = run_to_first(eng, "cushion")
     vx = float(eng.vel[0, 0, 0])
     assert abs(vx - (-e * 3.0)) <= 1e-12, f"rebound {vx} m/s, law {-e * 3.0}"
@@ -219,13 +212,10 @@ def test_cushion_restitution_limits(e):
 def test_frictionless_run_is_exact_reflection():
     """No friction anywhere, e_cushion = 1: a ball along the long axis bounces between the
     rails forever; its position after 10 s follows from unfolding the path."""
-    ph = Physics(e_cushion=1.0, mu_cushion=0.0, **FRICTIONLESS_CLOTH)
-    x0, v, T = 0.7, 2.0, 10.0
-    eng = Engine(PLAIN, ph, [[x0, W / 2]], [[v, 0.0]])
+    x0, v, T = REFLECT
+    eng = reflection()
     run_checked(eng, 1 / 30, duration=T, energy_tol=1e-12)
-    span = L - 2 * RC
-    s = (x0 - RC + v * T) % (2 * span)
-    expect = RC + (s if s <= span else 2 * span - s)
+    expect = unfolded_x(x0, v, T)
     x = float(eng.pos[0, 0, 0])
     assert abs(x - expect) <= 1e-9, f"x={x!r} after {T} s, unfolded path gives {expect!r}"
     assert float(eng.vel[0, 0, 0]) ** 2 == pytest.approx(v * v, rel=1e-12)
@@ -235,8 +225,7 @@ def test_frictionless_run_is_exact_reflection():
 def test_frictionless_cloth_keeps_a_slow_ball_going(v):
     """Newton's first law: on cloth with no friction a ball keeps its velocity, however slow
     (here a centre-struck ball at 0.5 and 2 mm/s for 1 s)."""
-    ph = Physics(**FRICTIONLESS_CLOTH)
-    eng = Engine(PLAIN, ph, [[L / 2, W / 2]], [[v, 0.0]])
+    eng = roll(v, Physics(**FRICTIONLESS_CLOTH))
     eng.run(1 / 60, duration=1.0)
     vx = float(eng.vel[0, 0, 0])
     d = float(eng.pos[0, 0, 0] - L / 2)
@@ -245,14 +234,14 @@ def test_frictionless_cloth_keeps_a_slow_ball_going(v):
 
 
 @pytest.mark.parametrize("dt", [1e-3, 0.1])
-@pytest.mark.parametrize("speed, top", [(5.0, 0.0), (5.0, 0.4), (0.3, -0.4), (20.0, 0.2)])
+@pytest.mark.parametrize("speed, top", HUGE_SHOTS)
 def test_huge_friction_stops_without_reversing(dt, speed, top):
     """mu_slide = mu_roll = 100: a shot with no draw stops almost at once, never moving back;
     the distance is the slide-then-roll closed form (for follow and stun shots the rolling
     speed is (5 v + 2 R w)/7)."""
-    ph = Physics(mu_slide=100.0, mu_roll=100.0)
-    wy = 2.5 * speed / R * top  # a cue tip `top` R above centre (top > 0 follow)
-    eng = Engine(PLAIN, ph, [[L / 2, W / 2]], [[speed, 0.0]], [[0.0, wy, 0.0]])
+    eng = huge_friction(speed, top)
+    ph = eng.physics
+    wy = spin_for(speed, top)  # a cue tip `top` R above centre (top > 0 follow)
     x_prev = L / 2
     for n in range(10_000):
         eng.step(dt)
@@ -263,25 +252,16 @@ def test_huge_friction_stops_without_reversing(dt, speed, top):
         if eng.at_rest().all():
             break
     assert eng.at_rest().all(), "did not stop"
-    g, mu = ph.g, ph.mu_slide
-    u0 = speed - R * wy  # contact-point slip (x)
-    t_s = abs(u0) / (3.5 * mu * g)
-    a = -mu * g * math.copysign(1.0, u0)
-    d_slide = speed * t_s + 0.5 * a * t_s * t_s
-    v_roll = (5 * speed + 2 * R * wy) / 7
-    d_roll = math.copysign(v_roll * v_roll / (2 * ph.mu_roll * g), v_roll)
+    law, t_s = slide_roll_stop(speed, wy, ph)
     d = float(eng.pos[0, 0, 0] - L / 2)
     # Slips under 1 mm/s are completed at once by design: allow that much of the law.
     tol = 1e-9 + 1e-3 * t_s
-    assert abs(d - (d_slide + d_roll)) <= tol, (
-        f"stopped after {d!r} m, closed form {d_slide + d_roll!r} m")
+    assert abs(d - law) <= tol, f"stopped after {d!r} m, closed form {law!r} m"
 
 
 def test_huge_friction_collision():
     """mu = 100 with a collision: laws hold and both stop; the object ball only moves on."""
-    ph = Physics(mu_slide=100.0, mu_roll=100.0)
-    pos = [[L / 2, W / 2], [L / 2 + 2 * R + 0.01, W / 2]]
-    eng = Engine(PLAIN, ph, pos, [[8.0, 0.0], [0.0, 0.0]])
+    eng, pos = huge_friction_collision()
     run_checked(eng, 1e-3)
     assert "ball_ball" in [e["type"] for e in eng.events[0]]
     assert float(eng.pos[0, 1, 0]) >= pos[1][0]
@@ -294,11 +274,10 @@ def test_huge_friction_collision():
 def test_mass_ratio_1000_head_on(heavy_first):
     """1000:1 masses, e = 1, frictionless: momentum and energy kept; the light ball leaves at
     2 m1/(m1+m2) v (heavy hitting) or bounces back at (m1-m2)/(m1+m2) v (light hitting)."""
-    ph = Physics(**ELASTIC, **FRICTIONLESS_CLOTH)
-    m1, m2 = (1000 * M, M) if heavy_first else (M, 1000 * M)
+    eng = mass_ratio(heavy_first, Physics(**ELASTIC, **FRICTIONLESS_CLOTH))
+    m1, m2 = (float(m) for m in eng.mass[0])
+    assert (m1, m2) == ((1000 * M, M) if heavy_first else (M, 1000 * M))
     v = 1.5
-    eng = Engine(PLAIN, ph, [[0.8, W / 2], [1.4, W / 2]], [[v, 0.0], [0.0, 0.0]],
-                 mass=[m1, m2])
     E0, P0 = float(kinetic(eng)[0]), momentum(eng)[0]
     evs = first_event_state(eng)
     assert [e["type"] for e in evs] == ["ball_ball"], evs
@@ -316,9 +295,7 @@ def test_mass_ratio_1000_run_to_rest(heavy_first):
     """The same shot on ordinary cloth, run to rest: when the heavy ball drives the light one
     towards the foot rail the light ball is squeezed between them; it must not be pushed into
     the rail (limit 1 micrometre) nor the balls into each other."""
-    m1, m2 = (1000 * M, M) if heavy_first else (M, 1000 * M)
-    eng = Engine(PLAIN, Physics(), [[0.8, W / 2], [1.4, W / 2]], [[1.5, 0.0], [0.0, 0.0]],
-                 mass=[m1, m2])
+    eng = mass_ratio(heavy_first)
     run_checked(eng, 1 / 60)
     assert eng.passes < 5000, f"{eng.passes} event passes"
 
@@ -327,13 +304,7 @@ def test_mass_ratio_1000_run_to_rest(heavy_first):
 @pytest.mark.parametrize("pockets", ["none", "standard"])
 def test_half_and_double_radius_break(scale, pockets):
     """A full rack of balls half and twice the standard size broken at 8 m/s."""
-    tab = Table(pockets=pockets)
-    r = R * scale
-    balls = rack("8ball", tab, radius=r)
-    pos = np.array([[b["x"], b["y"]] for b in balls])
-    vel = np.zeros_like(pos)
-    vel[0] = (8.0, 0.0)
-    eng = Engine(tab, Physics(), pos, vel, radius=r)
+    eng = radius_break(scale, pockets)
     run_checked(eng, 1 / 60)
     assert eng.passes < 5000, f"{eng.passes} event passes"
     n_bb = sum(e["type"] == "ball_ball" for e in eng.events[0])
@@ -348,8 +319,7 @@ def test_half_and_double_radius_break(scale, pockets):
 def test_break_at_twenty_metres_per_second(rack_name, dt):
     """The rack broken at 20 m/s: no overlap beyond 1 micrometre at any step end, energy never
     rises, the table comes to rest within the bound, in under 5000 event passes."""
-    sc = load_scene({"table": "9ft", "balls": rack_name, "shot": {"speed": 20.0}})
-    eng = Engine(sc.table, sc.physics, sc.pos, sc.vel, sc.w)
+    eng = rack_break(rack_name, 20.0)
     run_checked(eng, dt)
     assert eng.passes < 5000, f"{eng.passes} event passes"
 
@@ -357,22 +327,10 @@ def test_break_at_twenty_metres_per_second(rack_name, dt):
 # ------------------------------------------------------------------------------ cradle
 
 
-def _cradle(ph: Physics, v0: float = 2.0, gap: float = 0.3) -> tuple[Engine, float]:
-    """Five touching balls in a row along the long axis; the cue ball `gap` m before the
-    first, centre-struck at v0. Returns the engine and the cue's speed at impact from the
-    sliding law v^2 = v0^2 - 2 mu_s g d."""
-    x1 = L / 2 - 0.2
-    pos = [[x1 - 2 * R - gap, W / 2]] + [[x1 + 2 * R * k, W / 2] for k in range(5)]
-    vel = [[v0, 0.0]] + [[0.0, 0.0]] * 5
-    eng = Engine(PLAIN, ph, pos, vel)
-    assert gap < 12 * v0 * v0 / (49 * ph.mu_slide * ph.g)  # still sliding at impact
-    return eng, math.sqrt(v0 * v0 - 2 * ph.mu_slide * ph.g * gap)
-
-
 def test_newtons_cradle_elastic():
     """e = 1 frictionless balls: at the impact instant the last ball leaves with the cue
     ball's speed and the other five are left still, in a handful of ball_ball events."""
-    eng, v_imp = _cradle(Physics(**ELASTIC))
+    eng, v_imp = cradle(Physics(**ELASTIC))
     evs = run_to_first(eng, "ball_ball")
     n_bb = sum(e["type"] == "ball_ball" for e in evs)
     assert n_bb <= 15, f"{n_bb} ball_ball events at the impact instant"
@@ -385,7 +343,7 @@ def test_newtons_cradle_elastic():
 def test_newtons_cradle_elastic_to_rest():
     """After the elastic cradle's impact the cue ball's follow spin drives it back into the
     still row and pushes the row along: no overlap beyond 1 micrometre at any step end."""
-    eng, _ = _cradle(Physics(**ELASTIC))
+    eng, _ = cradle(Physics(**ELASTIC))
     run_checked(eng, 1 / 60)
     assert eng.passes < 5000, f"{eng.passes} event passes"
 
@@ -395,7 +353,7 @@ def test_newtons_cradle_default_restitution():
     rise; every ball moves forward or not at all and the last ball is the fastest, carrying
     most of the speed ((1+e)/2)^5 = 0.88 of it for a chain of pair collisions)."""
     ph = Physics()
-    eng, v_imp = _cradle(ph)
+    eng, v_imp = cradle(ph)
     # Just before the impact instant (from the sliding law): momentum and energy.
     t_imp = (2.0 - v_imp) / (ph.mu_slide * ph.g)
     eng.run_events(duration=t_imp * (1 - 1e-9))
@@ -418,20 +376,11 @@ def test_newtons_cradle_default_restitution():
 # ------------------------------------------------------------------------------ contacts
 
 
-def _wedge(ph: Physics) -> tuple[Engine, list]:
-    """Ball 2 touching the foot rail, ball 1 touching ball 2, the cue ball 1 m away."""
-    xb = L - RC
-    pos = [[xb - 2 * R - 1.0, W / 2], [xb - 2 * R, W / 2], [xb, W / 2]]
-    eng = Engine(PLAIN, ph, pos, [[3.0, 0.0], [0.0, 0.0], [0.0, 0.0]])
-    return eng, pos
-
-
 def test_wedged_ball_elastic():
     """All contacts elastic and frictionless: the cue ball's momentum goes through the two
     balls into the rail and back: at the impact instant the cue ball returns at its impact
     speed and the wedged pair is left still and in place."""
-    ph = Physics(e_cushion=1.0, mu_cushion=0.0, **ELASTIC, **FRICTIONLESS_CLOTH)
-    eng, pos = _wedge(ph)
+    eng, pos = wedge(Physics(**WEDGE_ELASTIC))
     evs = run_to_first(eng, "ball_ball")
     vx = eng.vel[0, :, 0]
     assert abs(vx[0] + 3.0) <= 1e-9, f"cue ball returns at {vx[0]!r} m/s (law -3)"
@@ -443,7 +392,7 @@ def test_wedged_ball_elastic():
 
 @pytest.mark.parametrize("dt", [1 / 60, 0.1])
 def test_wedged_ball_default_physics(dt):
-    eng, pos = _wedge(Physics())
+    eng, pos = wedge(Physics())
     run_checked(eng, dt)
     assert eng.passes < 5000, f"{eng.passes} event passes"
 
@@ -453,12 +402,7 @@ def test_wedged_ball_default_physics(dt):
 def test_two_balls_travelling_in_contact(layout, dt):
     """Two touching balls with the same velocity and spin never press on each other: no
     ball_ball event before either meets a cushion, and they keep their separation exactly."""
-    x, y = L / 2, W / 2
-    other = [x, y + 2 * R] if layout == "side_by_side" else [x + 2 * R, y]
-    pos = np.array([[x, y], other])
-    vel = np.array([[2.0, 0.3], [2.0, 0.3]])
-    w = np.array([[10.0, -30.0, 40.0]] * 2)
-    eng = Engine(PLAIN, Physics(), pos, vel, w)
+    eng, pos = travelling_pair(layout)
     for n in range(1, 1000):
         eng.step(dt)
         kinds = [e["type"] for e in eng.events[0]]
@@ -479,12 +423,8 @@ def test_three_balls_meet_at_one_instant():
     """Three equal balls 120 degrees apart, heading for one point at 1 m/s, all meet at the
     same instant. With only ball contacts acting (no cloth friction) the total momentum stays
     zero and energy does not rise; no overlaps; all three come apart again."""
-    ph = Physics(**ELASTIC, **FRICTIONLESS_CLOTH)
-    c = np.array([L / 2, W / 2])
-    ang = np.radians([90.0, 210.0, 330.0])
-    u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
-    D = 0.3
-    eng = Engine(PLAIN, ph, c + D * u, -1.0 * u)
+    c, D = MEET_CENTRE, MEET_D
+    eng = three_meet(Physics(**ELASTIC, **FRICTIONLESS_CLOTH), 1.0)
     E0 = float(kinetic(eng)[0])
     evs = run_to_first(eng, "ball_ball")
     # Meeting when the three centres are 2R apart: distance from c is 2R / sqrt(3).
@@ -502,17 +442,9 @@ def test_three_balls_meet_at_one_instant():
 
 
 def test_three_balls_meet_with_friction():
-    c = np.array([L / 2, W / 2])
-    ang = np.radians([90.0, 210.0, 330.0])
-    u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
-    eng = Engine(PLAIN, Physics(), c + 0.3 * u, -2.0 * u)
+    eng = three_meet(Physics(), 2.0)
     run_checked(eng, 1 / 60)
     assert eng.passes < 5000
-
-
-def _jaw_ball(tip: np.ndarray, into: np.ndarray) -> np.ndarray:
-    """A ball touching jaw tip `tip` only, its centre along unit vector `into` from it."""
-    return tip + RC * into
 
 
 @pytest.mark.parametrize("pocket", ["side", "corner"])
@@ -522,19 +454,13 @@ def test_ball_resting_on_a_jaw_tip_is_hit(pocket, dt, speed):
     """A still ball touching a pocket's jaw tip, hit by another ball: every step it stays
     clear of the jaws and rails (or drops), nothing overlaps, energy never rises."""
     tab = POCKETS
-    if pocket == "side":
-        tip = np.array([L / 2 + tab.side_mouth / 2, 0.0])  # a jaw tip of the side pocket
-        into = np.array([-0.5, math.sqrt(3) / 2])
-    else:
-        tip = np.array([tab.corner_mouth / math.sqrt(2), 0.0])  # head-right corner, rail tip
-        into = np.array([-0.6, 0.8])
+    tip, into = jaw_tip(pocket)  # side pocket, or the head-right corner's rail tip
     assert any(np.allclose(tip, p) for p in tab.points), "not a jaw tip"
-    b = _jaw_ball(tip, into)
+    b = jaw_ball(tip, into)
     d = seg_distance(tab, b).min()
     assert abs(d - RC) <= 1e-12, f"placed ball is {d} m from the nearest nose"
-    cue = b + np.array([0.15, 0.35])
-    v = (b - cue) / np.linalg.norm(b - cue) * speed
-    eng = Engine(tab, Physics(), [cue, b], [v, [0.0, 0.0]])
+    eng = jaw_hit(pocket, speed)  # the other ball comes from b + (0.15, 0.35) straight at b
+    assert np.array_equal(eng.pos[0, 1], b)
     run_checked(eng, dt)
     assert "ball_ball" in [e["type"] for e in eng.events[0]]
     assert eng.passes < 5000
@@ -546,13 +472,14 @@ def test_ball_resting_on_a_jaw_tip_is_hit(pocket, dt, speed):
 def test_side_spin_5000_spins_in_place_until_the_law_says():
     """A still ball with wz = 5000 rad/s never moves and stops spinning after
     2 R |wz| / (5 mu_sp g) (the spin decay law of the notes)."""
-    ph = Physics()
+    eng = side_spin()
+    ph = eng.physics
     p0 = [L / 2, W / 2]
-    eng = Engine(PLAIN, ph, [p0], None, [[0.0, 0.0, 5000.0]])
+    assert float(eng.w[0, 0, 2]) == SPIN == 5000.0
     eng.run_events()
     assert np.array_equal(eng.pos[0, 0], np.array(p0)), f"moved to {eng.pos[0, 0].tolist()}"
     stops = [e["t"] for e in eng.events[0] if e["type"] == "spin_to_stop"]
-    law = 2 * R * 5000.0 / (5 * ph.mu_spin * ph.g)
+    law = 2 * R * SPIN / (5 * ph.mu_spin * ph.g)
     assert len(stops) == 1 and abs(stops[0] - law) <= 1e-9 * law, f"stopped at {stops}, law {law}"
 
 
@@ -561,8 +488,8 @@ def test_back_spin_5000_follows_the_sliding_law(dt):
     """1 m/s with wy = -5000 rad/s (143 m/s of contact-point slip): until its first cushion
     the ball slides with v(t) = v0 - mu_s g t (slip direction fixed), reversing; then the run
     keeps the laws to rest."""
-    ph = Physics()
-    eng = Engine(PLAIN, ph, [[L / 2, W / 2]], [[1.0, 0.0]], [[0.0, -5000.0, 0.0]])
+    eng = back_spin()
+    ph = eng.physics
     for n in range(1, 200):
         eng.step(dt)
         if any(e["type"] == "cushion" for e in eng.events[0]):
@@ -576,12 +503,7 @@ def test_back_spin_5000_follows_the_sliding_law(dt):
 
 @pytest.mark.parametrize("pockets", ["none", "standard"])
 def test_spin_5000_on_every_axis_into_a_rack(pockets):
-    sc = load_scene({"table": {"pockets": pockets}, "balls": "8ball"})
-    vel = np.zeros_like(sc.pos)
-    vel[0] = (3.0, 0.1)
-    w = np.zeros((len(sc.pos), 3))
-    w[0] = (5000.0, -5000.0, 5000.0)
-    eng = Engine(sc.table, sc.physics, sc.pos, vel, w)
+    eng = spin_rack(pockets)  # 3 m/s with (5000, -5000, 5000) rad/s into the 8-ball rack
     run_checked(eng, 0.1)
     assert eng.passes < 5000, f"{eng.passes} event passes"
 
@@ -593,14 +515,12 @@ def test_six_hundred_seconds_frictionless_conserve_energy():
     """No friction anywhere, e = 1 everywhere (and no inelastic threshold), pockets none,
     four balls for 600 simulated seconds: kinetic energy conserved to 1e-9 relative at every
     step, nothing overlaps or leaves the table."""
-    ph = Physics(e_cushion=1.0, mu_cushion=0.0, v_inelastic=0.0, **ELASTIC, **FRICTIONLESS_CLOTH)
-    pos = [[0.5, 0.4], [1.3, 0.7], [2.0, 0.3], [1.8, 1.0]]
-    vel = [[1.3, 0.7], [-0.9, 1.1], [0.4, -1.6], [-1.2, -0.5]]
-    eng = Engine(PLAIN, ph, pos, vel)
+    eng = long_run()
+    assert LONG_RUN_S == 600.0 and LONG_RUN_DRIFT == 1e-9
     E0 = float(kinetic(eng)[0])
     worst = 0.0
-    while eng.time < 600.0 - 1e-9:
-        eng.step(0.5)
+    while eng.time < LONG_RUN_S - 1e-9:
+        eng.step(LONG_RUN_DT)
         E = float(kinetic(eng)[0])
         worst = max(worst, abs(E - E0) / E0)
         check_state(eng, f"t={eng.time}")
