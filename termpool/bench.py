@@ -35,6 +35,9 @@ from datetime import datetime
 from fractions import Fraction
 from typing import Any, NoReturn
 
+from termpool import cli
+from termpool.cli import _Exit, _say
+
 PROG = "termpool bench"
 
 # The standard break: 8-ball rack on a 9-ft table, cue ball on the head spot, 8 m/s straight on.
@@ -61,26 +64,13 @@ TARGETS = {
 # ------------------------------------------------------------------------- argument parsing
 
 
-class _Exit(Exception):
-    def __init__(self, code: int) -> None:
-        self.code = code
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse, but errors are one `termpool: ...` line on stderr and exit status 2."""
+class _Parser(cli._Parser):
+    """The CLI's parser (one `termpool: ...` line and exit status 2 on errors), naming the
+    bench subcommand in its messages."""
 
     def error(self, message: str) -> NoReturn:
         _say(f"bench {self.prog.split()[-1]}: {message}")
         raise _Exit(2)
-
-    def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
-        if message:
-            sys.stderr.write(message)
-        raise _Exit(status)
-
-
-def _say(message: str) -> None:
-    sys.stderr.write(f"termpool: {' '.join(str(message).split())}\n")
 
 
 def _positive_int(text: str) -> int:
