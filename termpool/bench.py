@@ -265,6 +265,14 @@ def _cpu_model() -> str:
     return platform.processor() or "unknown"
 
 
+def machine_lines(m: dict) -> list[str]:
+    """The machine and date lines every benchmark prints under its figures."""
+    return [
+        f"machine: {m['platform']}; {m['cpu']} ({m['cpu_count']} cpus)",
+        f"python {m['python']}, numpy {m['numpy']}; {m['date']}",
+    ]
+
+
 def _check(value: float, op: str, bound: float) -> bool:
     return {"<=": value <= bound, ">=": value >= bound, "<": value < bound}[op]
 
@@ -342,8 +350,7 @@ def format_speed(r: dict) -> str:
     ]
     m = r["machine"]
     lines += [
-        f"machine: {m['platform']}; {m['cpu']} ({m['cpu_count']} cpus)",
-        f"python {m['python']}, numpy {m['numpy']}; {m['date']}",
+        *machine_lines(m),
     ]
     return "\n".join(lines) + "\n"
 

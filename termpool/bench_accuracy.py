@@ -43,7 +43,7 @@ import time
 
 import numpy as np
 
-from termpool.bench import PROG, _engine, _Parser, _say, _seconds, machine_info
+from termpool.bench import PROG, _engine, _Parser, _say, _seconds, machine_info, machine_lines
 from termpool.physics.naive import EulerSim, NaiveSim
 from termpool.scene import SceneError, load_scene
 
@@ -490,8 +490,7 @@ def format_accuracy(r: dict) -> str:
     lines.append(f"chart: {png}" if png else "chart: no PNG (" + r.get("png_note", "") + ")")
     m = r["machine"]
     lines += [
-        f"machine: {m['platform']}; {m['cpu']} ({m['cpu_count']} cpus)",
-        f"python {m['python']}, numpy {m['numpy']}; {m['date']}",
+        *machine_lines(m),
     ]
     return "\n".join(lines) + "\n"
 

@@ -18,7 +18,7 @@ import json
 import sys
 import time
 
-from termpool.bench import PROG, _Parser, _say, machine_info
+from termpool.bench import PROG, _Parser, _say, machine_info, machine_lines
 from termpool.stability_cases import (
     CASES,
     ENERGY_TOL,
@@ -125,8 +125,7 @@ def format_stability(r: dict) -> str:
     m = r["machine"]
     lines += [
         "",
-        f"machine: {m['platform']}; {m['cpu']} ({m['cpu_count']} cpus)",
-        f"python {m['python']}, numpy {m['numpy']}; {m['date']}",
+        *machine_lines(m),
     ]
     return "\n".join(lines) + "\n"
 
