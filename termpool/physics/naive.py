@@ -32,8 +32,10 @@ import math
 import numpy as np
 
 from termpool.physics import contact
-from termpool.physics.engine import POCKETED, ROLLING, SPINNING, STATIONARY, _norm, _perp
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.state import POCKETED, ROLLING, SPINNING, STATIONARY
+from termpool.physics.state import norm as _norm
+from termpool.physics.state import perp as _perp
 from termpool.physics.table import POCKET_NAMES, Table
 
 TINY = 1e-300  # keeps 0 / 0 out of speed updates
