@@ -53,6 +53,14 @@ def first_contact(
     cx, cy = qx + wx * ts, qy + wy * ts
     reach = (target + 0.5 * np.sqrt(aa) * h * h)[:, None]
     close = (cx * cx + cy * cy <= reach * reach).any(axis=1)
+    # Second cull: the distance is at least the path's projection on the initial direction,
+    # r0 + vn t + an t^2 / 2; a pair whose projection stays beyond the target over the window
+    # (touching pairs moving apart, above all) cannot meet.
+    vn = pv / r0
+    an = (px * ax + py * ay) / r0
+    tv = np.where(an > 0, np.minimum(np.maximum(-vn / an, 0.0), horizon), horizon)
+    proj = np.minimum(r0 + (vn + 0.5 * an * tv) * tv, r0)
+    close &= (proj <= target) | ~(r0 > 0)  # (coincident centres: keep, never divide)
     cand = close & ~now & (horizon > 0) & ((vv > 0) | (aa > 0))
     out = np.where(now, 0.0, np.inf)
     idx = np.flatnonzero(cand)
