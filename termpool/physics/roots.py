@@ -37,11 +37,26 @@ def first_contact(
     # Closing, or sunk deeper than SINK (left so by another contact): resolve at once.
     now = touching & ((pv < -V_MIN * r0) | (r0 < dist - SINK))
     target = np.where(touching, np.minimum(dist, r0) - SINK, dist)
-    # Cull: the window in PIECES straight pieces, each widened by the most the acceleration
-    # can bend the path within it; a pair none of whose pieces comes close cannot meet.
+    out = np.where(now, 0.0, np.inf)
+    # First cull, cheap: the distance is at least the path's projection on the initial
+    # direction, r0 + vn t + an t^2 / 2; a pair whose projection stays beyond the target over
+    # the window (touching pairs moving apart, above all) cannot meet.
+    vn = pv / r0
+    an = (px * ax + py * ay) / r0
+    tv = np.where(an > 0, np.minimum(np.maximum(-vn / an, 0.0), horizon), horizon)
+    proj = np.minimum(r0 + (vn + 0.5 * an * tv) * tv, r0)
+    keep = ((proj <= target) | ~(r0 > 0)) & ~now & (horizon > 0)  # (r0 = 0: keep, no divide)
+    idx = np.flatnonzero(keep)
+    if idx.size == 0:
+        return out
+    # Second cull, on what is left: the window in PIECES straight pieces, each widened by the
+    # most the acceleration can bend the path within it; a pair none of whose pieces comes
+    # close cannot meet.
+    px, py, vx, vy, ax, ay = px[idx], py[idx], vx[idx], vy[idx], ax[idx], ay[idx]
+    hz, tg = horizon[idx], target[idx]
     vv = vx * vx + vy * vy
     aa = ax * ax + ay * ay
-    h = horizon / PIECES
+    h = hz / PIECES
     s0 = h[:, None] * _FRACTIONS  # (K, PIECES) piece start times
     qx = px[:, None] + (vx[:, None] + 0.5 * ax[:, None] * s0) * s0
     qy = py[:, None] + (vy[:, None] + 0.5 * ay[:, None] * s0) * s0
@@ -51,27 +66,19 @@ def first_contact(
     ts = np.minimum(np.maximum(-(qx * wx + qy * wy) / ww, 0.0), h[:, None])
     ts = np.where(ww > 0, ts, 0.0)
     cx, cy = qx + wx * ts, qy + wy * ts
-    reach = (target + 0.5 * np.sqrt(aa) * h * h)[:, None]
-    close = (cx * cx + cy * cy <= reach * reach).any(axis=1)
-    # Second cull: the distance is at least the path's projection on the initial direction,
-    # r0 + vn t + an t^2 / 2; a pair whose projection stays beyond the target over the window
-    # (touching pairs moving apart, above all) cannot meet.
-    vn = pv / r0
-    an = (px * ax + py * ay) / r0
-    tv = np.where(an > 0, np.minimum(np.maximum(-vn / an, 0.0), horizon), horizon)
-    proj = np.minimum(r0 + (vn + 0.5 * an * tv) * tv, r0)
-    close &= (proj <= target) | ~(r0 > 0)  # (coincident centres: keep, never divide)
-    cand = close & ~now & (horizon > 0) & ((vv > 0) | (aa > 0))
-    out = np.where(now, 0.0, np.inf)
-    idx = np.flatnonzero(cand)
-    if idx.size == 0:
+    reach = (tg + 0.5 * np.sqrt(aa) * h * h)[:, None]
+    close = (cx * cx + cy * cy <= reach * reach).any(axis=1) & ((vv > 0) | (aa > 0))
+    sel = np.flatnonzero(close)
+    if sel.size == 0:
         return out
-    T = horizon[idx]
-    c4 = 0.25 * aa[idx]
-    c3 = (ax * vx + ay * vy)[idx]
-    c2 = vv[idx] + (ax * px + ay * py)[idx]
+    idx = idx[sel]
+    px, py, vx, vy, ax, ay = px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel]
+    T = hz[sel]
+    c4 = 0.25 * aa[sel]
+    c3 = ax * vx + ay * vy
+    c2 = vv[sel] + ax * px + ay * py
     c1 = 2.0 * pv[idx]
-    tg = target[idx]
+    tg = tg[sel]
     c0 = r0[idx] ** 2 - tg * tg
     # Work in s = t / T so that the interesting roots lie in [0, 1] whatever the window.
     T2 = T * T
