@@ -145,13 +145,15 @@ class Engine(SlowContacts):
         w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
         return p, v, w
 
-    def _snap(self, p, v, w, R, only=None):
+    def _snap(self, p, v, w, R, rate, only=None, move=True):
         """Complete tiny slides at once: returns (p, v, w, t_s), t_s = 0 where nothing changed.
 
         A slip u with |u| <= EPS_U ends after t_s = |u| / (3.5 mu_s g) with v -= u / 3.5 and
-        the ball rolling. The returned p is where the slide ends, p + v t_s - mu_s g t_s^2 u/2|u|:
-        a ball started rolling from there at t + t_s follows the exact path from then on, and
-        before then (extrapolated back) strays from the slide by under 20 nm at 1 mm/s.
+        the ball rolling. With `move`, the returned p is where the slide ends,
+        p + v t_s - mu_s g t_s^2 u/2|u|, and side spin has decayed (at `rate`) for t_s: a ball
+        started rolling from there at t + t_s follows the exact path from then on, and before
+        then (extrapolated back) strays from the slide by under 20 nm at 1 mm/s. Without it
+        only the velocities change (the solves of slow contacts, whose clocks stay put).
         No snap on frictionless cloth, where a slide never ends.
         """
         ph = self.physics
@@ -164,17 +166,15 @@ class Engine(SlowContacts):
         if not small.any():
             return p, v, w, ts
         s = small[:, None]
-        uhat = u / np.where(us > 0, us, 1.0)[:, None]
-        p = np.where(s, p + (v - 0.5 * ph.mu_slide * ph.g * ts[:, None] * uhat) * ts[:, None], p)
+        if move:
+            uhat = u / np.where(us > 0, us, 1.0)[:, None]
+            p = np.where(s, p + (v - 0.5 * ph.mu_slide * ph.g * ts[:, None] * uhat) * ts[:, None],
+                         p)
+            wz = w[:, 2]
+            w[:, 2] = np.copysign(np.maximum(np.abs(wz) - rate * ts, 0.0), wz)
         v = np.where(s, v - u / 3.5, v)
         w[:, :2] = np.where(s, _perp(v) / R[:, None], w[:, :2])
-        # Side spin keeps decaying through the slide.
-        wz = w[:, 2]
-        w[:, 2] = np.copysign(np.maximum(np.abs(wz) - self._spin_rate_of(R) * ts, 0.0), wz)
         return p, v, w, ts
-
-    def _spin_rate_of(self, R: np.ndarray) -> np.ndarray:
-        return 2.5 * self.physics.mu_spin * self.physics.g / R
 
     def _set(self, b, i, t, p, v, w) -> None:
         """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
@@ -183,7 +183,7 @@ class Engine(SlowContacts):
         g = ph.g
         R = self.radius[b, i]
         # A tiny slide is completed at once: the ball starts rolling where and when it ends.
-        p, v, w, ts = self._snap(p, v, w, R)
+        p, v, w, ts = self._snap(p, v, w, R, self.spin_rate[b, i])
         t = t + ts
         u = v + R[:, None] * _perp(w[:, :2])  # contact-point slip
         us = _norm(u)

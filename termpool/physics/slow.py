@@ -83,8 +83,8 @@ class SlowContacts:
             jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
             vi = vi - (jn / mi)[:, None] * n
             vj = vj + (jn / mj)[:, None] * n
-            _, vi, wi, _ = self._snap(pi, vi, wi, ri, live)
-            _, vj, wj, _ = self._snap(pj, vj, wj, rj, live)
+            _, vi, wi, _ = self._snap(pi, vi, wi, ri, None, live, move=False)
+            _, vj, wj, _ = self._snap(pj, vj, wj, rj, None, live, move=False)
         self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
 
     def _cluster(self, b: int, seeds: list[int], every: bool = False):
@@ -165,7 +165,7 @@ class SlowContacts:
             v = (vflat + inv_m * (J.T @ lam)).reshape(N, 2)
             # A push leaves a rolling ball with a tiny slip that is completed at once; do it
             # here so that the solve sees the velocities that result.
-            _, v[mem], w[mem], _ = self._snap(p[mem], v[mem], w[mem], R[mem])
+            _, v[mem], w[mem], _ = self._snap(p[mem], v[mem], w[mem], R[mem], None, move=False)
         # Undo sub-micrometre sinks: the smallest mass-weighted moves that leave no contact
         # overlapping (the same complementarity problem, on positions), so a light ball
         # squeezed against a rail by a heavy one moves the heavy one back.
