@@ -365,15 +365,22 @@ class Engine(SlowContacts):
         pr = np.nonzero(kind == 3)[0]
         more_b, more_i = [tabs[pr]], [j[pr]]
         if pr.size:
-            slow = (self._closing(tabs[pr], i[pr], j[pr]) < self.physics.v_inelastic) | busy[pr]
-            fast = pr[~slow]
-            if fast.size:
-                self._collide(tabs[fast], i[fast], j[fast])
-            sl = pr[slow & ~busy[pr]]
+            # Both balls' states, once, for the closing speed and for whichever response.
+            bp = tabs[pr]
+            states = self._eval(bp, i[pr], self.tb[bp]) + self._eval(bp, j[pr], self.tb[bp])
+            d = states[3] - states[0]
+            closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
+            slow = (closing < self.physics.v_inelastic) | busy[pr]
+            if (~slow).any():
+                f = pr[~slow]
+                self._collide(tabs[f], i[f], j[f], *(x[~slow] for x in states))
+            quiet = slow & ~busy[pr]
+            sl = pr[quiet]
             if sl.size:
                 alone = self._alone(tabs[sl], i[sl], j[sl])
                 if alone.any():
-                    self._settle(tabs[sl[alone]], i[sl[alone]], j[sl[alone]])
+                    a = sl[alone]
+                    self._settle(tabs[a], i[a], j[a], *(x[quiet][alone] for x in states))
                 sl = sl[~alone]
             for n in sl.tolist() + pr[busy[pr]].tolist():
                 clusters.append((n, [int(i[n]), int(j[n])], bool(busy[n])))
@@ -454,11 +461,10 @@ class Engine(SlowContacts):
                 names.append(tab.hole_names[fi - nseg - npt])
         return names
 
-    def _collide(self, b, i, j) -> None:
+    def _collide(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
+        """Fast contacts (b, i, j), balls i and j now at (pi, vi, wi) and (pj, vj, wj)."""
         ph = self.physics
         t = self.tb[b]
-        pi, vi, wi = self._eval(b, i, t)
-        pj, vj, wj = self._eval(b, j, t)
         ri, rj = self.radius[b, i], self.radius[b, j]
         mi, mj = self.mass[b, i], self.mass[b, j]
         vi, vj, wi, wj = contact.ball_ball(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph.e_ball,

@@ -32,14 +32,6 @@ class SlowContacts:
         speed = _norm(v[np.arange(len(b)), i])
         return out & (speed < self.physics.v_inelastic)
 
-    def _closing(self, b, i, j) -> np.ndarray:
-        """Normal closing speed of pairs (b, i, j) at their tables' clocks."""
-        t = self.tb[b]
-        pi, vi, _ = self._eval(b, i, t, spin=False)
-        pj, vj, _ = self._eval(b, j, t, spin=False)
-        d = pj - pi
-        return ((vi - vj) * d).sum(axis=1) / _norm(d)
-
     def _alone(self, b, i, j) -> np.ndarray:
         """True for pairs (b, i, j) that touch no third ball and no cushion."""
         N, tab = self.N, self.table
@@ -63,12 +55,11 @@ class SlowContacts:
                 crowded |= (d < CLUSTER_GAP).any(axis=1)
         return ~crowded
 
-    def _settle(self, b, i, j) -> None:
-        """Slow contact of an isolated pair: perfectly inelastic along the normal, repeated
-        with the slip completion of _set until the pair no longer closes."""
+    def _settle(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
+        """Slow contact of an isolated pair, balls now at (pi, vi, wi) and (pj, vj, wj):
+        perfectly inelastic along the normal, repeated with the slip completion of _set
+        until the pair no longer closes."""
         t = self.tb[b]
-        pi, vi, wi = self._eval(b, i, t)
-        pj, vj, wj = self._eval(b, j, t)
         ri, rj = self.radius[b, i], self.radius[b, j]
         mi, mj = self.mass[b, i], self.mass[b, j]
         d = pj - pi
