@@ -32,9 +32,21 @@ class SlowContacts:
         speed = _norm(v[np.arange(len(b)), i])
         return out & (speed < self.physics.v_inelastic)
 
+    def _cushion_gaps(self, p, rc):
+        """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
+        whether each ball is beside the segment, and to the jaw tips, with the direction from
+        each tip: (seg_gap (M, S), beside (M, S), tip_gap (M, P), tip_dir (M, P, 2))."""
+        tab = self.table
+        seg_gap = p @ tab.seg_n.T - self._seg_off - rc[:, None]
+        along = p @ self._seg_dir.T - self._seg_start
+        beside = (along >= 0) & (along <= self._seg_len)
+        dp = p[:, None] - tab.points[None]
+        dd = _norm(dp)
+        return seg_gap, beside, dd - rc[:, None], dp / dd[..., None]
+
     def _alone(self, b, i, j) -> np.ndarray:
         """True for pairs (b, i, j) that touch no third ball and no cushion."""
-        N, tab = self.N, self.table
+        N = self.N
         t = self.tb[b]
         k = np.arange(N)[None, :]
         p, _, _ = self._eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
@@ -45,14 +57,9 @@ class SlowContacts:
             px = p[np.arange(len(b)), x]
             gap = _norm(p - px[:, None]) - R - R[np.arange(len(b)), x][:, None]
             crowded |= (live & (gap < CLUSTER_GAP)).any(axis=1)
-            rc = self.rc[b, x][:, None]
-            if self._nseg:
-                s = px @ tab.seg_n.T - self._seg_off - rc
-                along = px @ self._seg_dir.T - self._seg_start
-                crowded |= ((s < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len)).any(1)
-            if self._npt:
-                d = _norm(px[:, None] - tab.points[None]) - rc
-                crowded |= (d < CLUSTER_GAP).any(axis=1)
+            seg_gap, beside, tip_gap, _ = self._cushion_gaps(px, self.rc[b, x])
+            crowded |= ((seg_gap < CLUSTER_GAP) & beside).any(axis=1)
+            crowded |= (tip_gap < CLUSTER_GAP).any(axis=1)
         return ~crowded
 
     def _settle(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
@@ -118,20 +125,13 @@ class SlowContacts:
             rn.append(normals)
             rg.append(gaps)
 
-        if self._nseg:
-            gap = pm @ tab.seg_n.T - self._seg_off - rcm[:, None]
-            along = pm @ self._seg_dir.T - self._seg_start
-            slow = v[mem] @ tab.seg_n.T >= -cap
-            on = (np.abs(gap) < CLUSTER_GAP) & (along >= 0) & (along <= self._seg_len) & slow
-            x, f = np.nonzero(on)
-            cushion_rows(x, tab.seg_n[f], gap[x, f])
-        if self._npt:
-            dp = pm[:, None] - tab.points[None]
-            dd = _norm(dp)
-            gap = dd - rcm[:, None]
-            slow = (v[mem][:, None] * dp).sum(axis=2) / dd >= -cap
-            x, f = np.nonzero((gap < CLUSTER_GAP) & slow)
-            cushion_rows(x, dp[x, f] / dd[x, f][:, None], gap[x, f])
+        seg_gap, beside, tip_gap, tip_dir = self._cushion_gaps(pm, rcm)
+        slow = v[mem] @ tab.seg_n.T >= -cap
+        x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
+        cushion_rows(x, tab.seg_n[f], seg_gap[x, f])
+        slow = (v[mem][:, None] * tip_dir).sum(axis=2) >= -cap
+        x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
+        cushion_rows(x, tip_dir[x, f], tip_gap[x, f])
         ra, rc_, rn, rg = (np.concatenate(z) for z in (ra, rc_, rn, rg))
         nc = len(ra)
         J = np.zeros((nc, N, 2))  # u = J v: separating speed along each contact normal
