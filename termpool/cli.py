@@ -1,4 +1,5 @@
-"""Command line: `termpool sim SCENE` runs a scene and prints JSON; `termpool bench` benchmarks.
+"""Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
+prints JSON; `termpool bench` benchmarks.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -69,9 +70,9 @@ def _parser() -> _Parser:
         prog=PROG,
         description="Pool in the terminal on an exact, batched physics core.",
         epilog=(
-            "With no arguments, termpool currently runs `termpool sim` on the bundled example "
-            "break scene (termpool/examples/break.json) and prints its JSON; the interactive "
-            "terminal game will take over that role."
+            "With no arguments, termpool starts the game in the terminal (the same as "
+            "`termpool play`). Without a terminal, try `termpool sim` on the bundled example "
+            "break scene: termpool sim " + bundled_example() + "."
         ),
     )
     from termpool import __version__
@@ -114,6 +115,15 @@ def _parser() -> _Parser:
         metavar="N",
         help="also output ball positions sampled N times per simulated second",
     )
+    from termpool.ui.play import add_arguments
+
+    pl = sub.add_parser(
+        "play",
+        help="play pool in the terminal (the default command)",
+        description="Play pool in the terminal: 8-ball, 9-ball or practice, against the "
+        "computer or a second player. --headless plays a key script on a virtual screen.",
+    )
+    add_arguments(pl)
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -299,6 +309,18 @@ def _bench(argv: list[str]) -> int:
     return rc if isinstance(rc, int) else 0
 
 
+# --------------------------------------------------------------------------------- play
+
+
+def _play(args: argparse.Namespace) -> int:
+    from termpool.ui.play import PlayError, run
+
+    try:
+        return run(args)
+    except PlayError as e:
+        return _fail(f"play: {e}")
+
+
 # --------------------------------------------------------------------------------- main
 
 
@@ -308,9 +330,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if argv and argv[0] == "bench":
             return _bench(argv[1:])
-        args = _parser().parse_args(argv or ["sim", bundled_example()])
+        args = _parser().parse_args(argv or ["play"])
         if args.command == "sim":
             return _sim(args)
+        if args.command == "play":
+            return _play(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

@@ -99,13 +99,13 @@ def test_sim_examples(path: Path) -> None:
     assert all(b["state"] in ("stationary", "pocketed") for b in out["balls"])
 
 
-def test_no_arguments_runs_the_bundled_break() -> None:
-    p = run()
-    assert p.returncode == 0, p.stderr
-    out = json.loads(p.stdout)
-    check_output(out)
-    assert len(out["balls"]) == 16
-    assert without_wall(out) == without_wall(sim(str(EX / "break.json")))
+def test_no_arguments_without_a_terminal_points_to_sim() -> None:
+    # `termpool` alone plays in the terminal; with no tty it must say so in one line, not hang.
+    p = run(stdin="")
+    assert p.returncode == 2
+    assert p.stdout == ""
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and "terminal" in lines[0] and "termpool sim" in lines[0]
 
 
 def test_help_mentions_default_break() -> None:

@@ -1,0 +1,682 @@
+"""The game as a state machine: keys and clock ticks in, screen cells out.
+
+`App` never touches a terminal, so the same code runs on a real terminal (``ui.term``), on a
+virtual screen from a key script (``ui.headless``) and in tests. It holds a match
+(``termpool.game.Match``), the aim (angle, tip offset, called pocket), the power charge and the
+shot in motion, which advances by wall-clock time through a fixed-step accumulator.
+
+Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls moving), "cpu"
+(the computer thinks, then turns its stick), "option" (the incoming player answers a choice),
+"over" (the match is won). Help, pause and the quit question are boxes over any phase.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from termpool.physics.state import POCKETED
+from termpool.physics.table import POCKET_NAMES
+from termpool.ui.canvas import to_cells
+from termpool.ui.frame import message_cells, too_small_lines
+from termpool.ui.output import resolve_depth
+from termpool.ui.panel import PanelInfo, PlayerLine, blank_cells, draw_box, draw_panel
+from termpool.ui.table_view import TableView, layout
+
+DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at any dt)
+MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
+MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
+FAST = 4.0  # fast-forward factor
+SPIN_STEP = 0.1  # tip offset per key, in units of R
+SPIN_MAX = 0.5  # beyond this the cue strike is a miscue
+CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
+CPU_THINK_FRAME_S = 0.05  # show "thinking" for at least this long before blocking on the plan
+
+MENU = [
+    ("8-ball vs computer", ("8ball", "cpu")),
+    ("8-ball, two players", ("8ball", "human")),
+    ("9-ball vs computer", ("9ball", "cpu")),
+    ("9-ball, two players", ("9ball", "human")),
+    ("Practice", ("practice", "human")),
+    ("Help", "help"),
+    ("Quit", "quit"),
+]
+
+
+@dataclass
+class Options:
+    mode: str | None = None  # None: start at the menu
+    opponent: str = "cpu"  # "cpu" or "human"
+    table: str = "9ft"
+    colors: str = "auto"
+    frames: int = 1
+    seed: int = 0
+    level: str = "normal"
+    aid: bool = True
+    bell: bool = False
+    theme: str = "standard"
+
+
+def power_to_speed(level: float) -> float:
+    """Cue-ball speed for a power level in [0, 1]: finer control of the soft shots most
+    positions need (half power is about 3.3 m/s, full power a 9 m/s break)."""
+    level = min(1.0, max(0.0, level))
+    return MIN_SPEED + (MAX_SPEED - MIN_SPEED) * level ** 1.5
+
+
+class App:
+    def __init__(self, opts: Options | None = None, keymap=None, input_mode: str = "release",
+                 env=None) -> None:
+        from termpool.ui.controls import AimControl, KeyMap
+
+        self.opts = opts or Options()
+        self.keymap = keymap if keymap is not None else KeyMap()
+        self.depth = resolve_depth(self.opts.colors, env)
+        self.aimctl = AimControl()
+        self.set_input_mode(input_mode)
+        self.done = False
+        self.dirty = True
+        self.bells = 0  # bells to ring (the driver writes BEL and resets this)
+        self.overlay: str | None = None  # "help", "pause", "quit"
+        self.menu_index = 0
+        self.match = None
+        self.run = None
+        self.now = 0.0
+        self._last = None  # clock at the last tick while a shot runs
+        self._acc = 0.0
+        self.fast = False
+        self.message: list[tuple[str, str]] = []
+        self._geom = None  # (cols, rows, layout, view)
+        self._aim_cache = None
+        if self.opts.mode is None:
+            self.phase = "menu"
+        else:
+            self.new_match(self.opts.mode, self.opts.opponent)
+
+    # ----------------------------------------------------------------------------- set-up
+    def set_input_mode(self, mode: str) -> None:
+        """"release" (kitty protocol), "repeat" (infer holds) or "classic" (press, press)."""
+        from termpool.ui.controls import PowerCharge
+
+        self.input_mode = mode
+        self.charge = PowerCharge(mode)
+        self.dirty = True
+
+    def new_match(self, mode: str, opponent: str) -> None:
+        from termpool.game import Match
+
+        self.opts.mode, self.opts.opponent = mode, opponent
+        names = ("You", "Computer") if opponent == "cpu" else ("Player 1", "Player 2")
+        if mode == "practice":
+            names = ("You", "You")
+        self.cpu = (False, opponent == "cpu" and mode != "practice")
+        self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
+                           seed=self.opts.seed, theme=self.opts.theme)
+        self._geom = None
+        self.run = None
+        self.message = []
+        self.angle = 0.0
+        self.side = self.top = 0.0
+        self.called_k = 0
+        self.push_out = False
+        self._turn_start()
+
+    # ------------------------------------------------------------------------ the match
+    @property
+    def table(self):
+        return self.match.table
+
+    def cue_index(self) -> int:
+        return self.match.ids.index("cue")
+
+    def _targets(self) -> list[int]:
+        """Indices of the balls the shooter may legally hit first (for the initial aim)."""
+        m = self.match
+        ids, on = m.ids, m.on_table
+        st = m.state
+        balls = [k for k, b in enumerate(ids) if b != "cue" and on[k]]
+        if st.mode == "9ball":
+            return sorted(balls, key=lambda k: int(ids[k]))[:1]
+        if st.mode == "8ball" and not st.is_break:
+            if st.groups is None:
+                return [k for k in balls if ids[k] != "8"] or balls
+            from termpool.rules.common import GROUPS
+
+            mine = [k for k in balls if ids[k] in GROUPS[st.groups[st.shooter]]]
+            return mine or [k for k in balls if ids[k] == "8"]
+        return balls
+
+    def _aim_at_nearest(self) -> None:
+        m = self.match
+        c = self.cue_index()
+        t = self._targets()
+        if not t or not m.on_table[c]:
+            return
+        d = m.pos[t] - m.pos[c]
+        k = int(np.argmin(np.hypot(d[:, 0], d[:, 1])))
+        self.angle = math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0
+
+    def shooter_is_cpu(self) -> bool:
+        return self.cpu[self.match.shooter]
+
+    def _turn_start(self) -> None:
+        """Set up the next phase once the table is at rest."""
+        m = self.match
+        self.run = None
+        self.charge.cancel()
+        self.side = self.top = 0.0
+        self.push_out = False
+        self._aim_cache = None
+        if m.winner is not None:
+            self.phase = "over"
+        elif m.option is not None:
+            self.phase = "cpu" if self.shooter_is_cpu() else "option"
+            self._cpu_plan = None
+        elif self.shooter_is_cpu():
+            self.phase = "cpu"
+            self._cpu_plan = None
+            self._cpu_t0 = None
+        elif m.ball_in_hand:
+            self.phase = "place"
+            c = self.cue_index()
+            x, y = m.pos[c] if m.on_table[c] else m.table.head_spot
+            if m.placement_error(x, y):
+                x, y = m.table.head_spot
+            self.cursor = [float(x), float(y)]
+        else:
+            self.phase = "aim"
+            if m.state.is_break:
+                self.angle = 0.0
+            else:
+                self._aim_at_nearest()
+        self.dirty = True
+
+    def _shoot(self, speed: float, angle: float, side: float, top: float, called=None,
+               push_out: bool = False) -> None:
+        from termpool.game import Shot
+
+        shot = Shot(speed=speed, angle=angle, side=side, top=top, called=called,
+                    push_out=push_out)
+        self.run = self.match.begin(shot)
+        self.phase = "run"
+        self._last = None
+        self._acc = 0.0
+        self.message = []
+        self.dirty = True
+
+    def _shoot_human(self, level: float) -> None:
+        called = None
+        if self.match.needs_call():
+            called = self._called()
+        self._shoot(power_to_speed(level), self.angle, self.side, self.top, called,
+                    self.push_out)
+
+    def _called(self) -> tuple[str, str]:
+        aim = self.aim()
+        ball = "8"
+        if aim is not None and aim.ball is not None:
+            ball = self.match.ids[aim.ball]
+        return ball, POCKET_NAMES[self.called_k % len(POCKET_NAMES)]
+
+    def _default_call(self) -> None:
+        """Call the pocket the object ball is heading for (the player can cycle with C)."""
+        aim = self.aim()
+        if aim is None or aim.ball is None or aim.object_dir is None:
+            return
+        p = self.match.pos[aim.ball]
+        d = self.table.hole_c.reshape(-1, 2) - p
+        u = np.asarray(aim.object_dir)
+        score = (d @ u) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-9)
+        self.called_k = int(np.argmax(score))
+
+    def _finish_shot(self) -> None:
+        out = self.run.finish()
+        m = self.match
+        self.message = []
+        if out.foul:
+            self.message.append((f"Foul: {out.reason}", "foul"))
+            if self.opts.bell:
+                self.bells += 1
+        else:
+            self.message.append((out.reason, "good" if out.continue_turn else "plain"))
+        if self.opts.bell and not out.foul and any(
+                not m.on_table[k] for k in range(len(m.ids)) if m.ids[k] != "cue"):
+            pass
+        self._turn_start()
+
+    # -------------------------------------------------------------------------- the clock
+    def wake_in(self, t: float) -> float | None:
+        """Seconds until the app needs a tick (None: only on a key)."""
+        if self.overlay is not None:
+            return None
+        if self.phase in ("run", "cpu") or self.charge.active:
+            return 0.0
+        return None
+
+    def tick(self, t: float) -> None:
+        self.now = t
+        if self.overlay is not None:
+            self._last = None  # paused or asking: the shot waits
+            return
+        if self.phase == "run":
+            self._advance(t)
+        elif self.phase == "cpu":
+            self._cpu(t)
+        elif self.phase == "aim" and self.charge.active:
+            level = self.charge.poll(t)
+            self.dirty = True
+            if level is not None:
+                self._shoot_human(level)
+
+    def _advance(self, t: float) -> None:
+        if self._last is None:
+            self._last = t
+            return
+        self._acc += (t - self._last) * (FAST if self.fast else 1.0)
+        self._last = t
+        n = 0
+        while self._acc >= DT and not self.run.done:
+            self.run.step(DT)
+            self._acc -= DT
+            n += 1
+            if n >= MAX_STEPS_PER_TICK:
+                self._acc = 0.0
+                break
+        if n:
+            self.dirty = True
+        if self.run.done:
+            self._finish_shot()
+
+    def _cpu(self, t: float) -> None:
+        m = self.match
+        if self._cpu_plan is None:
+            if getattr(self, "_cpu_t0", None) is None:
+                self._cpu_t0 = t  # draw "thinking" first, then block on the plan
+                self.dirty = True
+                return
+            if t - self._cpu_t0 < CPU_THINK_FRAME_S:
+                return
+            self._cpu_plan = self._plan()
+            self._cpu_from = self.angle
+            self._cpu_t0 = t
+            self.dirty = True
+            return
+        plan = self._cpu_plan
+        if plan == "done":
+            return
+        if isinstance(plan, str):  # an answer to an option
+            m.choose(plan)
+            self._cpu_plan = "done"
+            self._turn_start()
+            return
+        f = min(1.0, (t - self._cpu_t0) / CPU_AIM_S)
+        turn = (plan.angle - self._cpu_from + 180.0) % 360.0 - 180.0
+        self.angle = (self._cpu_from + f * turn) % 360.0
+        self.side, self.top = plan.side * f, plan.top * f
+        self.dirty = True
+        if f >= 1.0:
+            self._cpu_plan = "done"
+            self._shoot(plan.speed, plan.angle, plan.side, plan.top, plan.called)
+
+    def _plan(self):
+        """The computer's decision: an option's answer, a placement, then a shot."""
+        from termpool import ai
+
+        m = self.match
+        if m.option is not None:
+            return _cpu_option(m.option)
+        args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
+        seed = self.opts.seed * 1000 + len(m.history)
+        if m.ball_in_hand:
+            x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
+            m.place_cue(x, y)
+        plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
+        self.message = [(f"Computer: {plan.note}", "dim")] if plan.note else []
+        return plan
+
+    # ------------------------------------------------------------------------------ keys
+    def key(self, key, t: float) -> None:
+        self.now = t
+        action = self.keymap.action(key)
+        if key.kind == "release" and action != "shoot":
+            return
+        if self.overlay is not None:
+            self._overlay_key(key, action)
+            return
+        if action == "help" and key.kind == "press":
+            self.overlay = "help"
+        elif action == "quit" and key.kind == "press":
+            self.overlay = "quit" if self.phase != "menu" else None
+            self.done = self.phase == "menu"
+        elif action == "pause" and key.kind == "press" and self.phase != "menu":
+            self.overlay = "pause"
+        elif action == "bell" and key.kind == "press":
+            self.opts.bell = not self.opts.bell
+            self.message = [("sound on" if self.opts.bell else "sound off", "dim")]
+        else:
+            getattr(self, "_key_" + self.phase)(key, action, t)
+        self.dirty = True
+
+    def _overlay_key(self, key, action) -> None:
+        if key.kind != "press":
+            return
+        if self.overlay == "quit":
+            if key.name in ("y", "q") or action == "quit":
+                self.done = True
+            elif key.name == "n" or action in ("cancel", "confirm"):
+                self.overlay = None
+        elif self.overlay == "help" and self.phase == "menu" and self._menu_help:
+            self.overlay = None
+            self._menu_help = False
+        else:
+            self.overlay = None  # any key closes help and ends the pause
+        self.dirty = True
+
+    _menu_help = False
+
+    def _key_menu(self, key, action, t) -> None:
+        if key.kind == "release":
+            return
+        n = len(MENU)
+        if key.name in ("up", "k") or action == "spin_up":
+            self.menu_index = (self.menu_index - 1) % n
+        elif key.name in ("down", "j") or action == "spin_down":
+            self.menu_index = (self.menu_index + 1) % n
+        elif key.name.isdigit() and 1 <= int(key.name) <= n:
+            self.menu_index = int(key.name) - 1
+            self._menu_pick()
+        elif action in ("confirm", "shoot"):
+            self._menu_pick()
+
+    def _menu_pick(self) -> None:
+        what = MENU[self.menu_index][1]
+        if what == "quit":
+            self.done = True
+        elif what == "help":
+            self.overlay = "help"
+            self._menu_help = True
+        else:
+            self.new_match(*what)
+
+    def _key_aim(self, key, action, t) -> None:
+        if action == "shoot":
+            level = self.charge.key(key, t)
+            if level is not None:
+                self._shoot_human(level)
+            return
+        if key.kind == "release":
+            return
+        if action in ("aim_ccw", "aim_cw", "aim_fine_ccw", "aim_fine_cw"):
+            self.angle = (self.angle + self.aimctl.step(key, t)) % 360.0
+            self._aim_cache = None
+            if self.match.needs_call():
+                self._default_call()
+        elif action in ("spin_up", "spin_down", "spin_left", "spin_right"):
+            dx = {"spin_left": -1, "spin_right": 1}.get(action, 0)
+            dy = {"spin_down": -1, "spin_up": 1}.get(action, 0)
+            s, tp = self.side + dx * SPIN_STEP, self.top + dy * SPIN_STEP
+            r = math.hypot(s, tp)
+            if r > SPIN_MAX + 1e-9:  # keep the tip on the ball: slide along the miscue limit
+                s, tp = s * SPIN_MAX / r, tp * SPIN_MAX / r
+            self.side, self.top = round(s, 6), round(tp, 6)
+        elif action == "spin_reset":
+            self.side = self.top = 0.0
+        elif action == "cancel":
+            self.charge.cancel()
+        elif action == "aim_aid":
+            self.opts.aid = not self.opts.aid
+        elif action == "call_pocket" and self.match.needs_call():
+            self.called_k = (self.called_k + 1) % len(POCKET_NAMES)
+        elif action == "push_out" and self.match.state.push_out == "available":
+            self.push_out = not self.push_out
+        elif action == "place" and self.match.ball_in_hand:
+            self.phase = "place"
+        elif action == "fast_forward":
+            self.fast = not self.fast
+        elif action == "undo" and self.match.state.mode == "practice":
+            self.match.undo()
+            self._turn_start()
+        elif action == "rerack" and self.match.state.mode == "practice":
+            self.match.rerack()
+            self._turn_start()
+
+    def _key_place(self, key, action, t) -> None:
+        if action in ("aim_ccw", "aim_cw", "aim_fine_ccw", "aim_fine_cw"):
+            step = abs(self.aimctl.step(key, t)) * 0.01  # degrees -> about a centimetre a tap
+            dx = {"left": -1, "right": 1}.get(key.name, 0)
+            dy = {"up": 1, "down": -1}.get(key.name, 0)
+            L, W = self.table.length, self.table.width
+            self.cursor[0] = min(L, max(0.0, self.cursor[0] + dx * step))
+            self.cursor[1] = min(W, max(0.0, self.cursor[1] + dy * step))
+        elif action in ("confirm", "place", "shoot") and key.kind == "press":
+            why = self.match.placement_error(*self.cursor)
+            if why:
+                self.message = [(f"Can't place the cue ball there: {why}", "foul")]
+            else:
+                self.match.place_cue(*self.cursor)
+                self.message = []
+                self.phase = "aim"
+                self._aim_at_nearest()
+                self._aim_cache = None
+
+    def _key_run(self, key, action, t) -> None:
+        if action == "fast_forward" and key.kind == "press":
+            self.fast = not self.fast
+
+    def _key_cpu(self, key, action, t) -> None:
+        self._key_run(key, action, t)
+
+    def _key_option(self, key, action, t) -> None:
+        if key.kind != "press":
+            return
+        answers = OPTION_KEYS.get(self.match.option, {})
+        pick = answers.get(key.name)
+        if pick is not None:
+            self.match.choose(pick)
+            self._turn_start()
+
+    def _key_over(self, key, action, t) -> None:
+        if key.kind != "press":
+            return
+        if key.name == "n" or action == "confirm":
+            self.new_match(self.opts.mode, self.opts.opponent)
+        elif key.name == "m":
+            self.phase = "menu"
+            self.match = None
+
+    # ------------------------------------------------------------------------ the screen
+    def aim(self):
+        """The aim trace for the current angle (cached until the angle or the layout changes)."""
+        from termpool.ui.aim import aim_trace
+
+        m = self.match
+        c = self.cue_index()
+        if not m.on_table[c]:
+            return None
+        key = (self.angle, len(m.history), m.pos[c, 0], m.pos[c, 1])
+        if self._aim_cache is None or self._aim_cache[0] != key:
+            a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, self.angle)
+            self._aim_cache = (key, a)
+        return self._aim_cache[1]
+
+    def _geometry(self, cols: int, rows: int):
+        if self._geom is None or self._geom[:2] != (cols, rows):
+            lay = layout(cols, rows, self.table)
+            view = TableView(self.table, lay) if lay is not None else None
+            self._geom = (cols, rows, lay, view)
+        return self._geom[2], self._geom[3]
+
+    def cells(self, cols: int, rows: int):
+        self.dirty = False
+        mono = self.depth == "mono"
+        if self.phase == "menu" or self.match is None:
+            cells = self._menu_cells(cols, rows, mono)
+        else:
+            lay, view = self._geometry(cols, rows)
+            if lay is None:
+                return message_cells(cols, rows, too_small_lines(cols, rows), mono)
+            cells = self._table_cells(lay, view, mono)
+            draw_panel(cells, lay, self._panel_info(), mono)
+            self._question(cells)
+        if self.overlay == "help":
+            draw_box(cells, self.keymap.help_lines(), "keys")
+        elif self.overlay == "pause":
+            draw_box(cells, ["paused", "", "any key to go on"], "pause")
+        elif self.overlay == "quit":
+            draw_box(cells, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
+        return cells
+
+    def _positions(self):
+        m = self.match
+        if self.run is not None:
+            e = self.run.engine
+            return e.pos[0], e.state[0]
+        state = np.where(m.on_table, 0, POCKETED)
+        if self.phase == "place":
+            pos = m.pos.copy()
+            state = state.copy()
+            state[self.cue_index()] = POCKETED  # the cursor shows the ball in hand
+            return pos, state
+        return m.pos, state
+
+    def _table_cells(self, lay, view, mono: bool):
+        from termpool.ui import overlay as ov
+
+        m = self.match
+        pos, state = self._positions()
+        c = self.cue_index()
+        aiming = self.phase == "aim" or (self.phase == "cpu" and self._cpu_plan not in (None,
+                                                                                      "done"))
+        aim = self.aim() if aiming and m.on_table[c] else None
+        if mono:
+            chars = view.mono(m.ids, pos, state, m.radius)
+            if aim is not None and self.opts.aid:
+                ov.mono_aim(chars, lay, aim, m.pos[c])
+            return chars, None, None
+        cv = view.draw(m.ids, pos, state, m.radius)
+        if aim is not None:
+            if self.opts.aid and not self.shooter_is_cpu():
+                ov.draw_aim(cv, lay, aim, m.pos[c], m.radius[c])
+            pull = self.charge.level(self.now) if self.charge.active else 0.0
+            ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], self.angle, pull)
+        if self.phase == "place":
+            ok = self.match.placement_error(*self.cursor) is None
+            ov.draw_placement(cv, lay, self.cursor, m.radius[c], ok)
+        return to_cells(cv)
+
+    def _question(self, cells) -> None:
+        if self.phase == "option":
+            draw_box(cells, OPTION_TEXT.get(self.match.option, [self.match.option]), "your call")
+        elif self.phase == "over":
+            m = self.match
+            name = m.players[m.winner]
+            why = self.message[0][0] if self.message else ""
+            draw_box(cells, [f"{name} wins!", why, "", "n: new game   m: menu   q: quit"],
+                     "game over", "good")
+
+    def _panel_info(self) -> PanelInfo:
+        from termpool.rules.common import GROUPS
+
+        m = self.match
+        st = m.state
+        players = []
+        for p in range(2):
+            group = "" if st.groups is None else st.groups[p]
+            balls = []
+            if group:
+                balls = [k for k, b in enumerate(m.ids) if b in GROUPS[group] and m.on_table[k]]
+            label = group
+            if group and self.opts.theme != "standard":
+                from termpool.rules.themes import group_label
+
+                label = group_label(group, self.opts.theme)
+            players.append(PlayerLine(m.players[p], label, balls, m.scores[p],
+                                      p == m.shooter and self.phase != "over", st.fouls[p]))
+        if st.mode == "practice":
+            players = players[:1]
+        status = list(self.message)
+        status += self._status()
+        help_line = self._help_line()
+        widgets = []
+        if self.phase in ("aim", "cpu") and self.depth != "mono":
+            from termpool.ui.overlay import power_meter_cells, spin_face_cells
+
+            widgets.append((spin_face_cells(self.side, self.top), "spin"))
+            if self.charge.active:
+                widgets.append((power_meter_cells(self.charge.level(self.now), 14,
+                                                  "power"), "power"))
+        title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
+        if self.opts.frames > 1:
+            title += f" · frame {m.frame} of {self.opts.frames}"
+        return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
+                         widgets=widgets)
+
+    def _status(self) -> list[tuple[str, str]]:
+        m = self.match
+        name = m.players[m.shooter]
+        out = []
+        if self.phase == "aim":
+            what = "break" if m.state.is_break else "shoot"
+            s = f"{name} to {what}"
+            if m.needs_call():
+                ball, pocket = self._called()
+                s += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
+            if self.push_out:
+                s += " · push-out"
+            elif m.state.push_out == "available":
+                s += " · O: push-out"
+            out.append((s, "turn"))
+            out.append((f"power: {self.charge.label}", "dim"))
+            if self.side or self.top:
+                out.append((f"tip {self.side:+.1f} side {self.top:+.1f} top", "dim"))
+        elif self.phase == "place":
+            where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
+            out.append((f"{name}: ball in hand {where}; arrows move, Enter places", "turn"))
+        elif self.phase == "run":
+            out.append(("fast ×4 (F)" if self.fast else "F: fast forward", "dim"))
+        elif self.phase == "cpu":
+            out.append(("Computer is thinking…" if self._cpu_plan is None else
+                        "Computer is shooting", "turn"))
+        return out
+
+    def _help_line(self) -> str:
+        if self.phase == "place":
+            return "←↑↓→ move  Enter place  H help  Q quit"
+        return "←→ aim  ↑↓ fine  Space shoot  WASD spin  G aid  H help  P pause  Q quit"
+
+    def _menu_cells(self, cols: int, rows: int, mono: bool):
+        cells = blank_cells(cols, rows, mono)
+        from termpool.ui.canvas import put_text
+        from termpool.ui.panel import DIM_TEXT_C, TEXT_C, TURN_C
+
+        lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
+        for k, (label, _) in enumerate(MENU):
+            sel = k == self.menu_index
+            lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
+                          TURN_C if sel else TEXT_C.rgb))
+        lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
+        top = max(0, (rows - len(lines)) // 2)
+        width = max(len(s) for s, _ in lines)
+        left = max(0, (cols - width) // 2)
+        for k, (s, colour) in enumerate(lines):
+            if s:
+                put_text(cells, top + k, left, s, colour, (0, 0, 0))
+        return cells
+
+
+OPTION_KEYS = {
+    "rerack_or_accept": {"r": "rerack", "a": "accept"},
+    "shoot_or_pass": {"s": "shoot", "p": "pass"},
+}
+OPTION_TEXT = {
+    "rerack_or_accept": ["The break was illegal.", "", "r: re-rack and break yourself",
+                         "a: accept the table and shoot"],
+    "shoot_or_pass": ["Your opponent pushed out.", "", "s: shoot from here",
+                      "p: pass the shot back"],
+}
+
+
+def _cpu_option(option: str) -> str:
+    return {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}.get(option, option)

@@ -1,0 +1,220 @@
+"""The match panel beside or below the table, and the boxes drawn over it (help, pause, ...).
+
+Everything here writes text into (chars, fg, bg) cells; the app decides what to say.
+`PanelInfo` is plain data so the panel can be tested without a match.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from termpool.ui.canvas import put_text
+from termpool.ui.frame import _ball_tokens
+from termpool.ui.palette import BACKDROP_C, DIM_TEXT_C, TEXT_C
+from termpool.ui.table_view import Layout
+
+TURN_C = (250, 214, 90)
+FOUL_C = (240, 110, 90)
+GOOD_C = (130, 220, 130)
+BOX_BG = (28, 32, 40)
+TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "turn": TURN_C, "foul": FOUL_C,
+         "good": GOOD_C}
+
+
+@dataclass
+class PlayerLine:
+    name: str
+    group: str = ""  # "solids", "reds", "" while open
+    balls: list[int] = field(default_factory=list)  # indices of the balls still to pot
+    score: int = 0
+    turn: bool = False
+    fouls: int = 0
+
+
+@dataclass
+class PanelInfo:
+    title: str
+    players: list[PlayerLine]
+    status: list[tuple[str, str]]  # (text, tone) lines, most important first
+    help: str  # one line of key help
+    ids: Sequence[str] = ()
+    spin: tuple[float, float] | None = None  # (side, top) in units of R, shown on a cue-ball face
+    power: tuple[float, str] | None = None  # (level 0..1, label) while charging
+    widgets: list = field(default_factory=list)  # (cells, where) blocks drawn by the app
+
+
+def _tone(t: str):
+    return TONES.get(t, TEXT_C.rgb)
+
+
+def _wrap(text: str, width: int) -> list[str]:
+    out, line = [], ""
+    for word in text.split():
+        if line and len(line) + 1 + len(word) > width:
+            out.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    if line:
+        out.append(line)
+    return [s[:width] for s in out] or [""]
+
+
+def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
+    chars, fg, bg = cells
+    chars[row:row + nrows, col:col + ncols] = " "
+    if bg is not None:
+        bg[row:row + nrows, col:col + ncols] = BACKDROP_C.rgb
+        fg[row:row + nrows, col:col + ncols] = TEXT_C.rgb
+
+
+def _player(cells, r: int, c0: int, width: int, p: PlayerLine, ids, mono: bool) -> int:
+    """One player's line: marker, name, group, score; then the balls still to pot. Returns the
+    column after the text on the last row written and that row."""
+    mark = "▶ " if p.turn else "  "
+    text = f"{mark}{p.name}"
+    put_text(cells, r, c0, text[:width], TURN_C if p.turn else TEXT_C.rgb, BACKDROP_C.rgb)
+    c = c0 + len(text) + 1
+    extra = []
+    if p.group:
+        extra.append(p.group)
+    if p.score:
+        extra.append(f"frames {p.score}")
+    if p.fouls:
+        extra.append(f"fouls {p.fouls}")
+    if extra:
+        s = " " + " · ".join(extra)
+        put_text(cells, r, c, s[: max(0, c0 + width - c)], DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+        c += len(s) + 1
+    return c
+
+
+def draw_panel(cells, lay: Layout, info: PanelInfo, mono: bool = False) -> None:
+    """Fill the layout's panel rectangle from `info`."""
+    col, row, ncols, nrows = lay.panel_rect
+    if ncols <= 2 or nrows <= 0:
+        return
+    _clear(cells, col, row, ncols, nrows)
+    if lay.panel == "side":
+        _side(cells, col + 1, row, ncols - 2, nrows, info, mono)
+    else:
+        _bottom(cells, col + 1, row, ncols - 2, nrows, info, mono)
+
+
+def _tokens(cells, r: int, c: int, end: int, ids, balls: list[int], mono: bool) -> None:
+    for text, fg, bg in _ball_tokens(ids, balls, mono):
+        if c + len(text) > end:
+            break
+        put_text(cells, r, c, text, fg, bg)
+        c += len(text) + 1
+
+
+def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
+    # Widgets (spin face, power meter) take the right end; text gets the rest.
+    right = c0 + width
+    for block, _where in info.widgets:
+        bw = block[0].shape[1]
+        if right - bw - 1 < c0 + 30:
+            continue
+        right -= bw + 1
+        _paste(cells, block, r0, right)
+    w = right - c0 - 1
+    r = r0
+    for p in info.players[:2]:
+        if r >= r0 + nrows - 2 and len(info.players) > 1 and nrows < 4:
+            break
+        c = _player(cells, r, c0, w, p, info.ids, mono)
+        _tokens(cells, r, c, c0 + w, info.ids, p.balls, mono)
+        r += 1
+    lines = []
+    for text, tone in info.status:
+        lines += [(s, tone) for s in _wrap(text, w)]
+    room = r0 + nrows - 1 - r
+    for s, tone in lines[:max(0, room)]:
+        put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
+        r += 1
+    put_text(cells, r0 + nrows - 1, c0, info.help[:w], DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+
+
+def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
+    r = r0
+    end = r0 + nrows
+    put_text(cells, r, c0, info.title[:width], TEXT_C.rgb, BACKDROP_C.rgb)
+    r += 2
+    for p in info.players:
+        _player(cells, r, c0, width, p, info.ids, mono)
+        r += 1
+        if p.balls:
+            _tokens(cells, r, c0 + 2, c0 + width, info.ids, p.balls, mono)
+            r += 1
+        r += 1
+    for text, tone in info.status:
+        for s in _wrap(text, width):
+            if r >= end - 1:
+                break
+            put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
+            r += 1
+    r += 1
+    for block, _where in info.widgets:
+        if r + block[0].shape[0] < end - 1:
+            _paste(cells, block, r, c0)
+            r += block[0].shape[0] + 1
+    for s in _wrap(info.help, width)[::-1]:
+        end -= 1
+        if end <= r:
+            break
+        put_text(cells, end, c0, s, DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+
+
+def _paste(cells, block, r: int, c: int) -> None:
+    chars, fg, bg = cells
+    bc, bf, bb = block
+    rows, cols = chars.shape
+    h, w = bc.shape
+    h, w = min(h, rows - r), min(w, cols - c)
+    if h <= 0 or w <= 0:
+        return
+    chars[r:r + h, c:c + w] = bc[:h, :w]
+    if fg is not None and bf is not None:
+        fg[r:r + h, c:c + w] = bf[:h, :w]
+        bg[r:r + h, c:c + w] = bb[:h, :w]
+
+
+def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain") -> None:
+    """A framed box of text in the middle of the screen (help, pause, questions)."""
+    chars, fg, bg = cells
+    rows, cols = chars.shape
+    width = min(cols - 2, max([len(s) for s in lines] + [len(title) + 4]) + 4)
+    body = []
+    for s in lines:
+        body += _wrap(s, width - 4) if len(s) > width - 4 else [s]
+    height = min(rows, len(body) + 2)
+    top, left = max(0, (rows - height) // 2), max(0, (cols - width) // 2)
+    chars[top:top + height, left:left + width] = " "
+    if bg is not None:
+        bg[top:top + height, left:left + width] = BOX_BG
+        fg[top:top + height, left:left + width] = TEXT_C.rgb
+    edge = "─" * (width - 2)
+    put_text(cells, top, left, f"┌{edge}┐", DIM_TEXT_C.rgb, BOX_BG)
+    put_text(cells, top + height - 1, left, f"└{edge}┘", DIM_TEXT_C.rgb, BOX_BG)
+    for r in range(top + 1, top + height - 1):
+        put_text(cells, r, left, "│", DIM_TEXT_C.rgb, BOX_BG)
+        put_text(cells, r, left + width - 1, "│", DIM_TEXT_C.rgb, BOX_BG)
+    if title:
+        put_text(cells, top, left + 2, f" {title} ", TURN_C, BOX_BG)
+    for k, s in enumerate(body[: height - 2]):
+        put_text(cells, top + 1 + k, left + 2, s, _tone(tone) if k == 0 else TEXT_C.rgb, BOX_BG)
+
+
+def blank_cells(cols: int, rows: int, mono: bool):
+    chars = np.full((rows, cols), " ", dtype="<U1")
+    if mono:
+        return chars, None, None
+    fg = np.empty((rows, cols, 3), dtype=np.uint8)
+    bg = np.empty((rows, cols, 3), dtype=np.uint8)
+    fg[...] = TEXT_C.rgb
+    bg[...] = BACKDROP_C.rgb
+    return chars, fg, bg
