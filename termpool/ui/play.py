@@ -1,4 +1,4 @@
-"""`termpool play` (and `termpool` with no arguments): options -> the app on a terminal or headless."""
+"""`termpool play` (and `termpool` alone): options -> the app on a terminal or headless."""
 
 from __future__ import annotations
 
