@@ -1,0 +1,402 @@
+"""Game controls: the key map (and its config file), aim acceleration, power charging.
+
+Everything here is a pure function of the (Key, t) stream it is fed; no clock is read, so
+headless key scripts (`keys.parse_script`) replay bit for bit.
+
+- `KeyMap`: action <-> keys. `action(key)` does not look at `key.kind`: the app sends the
+  shoot key's events (all kinds) to `PowerCharge`, aim keys' press/repeat events to
+  `AimControl`, and ignores releases of everything else (kitty terminals send them).
+  A key with shift that has no binding of its own falls back to the key without shift
+  ("?" typed as shift+"/" on a kitty terminal, "A" with caps lock on).
+- `load_keymap(path=None)`: defaults, overridden by `$XDG_CONFIG_HOME/termpool/keys.conf`
+  (else ~/.config/termpool/keys.conf) if it exists: `action = key, key` lines, `#` comments.
+  Errors are `ValueError("keys.conf line 3: ...")`.
+- `AimControl.step(key, t)`: degrees to turn (counter-clockwise positive) for one event.
+- `PowerCharge(mode)`: hold the shoot key to charge, release to shoot; modes "release" (kitty
+  protocol: real release events), "repeat" (legacy terminals: the hold is inferred from the
+  auto-repeat stream), "classic" (tap to start an oscillating meter, tap again to strike).
+  The app calls `key(key, t)` for shoot-key events and `poll(t)` every frame; either returns
+  the power in (0, 1] when the shot fires.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import ClassVar
+
+from termpool.ui.keys import Key, parse_key
+
+# action -> (help text); the order is the order of the help screen
+ACTIONS: dict[str, str] = {
+    "aim_ccw": "aim counter-clockwise (hold: faster)",
+    "aim_cw": "aim clockwise (hold: faster)",
+    "aim_fine_ccw": "fine aim counter-clockwise",
+    "aim_fine_cw": "fine aim clockwise",
+    "shoot": "shoot (hold to charge)",
+    "spin_up": "cue tip up (follow)",
+    "spin_down": "cue tip down (draw)",
+    "spin_left": "cue tip left (left english)",
+    "spin_right": "cue tip right (right english)",
+    "spin_reset": "cue tip to the center",
+    "place": "ball in hand: place the cue ball (arrows move it)",
+    "confirm": "confirm",
+    "cancel": "cancel",
+    "help": "this help",
+    "pause": "pause",
+    "quit": "quit",
+    "fast_forward": "fast forward the shot",
+    "aim_aid": "aim line on/off",
+    "call_pocket": "next called pocket",
+    "push_out": "push out (9-ball)",
+    "bell": "sound on/off",
+    "undo": "undo the shot (practice)",
+    "rerack": "rerack (practice)",
+}
+
+
+def _conf_name(path: Path) -> str:
+    return path.name or str(path)
+
+
+class KeyMap:
+    """Which action each key triggers, from the defaults and optional overrides.
+
+    `bindings` maps an action to its key specs ("shift+left", "q", "?") and replaces that
+    action's default keys; an empty list unbinds it. A key bound explicitly is taken away
+    from any action that had it by default; a key bound explicitly to two actions is an error.
+    """
+
+    DEFAULTS: ClassVar[dict[str, list[str]]] = {
+        "aim_ccw": ["left"], "aim_cw": ["right"],
+        "aim_fine_ccw": ["up", "shift+left"], "aim_fine_cw": ["down", "shift+right"],
+        "shoot": ["space"],
+        "spin_up": ["w"], "spin_down": ["s"], "spin_left": ["a"], "spin_right": ["d"],
+        "spin_reset": ["x"], "place": ["b"], "confirm": ["enter"], "cancel": ["esc"],
+        "help": ["h", "?"], "pause": ["p"], "quit": ["q"], "fast_forward": ["f"],
+        "aim_aid": ["g"], "call_pocket": ["c"], "push_out": ["o"], "bell": ["n"],
+        "undo": ["u"], "rerack": ["r"],
+    }
+
+    def __init__(self, bindings: Mapping[str, Sequence[str]] | None = None) -> None:
+        bindings = dict(bindings or {})
+        for action in bindings:
+            if action not in ACTIONS:
+                raise ValueError(f"unknown action '{action}'")
+        explicit: dict[tuple, str] = {}
+        for action, specs in bindings.items():
+            for spec in specs:
+                ident = _ident(parse_key(spec))
+                other = explicit.get(ident)
+                if other is not None and other != action:
+                    raise ValueError(f"key '{spec}' is bound to both {other} and {action}")
+                explicit[ident] = action
+        self._keys: dict[str, list[Key]] = {}
+        for action in ACTIONS:
+            if action in bindings:
+                keys = [parse_key(s) for s in bindings[action]]
+            else:
+                keys = [k for k in map(parse_key, self.DEFAULTS[action])
+                        if _ident(k) not in explicit]
+            self._keys[action] = list(dict.fromkeys(keys))  # drop repeats, keep the order
+        self._index = {_ident(k): a for a, keys in self._keys.items() for k in keys}
+
+    def action(self, key: Key) -> str | None:
+        """The action bound to this key (any kind), or None."""
+        ident = _ident(key)
+        found = self._index.get(ident)
+        if found is None and key.shift:
+            found = self._index.get((key.name, False, key.ctrl, key.alt))
+        return found
+
+    def keys_for(self, action: str) -> list[str]:
+        """The key specs bound to an action, e.g. ["up", "shift+left"]."""
+        if action not in ACTIONS:
+            raise ValueError(f"unknown action '{action}'")
+        return [k.spec for k in self._keys[action]]
+
+    def help_lines(self) -> list[str]:
+        """One line per bound action: its keys, then what it does."""
+        rows = [(", ".join(self.keys_for(a)), text) for a, text in ACTIONS.items()
+                if self._keys[a]]
+        width = max(len(keys) for keys, _ in rows)
+        return [f"{keys:<{width}}  {text}" for keys, text in rows]
+
+
+def _ident(key: Key) -> tuple[str, bool, bool, bool]:
+    return (key.name, key.shift, key.ctrl, key.alt)
+
+
+def config_path(env: Mapping[str, str] | None = None) -> Path:
+    """Where the key config lives: $XDG_CONFIG_HOME/termpool/keys.conf or ~/.config/..."""
+    env = os.environ if env is None else env
+    base = env.get("XDG_CONFIG_HOME") or str(Path(env.get("HOME", "~")).expanduser() / ".config")
+    return Path(base) / "termpool" / "keys.conf"
+
+
+def parse_keymap(text: str, name: str = "keys.conf") -> KeyMap:
+    """A keys.conf text -> KeyMap. Bad lines raise ValueError(f"{name} line N: ...")."""
+    bindings: dict[str, list[str]] = {}
+    seen: dict[str, int] = {}  # action -> line
+    owner: dict[tuple, tuple[str, int]] = {}  # key -> (action, line)
+    for n, raw in enumerate(text.splitlines(), 1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        where = f"{name} line {n}"
+        action, eq, value = line.partition("=")
+        action = action.strip()
+        if not eq or not action:
+            raise ValueError(f"{where}: expected 'action = key, key', got '{line}'")
+        if action not in ACTIONS:
+            raise ValueError(f"{where}: unknown action '{action}'")
+        if action in seen:
+            raise ValueError(f"{where}: {action} is already set on line {seen[action]}")
+        seen[action] = n
+        specs = [s.strip() for s in value.split(",")] if value.strip() else []
+        for spec in specs:
+            try:
+                key = parse_key(spec)
+            except ValueError as e:
+                raise ValueError(f"{where}: {e}") from None
+            prev = owner.get(_ident(key))
+            if prev is not None and prev[0] != action:
+                raise ValueError(f"{where}: key '{spec}' is already bound to {prev[0]} "
+                                 f"on line {prev[1]}")
+            owner[_ident(key)] = (action, n)
+        bindings[action] = specs
+    return KeyMap(bindings)
+
+
+def load_keymap(path: str | os.PathLike[str] | None = None,
+                env: Mapping[str, str] | None = None) -> KeyMap:
+    """The key map: defaults, overridden by the config file.
+
+    Without `path`, the file at `config_path(env)` is read if it exists (missing: defaults).
+    A `path` given explicitly must exist. Errors are one-line ValueErrors naming the file.
+    """
+    explicit = path is not None
+    p = Path(path) if explicit else config_path(env)
+    name = _conf_name(p)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        if explicit:
+            raise ValueError(f"{name}: no such file") from None
+        return KeyMap()
+    except UnicodeDecodeError:
+        raise ValueError(f"{name}: not UTF-8 text") from None
+    except OSError as e:
+        raise ValueError(f"{name}: cannot read ({e.strerror or e})") from None
+    return parse_keymap(text, name)
+
+
+# ----------------------------------------------------------------------------- aiming
+
+_AIM = {"aim_ccw": (1.0, False), "aim_cw": (-1.0, False),
+        "aim_fine_ccw": (1.0, True), "aim_fine_cw": (-1.0, True)}
+
+
+class AimControl:
+    """Aim steps that speed up while an aim key is held.
+
+    A tap (or the first event of a hold) turns TAP degrees; fine keys always turn FINE. While
+    held, each auto-repeat turns speed * dt, dt being the time since the previous event (at
+    most DT_MAX), and the speed ramps from SPEED0 to SPEED_MAX deg/s over RAMP seconds of
+    holding: the turn rate depends on how long the key is held, not on the terminal's repeat
+    rate. A repeat is a "repeat" event (kitty) or, on legacy terminals where every event is a
+    press, the same key again within HOLD_GAP seconds.
+    """
+
+    TAP = 0.5
+    FINE = 0.1
+    SPEED0 = 15.0
+    SPEED_MAX = 120.0
+    RAMP = 1.2
+    HOLD_GAP = 0.12
+    DT_MAX = 0.05
+
+    def __init__(self, keymap: KeyMap | None = None) -> None:
+        self.keymap = keymap if keymap is not None else KeyMap()
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget the current hold (e.g. after a shot)."""
+        self._action: str | None = None
+        self._last = 0.0
+        self._hold_start: float | None = None
+
+    def step(self, key: Key, t: float) -> float:
+        """Degrees to turn the aim for this event (0 for non-aim keys and releases)."""
+        action = self.keymap.action(key)
+        if action not in _AIM:
+            return 0.0
+        if key.kind == "release":
+            if action == self._action:
+                self.reset()
+            return 0.0
+        sign, fine = _AIM[action]
+        held = (action == self._action and not fine
+                and (key.kind == "repeat" or 0.0 <= t - self._last <= self.HOLD_GAP))
+        if not held:
+            self._action, self._last, self._hold_start = action, t, None
+            return sign * (self.FINE if fine else self.TAP)
+        if self._hold_start is None:
+            self._hold_start = t
+        dt = min(max(t - self._last, 0.0), self.DT_MAX)
+        ramp = min(1.0, (t - self._hold_start) / self.RAMP)
+        self._last = t
+        return sign * (self.SPEED0 + (self.SPEED_MAX - self.SPEED0) * ramp) * dt
+
+
+# ----------------------------------------------------------------------------- power
+
+POWER_MODES = ("release", "repeat", "classic")
+
+
+class PowerCharge:
+    """Hold the shoot key to charge, release to shoot (see the module docstring for modes).
+
+    Charging ramps the level linearly to 1 over `full_time` and holds it there; the classic
+    meter goes up and down (period 2 * full_time). A fired shot has power in [MIN_POWER, 1].
+
+    Repeat mode: after the press, a legacy terminal auto-repeats after an initial delay
+    (0.2-0.7 s), then every 20-50 ms. The repeat interval is the median of the gaps seen so
+    far; the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
+    GAP_MIN..GAP_MAX s; GAP_MAX until an interval is known) and placed one interval after the
+    last repeat, so the power does not depend on when `poll` is called. A press with no repeat
+    within INITIAL_DELAY_MAX s was a tap (or the terminal does not repeat): that shot falls
+    back to the classic meter (press again to strike), and `label` says so.
+    """
+
+    MIN_POWER = 0.02
+    INITIAL_DELAY_MAX = 0.75
+    GAP_MIN = 0.1
+    GAP_MAX = 0.3
+    GAP_INTERVALS = 4.0
+    DEFAULT_INTERVAL = 0.033
+    INTERVAL_SAMPLES = 16
+
+    def __init__(self, mode: str, full_time: float = 1.2, key_label: str = "space") -> None:
+        if mode not in POWER_MODES:
+            raise ValueError(f"power mode must be one of {', '.join(POWER_MODES)}, not '{mode}'")
+        if not full_time > 0:
+            raise ValueError(f"full_time must be positive, not {full_time}")
+        self.mode = mode
+        self.full_time = float(full_time)
+        self.key_label = key_label
+        self.cancel()
+
+    # -- state
+
+    def cancel(self) -> None:
+        """Drop any charge or meter in progress."""
+        self._phase = "idle"  # "idle" | "charge" (ramp) | "meter" (ping-pong)
+        self._t0 = 0.0
+        self._last = 0.0
+        self._repeats = 0
+        self._gaps: list[float] = []
+        self.fallback = False  # repeat mode: this shot fell back to the classic meter
+
+    @property
+    def active(self) -> bool:
+        """Whether a charge or a meter is running."""
+        return self._phase != "idle"
+
+    @property
+    def label(self) -> str:
+        """What to show on screen."""
+        k = self.key_label
+        if self._phase == "meter":
+            if self.fallback:
+                return f"no key repeat seen: {k} again to strike"
+            return f"{k} to strike"
+        if self.mode == "classic":
+            return f"{k} to start, {k} to strike"
+        if self._phase == "charge":
+            return f"release {k} to shoot"
+        return f"hold {k}, release to shoot"
+
+    def level(self, t: float) -> float:
+        """The meter's level in [0, 1] at time t (0 when idle)."""
+        if self._phase == "idle":
+            return 0.0
+        x = max(0.0, t - self._t0) / self.full_time
+        if self._phase == "charge":
+            return min(1.0, x)
+        x %= 2.0
+        return x if x <= 1.0 else 2.0 - x
+
+    # -- events
+
+    def key(self, key: Key, t: float) -> float | None:
+        """Feed one shoot-key event; returns the power if a shot fires."""
+        fired = self._advance(t)
+        now = self._event(key, t)
+        return fired if fired is not None else now
+
+    def poll(self, t: float) -> float | None:
+        """Call every frame: fires (returns the power) when repeat mode infers a release."""
+        return self._advance(t)
+
+    def _fire(self, t: float) -> float:
+        power = min(1.0, max(self.MIN_POWER, self.level(t)))
+        self.cancel()
+        return power
+
+    def _start(self, phase: str, t: float) -> None:
+        self.cancel()
+        self._phase, self._t0, self._last = phase, t, t
+
+    def _interval(self) -> float:
+        if not self._gaps:
+            return self.DEFAULT_INTERVAL
+        recent = sorted(self._gaps[-self.INTERVAL_SAMPLES:])
+        mid = len(recent) // 2
+        return recent[mid] if len(recent) % 2 else 0.5 * (recent[mid - 1] + recent[mid])
+
+    def _release_gap(self) -> float:
+        if not self._gaps:
+            return self.GAP_MAX
+        return min(self.GAP_MAX, max(self.GAP_MIN, self.GAP_INTERVALS * self._interval()))
+
+    def _advance(self, t: float) -> float | None:
+        """Repeat mode: what the silence up to time t tells (an inferred release, or a tap)."""
+        if self.mode != "repeat" or self._phase != "charge":
+            return None
+        if self._repeats == 0:
+            if t - self._t0 > self.INITIAL_DELAY_MAX:
+                self._phase, self.fallback = "meter", True
+            return None
+        if t - self._last > self._release_gap():
+            return self._fire(self._last + self._interval())
+        return None
+
+    def _event(self, key: Key, t: float) -> float | None:
+        if self.mode == "release":
+            if key.kind == "press":
+                self._start("charge", t)  # a press while charging: the release was lost
+            elif key.kind == "release" and self._phase == "charge":
+                return self._fire(t)
+            return None
+        if self.mode == "classic":
+            if key.kind != "press":
+                return None
+            if self._phase == "idle":
+                self._start("meter", t)
+                return None
+            return self._fire(t)
+        # repeat mode: every press or repeat is part of the stream; a real release also counts
+        if key.kind == "release":
+            return self._fire(t) if self._phase == "charge" else None
+        if self._phase == "idle":
+            self._start("charge", t)
+        elif self._phase == "meter":
+            return self._fire(t)
+        else:
+            if self._repeats > 0:
+                self._gaps.append(t - self._last)
+            self._repeats += 1
+            self._last = t
+        return None

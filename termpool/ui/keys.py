@@ -1,0 +1,408 @@
+"""Key events: one `Key` type for every terminal, decoders, and headless key scripts.
+
+A `Key` is the same whatever the terminal sent: `Key("left")`, `Key("a", shift=True)` (typed
+"A"), `Key("space", kind="release")` (kitty protocol only). Names are "left" "right" "up"
+"down" "home" "end" "pageup" "pagedown" "insert" "delete" "space" "enter" "esc" "tab"
+"backspace" "f1".."f12", or one lowercase character ("a", "1", "?"). A letter typed with
+shift is its lowercase name with shift=True; other characters are what was typed ("?" is "?",
+and shift may or may not be set, depending on the terminal).
+
+- `decode(text)`: raw terminal input -> keys. Reads legacy control characters, ESC+char (alt),
+  CSI/SS3 arrows and function keys with xterm modifiers (CSI 1;mod X, CSI n;mod ~), rxvt and
+  linux-console variants, xterm modifyOtherKeys (CSI 27;mod;code ~) and the kitty keyboard
+  protocol (CSI code[:shifted[:base]];mod[:event][;text] u) with press/repeat/release.
+  Unknown sequences, mouse reports, focus events and bare modifier keys give no key; a
+  bracketed paste is skipped whole.
+- `from_keystroke(ks)`: a blessed `Keystroke` (what `Terminal.inkey()` returns) -> Key or None.
+  A Keystroke is the raw text it was read from, so it goes through `decode`; blessed's own
+  name is used only for sequences decode does not know (terminfo-specific ones).
+- `parse_key(spec)`: "shift+left", "q", "?", "ctrl+c" -> Key (config files and scripts).
+- `parse_script(text)`: "right*5 wait 0.2 space-hold 1.5 q y" -> [(t, Key), ...] on a virtual
+  clock, as a kitty terminal with event reports would deliver them (taps are press+release,
+  holds press, auto-repeats, release). `legacy_events` turns that into what a legacy terminal
+  delivers (presses only).
+
+Kitty protocol: key releases reach the program only with "report event types" and "report
+all keys as escape codes" both on (text keys such as space otherwise arrive as plain text, with
+no release). `KITTY_FLAGS` holds the keyword arguments for blessed's
+`Terminal.enable_kitty_keyboard(**KITTY_FLAGS)`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+KINDS = ("press", "repeat", "release")
+NAMED_KEYS = (
+    "left", "right", "up", "down", "home", "end", "pageup", "pagedown", "insert", "delete",
+    "space", "enter", "esc", "tab", "backspace",
+) + tuple(f"f{i}" for i in range(1, 13))
+MODIFIERS = ("ctrl", "alt", "shift")
+# spellings accepted in specs besides the names above; the characters a config line uses for
+# its own syntax (",", "#", "+", "=") have word names too
+KEY_ALIASES = {
+    "escape": "esc", "return": "enter", "pgup": "pageup", "pgdn": "pagedown", "del": "delete",
+    "ins": "insert", "comma": ",", "hash": "#", "plus": "+", "equal": "=",
+}
+SPEC_NAMES = {",": "comma", "#": "hash", "+": "plus", "=": "equal"}
+
+KITTY_FLAGS = {"disambiguate": True, "report_events": True, "report_alternates": True,
+               "report_all_keys": True}
+
+
+@dataclass(frozen=True)
+class Key:
+    """One input event: a key name, the event kind and the modifiers held."""
+
+    name: str
+    kind: str = "press"  # "press" | "repeat" | "release"
+    shift: bool = False
+    ctrl: bool = False
+    alt: bool = False
+
+    @property
+    def spec(self) -> str:
+        """The key as written in keys.conf and scripts: "ctrl+alt+shift+name" (no kind)."""
+        mods = [m for m in MODIFIERS if getattr(self, m)]
+        return "+".join(mods + [SPEC_NAMES.get(self.name, self.name)])
+
+
+# ----------------------------------------------------------------------------- specs
+
+
+def parse_key(spec: str) -> Key:
+    """A key spec ("left", "shift+left", "Q", "?", "ctrl+c", "plus") -> a press Key.
+
+    Raises ValueError naming the spec for an unknown key name or modifier.
+    """
+    text = spec.strip()
+    if not text:
+        raise ValueError("empty key name")
+    if text == "+":
+        parts = ["+"]
+    elif text.endswith("++"):  # "shift++" is shift and the "+" key
+        parts = text[:-2].split("+") + ["+"]
+    else:
+        parts = text.split("+")
+    *mods, name = (p.strip() for p in parts)
+    flags = dict.fromkeys(MODIFIERS, False)
+    for mod in mods:
+        m = "ctrl" if mod.lower() == "control" else mod.lower()
+        if m not in flags:
+            raise ValueError(f"unknown modifier '{mod}' in key '{spec}'")
+        flags[m] = True
+    if not name:
+        raise ValueError(f"no key name in key '{spec}'")
+    where = "" if name == text else f" in key '{spec}'"
+    if len(name) == 1:
+        if name.isupper():
+            return Key(name.lower(), shift=True, ctrl=flags["ctrl"], alt=flags["alt"])
+        if not name.isprintable() or name == " ":
+            raise ValueError(f"unknown key name '{name}'{where}")
+        return Key(name, **flags)
+    low = KEY_ALIASES.get(name.lower(), name.lower())
+    if low not in NAMED_KEYS and len(low) != 1:
+        raise ValueError(f"unknown key name '{name}'{where}")
+    return Key(low, **flags)
+
+
+# ----------------------------------------------------------------------------- decoding
+
+_CSI_LETTERS = {"A": "up", "B": "down", "C": "right", "D": "left", "H": "home", "F": "end",
+                "P": "f1", "Q": "f2", "R": "f3", "S": "f4"}
+_TILDE_NUMBERS = {1: "home", 2: "insert", 3: "delete", 4: "end", 5: "pageup", 6: "pagedown",
+                  7: "home", 8: "end", 11: "f1", 12: "f2", 13: "f3", 14: "f4", 15: "f5",
+                  17: "f6", 18: "f7", 19: "f8", 20: "f9", 21: "f10", 23: "f11", 24: "f12"}
+_RXVT_SHIFT = {"a": "up", "b": "down", "c": "right", "d": "left"}  # CSI a..d, SS3 a..d = ctrl
+_KEYPAD_SS3 = {c: str(i) for i, c in enumerate("pqrstuvwxy")} | {
+    "j": "*", "k": "+", "m": "-", "n": ".", "o": "/", "X": "=", "M": "enter"}
+# kitty's private-use code points for keypad keys (the ones a game cares about)
+_KITTY_PUA = {57399 + i: str(i) for i in range(10)} | {
+    57409: ".", 57410: "/", 57411: "*", 57412: "-", 57413: "+", 57414: "enter", 57415: "=",
+    57417: "left", 57418: "right", 57419: "up", 57420: "down", 57421: "pageup",
+    57422: "pagedown", 57423: "home", 57424: "end", 57425: "insert", 57426: "delete"}
+_KITTY_CODES = {27: "esc", 13: "enter", 9: "tab", 127: "backspace", 8: "backspace", 32: "space"}
+# what shift gives on a US layout: kitty without "report alternates" sends the unshifted key
+_US_SHIFTED = dict(zip("`1234567890-=[]\\;',./", "~!@#$%^&*()_+{}|:\"<>?", strict=True))
+_KIND_CODES = {1: "press", 2: "repeat", 3: "release"}
+_PASTE_END = "\x1b[201~"
+
+
+def _char_key(ch: str, **mods: bool) -> Key | None:
+    """A key for one character of plain input (control characters included)."""
+    o = ord(ch)
+    if ch in "\r\n":
+        return Key("enter", **mods)
+    if ch == "\t":
+        return Key("tab", **mods)
+    if ch in "\x7f\x08":
+        return Key("backspace", **mods)
+    if ch == " ":
+        return Key("space", **mods)
+    if o == 0:
+        return Key("space", **(mods | {"ctrl": True}))
+    if o < 27:
+        return Key(chr(o + 96), **(mods | {"ctrl": True}))
+    if 28 <= o < 32:
+        return Key("\\]^_"[o - 28], **(mods | {"ctrl": True}))
+    if o == 27:
+        return Key("esc", **mods)
+    if not ch.isprintable():
+        return None
+    if ch.isupper():
+        return Key(ch.lower(), **(mods | {"shift": True}))
+    return Key(ch, **mods)
+
+
+def _mods(value: int) -> dict[str, bool]:
+    """xterm/kitty modifier parameter (1 + bits: shift 1, alt 2, ctrl 4) -> flags."""
+    bits = max(0, value - 1)
+    return {"shift": bool(bits & 1), "alt": bool(bits & 2), "ctrl": bool(bits & 4)}
+
+
+def _int(text: str, default: int) -> int:
+    return int(text) if text.isdigit() else default
+
+
+def _mod_field(field: str) -> tuple[dict[str, bool], str]:
+    """A "mod[:event]" parameter -> (modifier flags, kind)."""
+    mod, _, event = field.partition(":")
+    return _mods(_int(mod, 1)), _KIND_CODES.get(_int(event, 1), "press")
+
+
+def _kitty_key(params: str) -> Key | None:
+    """CSI code[:shifted[:base]];mod[:event][;text] u -> Key (modifier-only keys: None)."""
+    fields = params.split(";")
+    codes = fields[0].split(":")
+    code = _int(codes[0], -1)
+    shifted = _int(codes[1], 0) if len(codes) > 1 else 0
+    mods, kind = _mod_field(fields[1] if len(fields) > 1 else "")
+    if code in _KITTY_CODES:
+        name = _KITTY_CODES[code]
+    elif code in _KITTY_PUA:
+        name = _KITTY_PUA[code]
+    elif 32 < code < 0xE000 or code > 0xF8FF:
+        ch = chr(code)
+        if not ch.isprintable():
+            return None
+        name = ch.lower()
+        if mods["shift"] and not ch.isalpha():  # "?" is shift+"/": report the character
+            name = chr(shifted) if shifted else _US_SHIFTED.get(ch, ch)
+    else:
+        return None  # modifier keys alone, media keys, caps lock ...
+    return Key(name, kind, **mods)
+
+
+def _csi_key(params: str, final: str) -> Key | None:
+    if params.startswith(("<", "?", ">", "=")):
+        return None  # mouse reports and replies to queries
+    fields = params.split(";") if params else []
+    if final == "u":
+        return _kitty_key(params) if fields else None
+    if final == "~":
+        if len(fields) >= 3 and fields[0] == "27":  # xterm modifyOtherKeys
+            key = _char_key(chr(_int(fields[2], 0)))
+            mods = _mods(_int(fields[1], 1))
+            if key is None:
+                return None
+            return replace(key, shift=key.shift or mods["shift"], ctrl=key.ctrl or mods["ctrl"],
+                           alt=mods["alt"])
+        name = _TILDE_NUMBERS.get(_int(fields[0], -1)) if fields else None
+        if name is None:
+            return None
+        mods, kind = _mod_field(fields[1]) if len(fields) > 1 else ({}, "press")
+        return Key(name, kind, **mods)
+    if final == "Z":
+        return Key("tab", shift=True)
+    if final in _RXVT_SHIFT and not fields:
+        return Key(_RXVT_SHIFT[final], shift=True)
+    if final in _CSI_LETTERS:
+        mods, kind = _mod_field(fields[1]) if len(fields) > 1 else ({}, "press")
+        return Key(_CSI_LETTERS[final], kind, **mods)
+    return None
+
+
+def _ss3_key(rest: str) -> tuple[Key | None, int]:
+    """SS3 (ESC O) sequences: the key and how many characters after ESC O it used."""
+    if rest[:1].isdigit() and len(rest) >= 2 and rest[1] in "PQRS":  # Konsole: ESC O 2 P
+        return Key(_CSI_LETTERS[rest[1]], **_mods(int(rest[0]))), 2
+    ch = rest[0]
+    if ch in _CSI_LETTERS:
+        return Key(_CSI_LETTERS[ch]), 1
+    if ch in _RXVT_SHIFT:
+        return Key(_RXVT_SHIFT[ch], ctrl=True), 1
+    if ch in _KEYPAD_SS3:
+        return Key(_KEYPAD_SS3[ch]), 1
+    return None, 1
+
+
+def _read_csi(text: str, i: int) -> tuple[str, str, int] | None:
+    """Parameters, final character and end index of the CSI sequence whose body starts at i."""
+    j = i
+    while j < len(text) and "\x30" <= text[j] <= "\x3f":
+        j += 1
+    params = text[i:j]
+    while j < len(text) and "\x20" <= text[j] <= "\x2f":
+        j += 1
+    if j >= len(text) or not "\x40" <= text[j] <= "\x7e":
+        return None
+    return params, text[j], j + 1
+
+
+def _decode_one(text: str, i: int) -> tuple[Key | None, int]:
+    """The key at text[i] (None for input that is no key) and the index after it."""
+    ch = text[i]
+    if ch != "\x1b":
+        return _char_key(ch), i + 1
+    if i + 1 >= len(text):
+        return Key("esc"), i + 1
+    nxt = text[i + 1]
+    if nxt == "[" and i + 2 < len(text):
+        if text[i + 2] == "[" and i + 3 < len(text) and text[i + 3] in "ABCDE":
+            return Key(f"f{'ABCDE'.index(text[i + 3]) + 1}"), i + 4  # linux console F1-F5
+        csi = _read_csi(text, i + 2)
+        if csi is None:
+            return None, len(text)  # cut-off sequence: nothing usable follows
+        params, final, end = csi
+        if final == "~" and params == "200":  # bracketed paste: skip the pasted text
+            stop = text.find(_PASTE_END, end)
+            return None, len(text) if stop < 0 else stop + len(_PASTE_END)
+        return _csi_key(params, final), end
+    if nxt == "O" and i + 2 < len(text):
+        key, used = _ss3_key(text[i + 2:])
+        return key, i + 2 + used
+    if nxt == "\x1b":
+        if text.startswith(("[", "O"), i + 2):  # ESC + a sequence: alt+that key (rxvt)
+            key, end = _decode_one(text, i + 1)
+            return (replace(key, alt=True) if key else None), end
+        return Key("esc"), i + 1  # two Esc presses, not alt+Esc
+    key = _char_key(nxt)
+    return (replace(key, alt=True) if key else None), i + 2
+
+
+def decode(text: str) -> list[Key]:
+    """Raw terminal input -> the keys in it, in order (see the module docstring)."""
+    keys: list[Key] = []
+    i = 0
+    while i < len(text):
+        key, i = _decode_one(text, i)
+        if key is not None:
+            keys.append(key)
+    return keys
+
+
+_BLESSED_NAMES = {"PGUP": "pageup", "PGDOWN": "pagedown", "ESCAPE": "esc", "EXIT": "esc",
+                  "DC": "delete", "IC": "insert", "PPAGE": "pageup", "NPAGE": "pagedown",
+                  "SLEFT": "shift+left", "SRIGHT": "shift+right", "SUP": "shift+up",
+                  "SR": "shift+up", "SDOWN": "shift+down", "SF": "shift+down",
+                  "BTAB": "shift+tab", "KP_ENTER": "enter"}
+
+
+def _from_blessed_name(ks: object) -> Key | None:
+    """Key from a blessed keystroke's name ("KEY_SHIFT_LEFT_REPEATED") when decode knew none."""
+    name = getattr(ks, "name", None)
+    if not name or not name.startswith("KEY_"):
+        return None
+    base = name[4:]
+    kind = "press"
+    for suffix, k in (("_REPEATED", "repeat"), ("_RELEASED", "release")):
+        if base.endswith(suffix):
+            base, kind = base[: -len(suffix)], k
+    mods = dict.fromkeys(MODIFIERS, False)
+    parts = base.split("_")
+    while len(parts) > 1 and parts[0].lower() in mods:
+        mods[parts.pop(0).lower()] = True
+    base = "_".join(parts)
+    spec = _BLESSED_NAMES.get(base, base.lower())
+    try:
+        key = parse_key(spec)
+    except ValueError:
+        return None
+    return replace(key, kind=kind, shift=key.shift or mods["shift"], ctrl=mods["ctrl"],
+                   alt=mods["alt"])
+
+
+def from_keystroke(ks: object) -> Key | None:
+    """A blessed `Keystroke` (from `Terminal.inkey()`) -> Key, or None (timeout, no key)."""
+    keys = decode(str(ks))
+    if keys:
+        return keys[0]
+    return _from_blessed_name(ks)
+
+
+# ----------------------------------------------------------------------------- scripts
+
+
+def _seconds(text: str, what: str) -> float:
+    try:
+        val = float(text)
+    except ValueError:
+        raise ValueError(f"{what}: '{text}' is not a number of seconds") from None
+    if not math.isfinite(val) or val < 0:
+        raise ValueError(f"{what}: seconds must be finite and not negative, not '{text}'")
+    return val
+
+
+def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
+                 repeat_rate: float = 0.033) -> list[tuple[float, Key]]:
+    """A headless key script -> [(time, Key)] on a virtual clock starting at 0.
+
+    Tokens (whitespace separated): NAME (a key spec: "q", "shift+left", "?"): press at t,
+    release at t + tap_gap/2, next token at t + tap_gap; NAME*N: N such taps; wait SECONDS:
+    advance the clock; NAME-hold SECONDS: press at t, repeats at t + repeat_delay + k *
+    repeat_rate while before t + SECONDS, release at t + SECONDS, next token tap_gap later.
+    A bad token raises ValueError("script token 3 'spce': ...").
+    """
+    if not (tap_gap > 0 and repeat_delay > 0 and repeat_rate > 0):
+        raise ValueError("script: tap_gap, repeat_delay and repeat_rate must be positive")
+    tokens = text.split()
+    events: list[tuple[float, Key]] = []
+    t = 0.0
+    i = 0
+    while i < len(tokens):
+        tok = tokens[i]
+        where = f"script token {i + 1} '{tok}'"
+        try:
+            if tok.lower() == "wait":
+                if i + 1 >= len(tokens):
+                    raise ValueError("wait needs a number of seconds after it")
+                t += _seconds(tokens[i + 1], "wait")
+                i += 2
+                continue
+            if tok.lower().endswith("-hold") and len(tok) > 5:
+                if i + 1 >= len(tokens):
+                    raise ValueError("a hold needs a number of seconds after it")
+                key = parse_key(tok[:-5])
+                hold = _seconds(tokens[i + 1], "hold")
+                events.append((t, key))
+                k = 0
+                while (rt := t + repeat_delay + k * repeat_rate) < t + hold:
+                    events.append((rt, replace(key, kind="repeat")))
+                    k += 1
+                events.append((t + hold, replace(key, kind="release")))
+                t += hold + tap_gap
+                i += 2
+                continue
+            name, star, count = tok.rpartition("*") if "*" in tok[1:] else ("", "", "")
+            if star:
+                if not count.isdigit() or int(count) < 1:
+                    raise ValueError(f"repeat count must be a whole number >= 1, not '{count}'")
+                n = int(count)
+            else:
+                name, n = tok, 1
+            key = parse_key(name)
+            for _ in range(n):
+                events.append((t, key))
+                events.append((t + tap_gap / 2, replace(key, kind="release")))
+                t += tap_gap
+            i += 1
+        except ValueError as e:
+            raise ValueError(f"{where}: {e}") from None
+    # rounded so that sums like 0.1 + 0.2 print as written; still a pure function of the text
+    return [(round(et, 9), k) for et, k in events]
+
+
+def legacy_events(events: list[tuple[float, Key]]) -> list[tuple[float, Key]]:
+    """What a legacy terminal delivers for these events: no releases, repeats as presses."""
+    return [(t, replace(k, kind="press")) for t, k in events if k.kind != "release"]
