@@ -1,4 +1,5 @@
-"""Command line: `termpool sim SCENE` runs a scene and prints JSON; `termpool bench` benchmarks.
+"""Command line: `termpool sim SCENE` runs a scene and prints JSON; `termpool bench` benchmarks;
+`termpool replay FILE` re-simulates a saved match and checks it bit for bit.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -114,6 +115,18 @@ def _parser() -> _Parser:
         metavar="N",
         help="also output ball positions sampled N times per simulated second",
     )
+    r = sub.add_parser(
+        "replay",
+        help="re-simulate every shot of a saved match and check it is identical",
+        description=(
+            "Re-simulate every shot of a replay file (a saved match, see docs/rules.md) from its "
+            "scene and shot parameters and check that the events, the final balls and the "
+            "referee's outcome are identical, floats bit for bit. Exit 0 when every shot "
+            "matches, 1 when any differs, 2 for a malformed file."
+        ),
+    )
+    r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
+    r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -283,6 +296,35 @@ def _sim(args: argparse.Namespace) -> int:
     return 0
 
 
+# ------------------------------------------------------------------------------- replay
+
+
+def _replay(args: argparse.Namespace) -> int:
+    from termpool.game.record import ReplayError, parse_replay, read_replay, replay
+
+    try:
+        data = parse_replay(sys.stdin.read(), "stdin") if args.file == "-" else read_replay(
+            args.file)
+        shots = replay(data)
+    except ReplayError as e:
+        return _fail(str(e))
+    bad = [s for s in shots if not s["ok"]]
+    if args.json:
+        sys.stdout.write(json.dumps({"identical": not bad, "shots": shots}, indent=1) + "\n")
+    else:
+        for s in shots:
+            head = f"shot {s['n']} (frame {s['frame']}, player {s['player']}): "
+            if s["ok"]:
+                sys.stdout.write(f"{head}identical, {s['events']} events; {s['reason']}\n")
+            else:
+                sys.stdout.write(f"{head}DIFFERS: {'; '.join(s['differences'])}\n")
+        n = len(shots)
+        verdict = "all identical" if not bad else f"{len(bad)} differ"
+        sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")
+    sys.stdout.flush()
+    return 1 if bad else 0
+
+
 # -------------------------------------------------------------------------------- bench
 
 
@@ -311,6 +353,8 @@ def main(argv: list[str] | None = None) -> int:
         args = _parser().parse_args(argv or ["sim", bundled_example()])
         if args.command == "sim":
             return _sim(args)
+        if args.command == "replay":
+            return _replay(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code
