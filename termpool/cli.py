@@ -1,5 +1,6 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
-prints JSON; `termpool bench` benchmarks.
+prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
+checks it bit for bit.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -124,6 +125,18 @@ def _parser() -> _Parser:
         "computer or a second player. --headless plays a key script on a virtual screen.",
     )
     add_arguments(pl)
+    r = sub.add_parser(
+        "replay",
+        help="re-simulate every shot of a saved match and check it is identical",
+        description=(
+            "Re-simulate every shot of a replay file (a saved match, see docs/rules.md) from its "
+            "scene and shot parameters and check that the events, the final balls and the "
+            "referee's outcome are identical, floats bit for bit. Exit 0 when every shot "
+            "matches, 1 when any differs, 2 for a malformed file."
+        ),
+    )
+    r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
+    r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -293,6 +306,35 @@ def _sim(args: argparse.Namespace) -> int:
     return 0
 
 
+# ------------------------------------------------------------------------------- replay
+
+
+def _replay(args: argparse.Namespace) -> int:
+    from termpool.game.record import ReplayError, parse_replay, read_replay, replay
+
+    try:
+        data = parse_replay(sys.stdin.read(), "stdin") if args.file == "-" else read_replay(
+            args.file)
+        shots = replay(data)
+    except ReplayError as e:
+        return _fail(str(e))
+    bad = [s for s in shots if not s["ok"]]
+    if args.json:
+        sys.stdout.write(json.dumps({"identical": not bad, "shots": shots}, indent=1) + "\n")
+    else:
+        for s in shots:
+            head = f"shot {s['n']} (frame {s['frame']}, player {s['player']}): "
+            if s["ok"]:
+                sys.stdout.write(f"{head}identical, {s['events']} events; {s['reason']}\n")
+            else:
+                sys.stdout.write(f"{head}DIFFERS: {'; '.join(s['differences'])}\n")
+        n = len(shots)
+        verdict = "all identical" if not bad else f"{len(bad)} differ"
+        sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")
+    sys.stdout.flush()
+    return 1 if bad else 0
+
+
 # -------------------------------------------------------------------------------- bench
 
 
@@ -335,6 +377,8 @@ def main(argv: list[str] | None = None) -> int:
             return _sim(args)
         if args.command == "play":
             return _play(args)
+        if args.command == "replay":
+            return _replay(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code
