@@ -12,6 +12,7 @@ from typing import NamedTuple
 
 # Tags: what a pixel shows. Mono mode draws a cell as the glyph of its higher-priority pixel.
 BACKDROP, FELT, CUSHION, RAIL, DIAMOND, POCKET, SOLID, STRIPE, EIGHT, CUE, TEXT = range(11)
+AIM = 11  # overlays: aim line, ghost ball, cue stick, placement ring (ui/overlay.py)
 MONO_GLYPH = {
     BACKDROP: " ",
     FELT: " ",
@@ -24,10 +25,11 @@ MONO_GLYPH = {
     EIGHT: "◉",
     CUE: "○",
     TEXT: " ",
+    AIM: "·",
 }
 MONO_PRIORITY = {
     BACKDROP: 0, FELT: 1, TEXT: 1, CUSHION: 2, RAIL: 3, POCKET: 4, DIAMOND: 5,
-    SOLID: 6, STRIPE: 7, EIGHT: 8, CUE: 9,
+    SOLID: 6, STRIPE: 7, EIGHT: 8, CUE: 9, AIM: 2,
 }
 
 
@@ -47,6 +49,17 @@ CUE_C = Colour((246, 246, 238), 231, 15)
 STRIPE_WHITE_C = Colour((240, 238, 226), 255, 15)
 TEXT_C = Colour((210, 210, 210), 252, 7)
 DIM_TEXT_C = Colour((130, 130, 130), 244, 8)
+# Overlays (ui/overlay.py). The stick is yellow in 16 colours so it stands out on the rail.
+AIM_C = Colour((238, 238, 228), 255, 15)  # aim line, ghost ball, object ball's line
+GUIDE_C = Colour((150, 200, 160), 115, 7)  # faint: the cue ball's tangent line
+STICK_C = Colour((224, 190, 132), 180, 11)  # maple shaft
+BUTT_C = Colour((84, 44, 22), 52, 1)
+TIP_C = Colour((70, 120, 210), 68, 12)  # chalked tip
+PLACE_OK_C = Colour((120, 220, 240), 117, 14)  # ball-in-hand ring
+PLACE_BAD_C = Colour((235, 40, 40), 196, 9)  # ... where the ball may not go
+POWER_C = Colour((240, 170, 40), 214, 11)
+SPIN_DOT_C = Colour((220, 30, 40), 160, 9)
+SPIN_LIMIT_C = Colour((150, 150, 150), 246, 8)  # the miscue limit on the spin face
 
 # Standard ball colours, 1..8; 9..15 are striped 1..7.
 BALL_C = {
@@ -63,6 +76,8 @@ BALL_C = {
 ALL_COLOURS = (
     BACKDROP_C, FELT_C, CUSHION_C, RAIL_C, DIAMOND_C, POCKET_C, CUE_C, STRIPE_WHITE_C,
     TEXT_C, DIM_TEXT_C, *BALL_C.values(),
+    AIM_C, GUIDE_C, STICK_C, BUTT_C, TIP_C, PLACE_OK_C, PLACE_BAD_C, POWER_C, SPIN_DOT_C,
+    SPIN_LIMIT_C,
 )
 
 
