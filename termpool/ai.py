@@ -1,0 +1,695 @@
+"""The computer opponent: candidate shots simulated in one batch and judged by the referee.
+
+`choose_shot` builds candidate strikes (the break: hard shots at the rack's apex; otherwise
+ghost-ball pots for every legal target and pocket at a few speeds and spins, plus soft safeties
+and one-rail kicks at each legal ball), simulates them all in ONE batched Engine, judges every
+table with the rules, and returns the best as a `Plan`. `choose_placement` picks a spot for
+the cue ball in hand from cheap geometry (the shots the spot leaves).
+
+Scores: a win far above a legal pot (the shooter continues) above a shot that passes the turn
+without a foul above a foul above a loss. A pot is weighted by its chance to go in under the
+level's notional aim error (thin cuts and long shots are risky), plus a position term: how
+makeable the next shot is from where the cue ball stops. A turn that passes is marked down by
+how makeable the table it leaves is for the opponent.
+
+Cut shots throw the object ball off the line of centres (ball-ball friction), so before the
+batch each pot's aim is corrected by two cheap rounds on two-ball tables without pockets
+(cue ball and target only): the object ball's measured heading corrects the contact angle.
+
+The module reads the physics and rules and never changes them: no terminal code here.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import NamedTuple
+
+import numpy as np
+
+from termpool.physics.cue import strike
+from termpool.physics.engine import POCKETED, Engine
+from termpool.physics.params import Physics
+from termpool.physics.table import Table
+from termpool.rules.common import AREAS, GROUPS, State, group_of
+from termpool.rules.events import summarize
+from termpool.rules.referee import judge
+
+
+class Plan(NamedTuple):
+    """A shot to play: cue.strike's speed (m/s), angle (degrees), side and top (units of R)."""
+
+    speed: float
+    angle: float
+    side: float
+    top: float
+    called: tuple[str, str] | None  # (ball, pocket name) when the rules need a call (the 8)
+    score: float
+    note: str  # why, in words ("3 in the foot_left pocket")
+
+
+class Level(NamedTuple):
+    share: float  # fraction of max_candidates used
+    speeds: tuple[float, ...]  # multiples of the slowest speed that reaches the pocket
+    spins: tuple[tuple[float, float], ...]  # (side, top) tip offsets
+    sigma: float  # notional aim error (degrees) that weighs how risky a pot is
+    noise: bool  # add that aim error (and a speed error) to the chosen plan
+    spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+
+
+LEVELS = {
+    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1),
+    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2),
+    "hard": Level(2.0, (1.0, 1.5, 2.2, 3.2),
+                  ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)),
+                  0.2, False, 3),
+}
+WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
+MISS = -60.0  # value of a pot that misses in play: the opponent usually gets a shot
+FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
+POSITION = 100.0  # weight of the next shot's chance after a pot
+LEAVE = 60.0  # weight of the opponent's best chance after the turn passes
+SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
+MAX_CUT = 80.0  # degrees; thinner cuts are not tried as pots
+SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
+BREAK_SPEEDS = (8.0, 8.5, 9.0)
+BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
+BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
+CORNER_LIMIT, SIDE_LIMIT = 60.0, 45.0  # degrees off a pocket's axis that still drop
+MIN_CANDIDATES = 8
+EASY_SPEED_ERROR = 0.05  # relative sd of the easy level's speed
+EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
+
+
+# ------------------------------------------------------------------------------ inputs
+
+
+class _Table(NamedTuple):
+    """The balls on the table, in the order given, the cue ball first among them."""
+
+    ids: list[str]
+    pos: np.ndarray  # (n, 2)
+    radius: np.ndarray  # (n,)
+    mass: np.ndarray  # (n,)
+    cue: int
+
+
+def _per_ball(x, n: int, name: str) -> np.ndarray:
+    try:
+        arr = np.broadcast_to(np.asarray(x, dtype=float), (n,)).copy()
+    except (ValueError, TypeError):
+        raise ValueError(f"{name}: must be a number or one number per ball ({n})") from None
+    if not (np.isfinite(arr).all() and (arr > 0).all()):
+        raise ValueError(f"{name}: must be positive and finite")
+    return arr
+
+
+def _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed) -> _Table:
+    if not isinstance(table, Table):
+        raise ValueError("table: must be a termpool Table")
+    if not isinstance(physics, Physics):
+        raise ValueError("physics: must be a termpool Physics")
+    if not isinstance(state, State):
+        raise ValueError("state: must be a termpool.rules State")
+    if level not in LEVELS:
+        raise ValueError(f"level: must be one of {', '.join(LEVELS)}, not {level!r}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
+        raise ValueError(f"seed: must be an integer, not {seed!r}")
+    ids = [str(b) for b in ids]
+    n = len(ids)
+    if "cue" not in ids:
+        raise ValueError("ids: no cue ball 'cue'")
+    if len(set(ids)) != n:
+        raise ValueError("ids: duplicate ball ids")
+    try:
+        p = np.asarray(pos, dtype=float)
+    except (ValueError, TypeError):
+        raise ValueError("pos: must be numbers, shape (N, 2)") from None
+    if p.shape != (n, 2):
+        raise ValueError(f"pos: shape {p.shape} does not fit {n} ids (need ({n}, 2))")
+    if not np.isfinite(p).all():
+        raise ValueError("pos: must be finite")
+    r = _per_ball(radius, n, "radius")
+    m = _per_ball(mass, n, "mass")
+    on = np.asarray(on_table)
+    if on.shape != (n,) or on.dtype != bool:
+        raise ValueError(f"on_table: must be {n} booleans, one per ball")
+    cue = ids.index("cue")
+    if not on[cue]:
+        raise ValueError("on_table: the cue ball is not on the table")
+    keep = np.nonzero(on)[0]
+    sub = [ids[k] for k in keep]
+    return _Table(sub, p[keep], r[keep], m[keep], sub.index("cue"))
+
+
+def legal_targets(state: State, present: Sequence[str]) -> list[str]:
+    """Balls the shooter may hit first, among the ids `present` on the table."""
+    here = set(present)
+    objects = [b for b in present if b != "cue"]
+    if state.mode == "9ball":
+        nine = [b for b in objects if b.isdigit()]
+        return [min(nine, key=int)] if nine else []
+    if state.mode == "practice":
+        return objects
+    if state.groups is None:
+        return [b for b in objects if group_of(b) is not None]
+    own = [b for b in GROUPS[state.groups[state.shooter]] if b in here]
+    return own or (["8"] if "8" in here else [])
+
+
+# ---------------------------------------------------------------------------- geometry
+
+
+class _Pockets(NamedTuple):
+    names: tuple[str, ...]
+    aim: np.ndarray  # (P, 2) where an object ball is sent: a ball radius past the mouth
+    out: np.ndarray  # (P, 2) unit vector from the mouth into the pocket
+    half: np.ndarray  # (P,) half the mouth
+    cos_limit: np.ndarray  # (P,) steepest approach that still drops
+
+
+def _pockets(table: Table, radius: float) -> _Pockets:
+    n = len(table.hole_names)
+    if n == 0:
+        z = np.zeros((0, 2))
+        return _Pockets((), z, z, np.zeros(0), np.zeros(0))
+    tips = table.points.reshape(n, 2, 2)  # two jaw tips per pocket, in hole_names order
+    mid = tips.mean(axis=1)
+    out = table.hole_c - mid
+    out /= np.linalg.norm(out, axis=1)[:, None]
+    half = np.linalg.norm(tips[:, 0] - tips[:, 1], axis=1) / 2
+    side = np.array([name.startswith("side") for name in table.hole_names])
+    limit = np.radians(np.where(side, SIDE_LIMIT, CORNER_LIMIT))
+    return _Pockets(tuple(table.hole_names), mid + radius * out, out, half, np.cos(limit))
+
+
+def _blocked(a, b, obst, rad_move, rad_obst, skip) -> np.ndarray:
+    """True where a ball of radius rad_move going from a to b (..., 2) would touch an obstacle.
+
+    a, b: (B, M, 2); obst: (B, K, 2); rad_obst: (K,); skip: (B, M, K) obstacles to ignore.
+    """
+    d = b - a
+    length2 = np.maximum((d * d).sum(-1), 1e-12)
+    rel = obst[:, None] - a[:, :, None]  # (B, M, K, 2)
+    s = np.clip((rel * d[:, :, None]).sum(-1) / length2[:, :, None], 0.0, 1.0)
+    gap = rel - s[..., None] * d[:, :, None]
+    close = (gap * gap).sum(-1) < (rad_move + rad_obst[None, None]) ** 2 - 1e-9
+    return (close & ~skip).any(-1)
+
+
+def _chances(cue, balls, alive, target, radius, cue_idx, pockets, table, sigma):
+    """Chance (B, N, P) that a straight pot of ball i into pocket p goes in from `cue`.
+
+    cue: (B, 2); balls: (B, N, 2); alive, target: (B, N) bool. The chance is that of an aim
+    error (sd `sigma` degrees) staying within the pot's tolerance: the mouth seen from the
+    object ball, shrunk by the distances and the cut. Blocked paths and thin cuts give 0.
+    Also returns the contact normals u (B, N, P, 2).
+    """
+    B, N = balls.shape[:2]
+    P = len(pockets.names)
+    if P == 0:
+        return np.zeros((B, N, 0)), np.zeros((B, N, 0, 2))
+    rc = radius[cue_idx]
+    u = pockets.aim[None, None] - balls[:, :, None]  # (B, N, P, 2)
+    d2 = np.linalg.norm(u, axis=-1)
+    u = u / np.maximum(d2, 1e-9)[..., None]
+    ghost = balls[:, :, None] - (rc + radius)[None, :, None, None] * u
+    c = ghost - cue[:, None, None]
+    d1 = np.linalg.norm(c, axis=-1)
+    c = c / np.maximum(d1, 1e-9)[..., None]
+    cos_cut = (c * u).sum(-1)
+    approach = (u * pockets.out[None, None]).sum(-1)
+    ok = target[:, :, None] & alive[:, :, None] & (cos_cut > math.cos(math.radians(MAX_CUT)))
+    ok &= approach > pockets.cos_limit[None, None]
+    ok &= d1 > 1e-3  # a cue ball frozen to the ghost spot has no line to aim along
+    gx, gy = ghost[..., 0], ghost[..., 1]
+    ok &= (gx >= rc) & (gx <= table.length - rc) & (gy >= rc) & (gy <= table.width - rc)
+    tol = np.maximum(pockets.half[None, None] * approach - 0.6 * rc, 0.004)
+    # A cue aim error e turns the contact normal by e d1 / (2R cos cut): the tolerance on the
+    # object ball's heading (tol / d2) maps back to the cue through that factor.
+    cue_tol = (tol / np.maximum(d2, 1e-3)) * (rc + radius)[None, :, None] * np.maximum(
+        cos_cut, 1e-3) / np.maximum(d1, 1e-3)
+    chance = _erf(cue_tol / (math.radians(sigma) * math.sqrt(2.0)))
+    # Blockers: every live ball but the target (and the cue ball on the cue's own path).
+    idx = np.arange(N)
+    dead = ~alive[:, None, :]  # (B, 1, K)
+    flat = (B, N * P, 2)
+    skip_t = np.broadcast_to((idx[:, None, None] == idx[None, None, :]), (N, P, N))
+    skip_t = np.broadcast_to(skip_t.reshape(1, N * P, N), (B, N * P, N)) | dead
+    skip_c = skip_t | (idx == cue_idx)[None, None, :]
+    src = np.broadcast_to(cue[:, None, None], ghost.shape).reshape(flat)
+    path1 = _blocked(src, ghost.reshape(flat), balls, rc, radius, skip_c)
+    start = np.broadcast_to(balls[:, :, None], ghost.shape).reshape(flat)
+    end = np.broadcast_to(pockets.aim[None, None], ghost.shape).reshape(flat)
+    rmove = np.broadcast_to(radius[None, :, None], (B, N, P)).reshape(B, N * P)[..., None]
+    path2 = _blocked(start, end, balls, rmove, radius, skip_t)  # the cue ball blocks too
+    ok &= ~(path1 | path2).reshape(B, N, P)
+    return np.where(ok, chance, 0.0), u
+
+
+def _erf(x: np.ndarray) -> np.ndarray:
+    # Abramowitz-Stegun 7.1.26 (error under 1.5e-7), for x >= 0: numpy has no erf.
+    t = 1.0 / (1.0 + 0.3275911 * x)
+    poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (
+        -1.453152027 + t * 1.061405429))))
+    return 1.0 - poly * np.exp(-x * x)
+
+
+def _leave(chance: np.ndarray) -> np.ndarray:
+    """How good a table is for whoever shoots next, 0..1: the best pot plus a little for
+    each other makeable one (more choices are worth more)."""
+    flat = chance.reshape(chance.shape[0], -1)
+    best = flat.max(axis=1, initial=0.0)
+    count = np.minimum((flat > 0.3).sum(axis=1), 4)
+    return np.minimum(best + 0.05 * count, 1.0) / 1.2
+
+
+# --------------------------------------------------------------------------- candidates
+
+
+class _Cands:
+    """Candidate strikes as parallel lists."""
+
+    def __init__(self) -> None:
+        self.speed: list[float] = []
+        self.angle: list[float] = []
+        self.side: list[float] = []
+        self.top: list[float] = []
+        self.target: list[int] = []  # ball index aimed at (-1: none)
+        self.pocket: list[int] = []  # pocket aimed at (-1: none)
+        self.kind: list[str] = []  # "break", "pot", "safety", "kick"
+        self.chance: list[float] = []
+
+    def add(self, speed, angle, side, top, target, pocket, kind, chance) -> None:
+        self.speed.append(float(np.clip(speed, 0.0, BREAK_SPEEDS[-1])))
+        self.angle.append(float(angle))
+        self.side.append(float(side))
+        self.top.append(float(top))
+        self.target.append(int(target))
+        self.pocket.append(int(pocket))
+        self.kind.append(kind)
+        self.chance.append(float(chance))
+
+    def __len__(self) -> int:
+        return len(self.speed)
+
+
+def _deg(v) -> float:
+    return math.degrees(math.atan2(float(v[1]), float(v[0])))
+
+
+def _pot_speed(d1: float, d2: float, cos_cut: float, physics: Physics) -> float:
+    """About the slowest cue speed that rolls the object ball into the pocket.
+
+    A ball rolls a distance d from speed sqrt(2 mu_r g d); a struck or hit ball leaves sliding
+    and rolls at 5/7 of its speed; the cue ball passes cos(cut) of its speed on (times
+    (1 + e) / 2)."""
+    a = physics.mu_roll * physics.g
+    v_obj = math.sqrt(2 * a * (d2 + 0.3)) * 1.4
+    v_hit = v_obj / max(cos_cut, 0.2) / ((1 + physics.e_ball) / 2)
+    return math.sqrt(v_hit * v_hit + 2 * a * d1) * 1.4
+
+
+def _break_cands(t: _Table, targets: list[str]) -> _Cands:
+    """Hard shots at the rack's apex: the legal ball nearest the cue ball."""
+    cands = _Cands()
+    p = t.pos
+    choice = [t.ids.index(b) for b in targets] or [k for k in range(len(t.ids)) if k != t.cue]
+    if not choice:
+        return cands
+    apex = min(choice, key=lambda k: float(np.linalg.norm(p[k] - p[t.cue])))
+    base = _deg(p[apex] - p[t.cue])
+    for speed in BREAK_SPEEDS:
+        for aim in BREAK_AIMS:
+            for side, top in BREAK_SPINS:
+                cands.add(speed, base + aim, side, top, apex, -1, "break", 1.0)
+    return cands
+
+
+def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _Cands:
+    cands = _Cands()
+    n = len(t.ids)
+    alive = np.ones((1, n), bool)
+    tmask = np.array([[b in targets for b in t.ids]])
+    chance, u = _chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius, t.cue,
+                         pockets, table, lv.sigma)
+    chance, u = chance[0], u[0]
+    # Pairs by chance; a blocked pair (chance 0) is left to the safeties.
+    order = [(float(chance[i, k]), i, k) for i, k in zip(*np.nonzero(chance > 1e-4), strict=True)]
+    order.sort(key=lambda x: (-x[0], x[1], x[2]))
+    per_pair = len(lv.speeds) * len(lv.spins)
+    for c, i, k in order[: max(budget // per_pair, 0)]:
+        ghost = t.pos[i] - (t.radius[t.cue] + t.radius[i]) * u[i, k]
+        d1 = float(np.linalg.norm(ghost - t.pos[t.cue]))
+        d2 = float(np.linalg.norm(pockets.aim[k] - t.pos[i]))
+        cos_cut = float(np.dot((ghost - t.pos[t.cue]) / max(d1, 1e-9), u[i, k]))
+        base = _pot_speed(d1, d2, cos_cut, physics)
+        for f in lv.speeds:
+            speed = float(np.clip(base * f, *SPEED_RANGE))
+            for side, top in lv.spins:
+                cands.add(speed, _deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c)
+    return cands
+
+
+def _mirror_aims(p: np.ndarray, table: Table, r: float) -> list[np.ndarray]:
+    """Images of point p in the four rails (lines where a ball's centre meets the cushion)."""
+    L, W = table.length, table.width
+    x, y = float(p[0]), float(p[1])
+    return [np.array([x, -y + 2 * r]), np.array([x, 2 * (W - r) - y]),
+            np.array([-x + 2 * r, y]), np.array([2 * (L - r) - x, y])]
+
+
+def _safety_cands(t: _Table, targets: list[str], table: Table, budget: int) -> _Cands:
+    """Soft full and half-ball hits at each legal ball, and one-rail kicks at it."""
+    cands = _Cands()
+    pc = t.pos[t.cue]
+    rows = []
+    for b in targets:
+        i = t.ids.index(b)
+        d = t.pos[i] - pc
+        dist = float(np.linalg.norm(d))
+        base = _deg(d)
+        half = math.degrees(math.asin(min((t.radius[i] + t.radius[t.cue]) / 2 / max(dist, 1e-9),
+                                          1.0)))
+        rows.append((0.9, base, i, "safety"))
+        rows.append((1.8, base, i, "safety"))
+        rows.append((1.3, base + half, i, "safety"))
+        rows.append((1.3, base - half, i, "safety"))
+        for img in _mirror_aims(t.pos[i], table, t.radius[t.cue]):
+            rows.append((2.2, _deg(img - pc), i, "kick"))
+    # Interleave balls so that a small budget still covers every legal ball.
+    per = 8
+    for j in range(per):
+        for k in range(j, len(rows), per):
+            if len(cands) >= budget:
+                return cands
+            speed, angle, i, kind = rows[k]
+            cands.add(speed, angle, 0.0, 0.0, i, -1, kind, 0.0)
+    return cands
+
+
+def _calibrate(t: _Table, cands: _Cands, pockets: _Pockets, table: Table, physics: Physics,
+               rounds: int = 2) -> None:
+    """Correct the aim of every pot for throw, in place.
+
+    Each round simulates the cue ball and its target alone on a table without pockets,
+    measures where the object ball actually heads, and turns the contact normal by the
+    error (a fixed-point iteration: the throw changes little with the normal).
+    """
+    pots = [k for k, kind in enumerate(cands.kind) if kind == "pot"]
+    if not pots:
+        return
+    plain = Table(length=table.length, width=table.width, pockets="none")
+    tgt = np.array([cands.target[k] for k in pots])
+    want = np.array([_deg(pockets.aim[cands.pocket[k]] - t.pos[cands.target[k]]) for k in pots])
+    normal = want.copy()
+    pc = t.pos[t.cue]
+    pt = t.pos[tgt]
+    reach = t.radius[t.cue] + t.radius[tgt]
+    B = len(pots)
+    for _ in range(rounds):
+        rad = np.radians(normal)
+        ghost = pt - reach[:, None] * np.stack([np.cos(rad), np.sin(rad)], axis=1)
+        angles = np.degrees(np.arctan2(ghost[:, 1] - pc[1], ghost[:, 0] - pc[0]))
+        pos = np.stack([np.broadcast_to(pc, (B, 2)), pt], axis=1)
+        vel = np.zeros((B, 2, 2))
+        w = np.zeros((B, 2, 3))
+        for n, k in enumerate(pots):
+            v, s = strike(cands.speed[k], float(angles[n]), cands.side[k], cands.top[k],
+                          float(t.radius[t.cue]))
+            vel[n, 0], w[n, 0] = v, s
+        radius = np.stack([np.full(B, t.radius[t.cue]), t.radius[tgt]], axis=1)
+        mass = np.stack([np.full(B, t.mass[t.cue]), t.mass[tgt]], axis=1)
+        eng = Engine(plain, physics, pos, vel, w, radius, mass, record=True)
+        eng.run_events(duration=SIM_SECONDS)
+        final = eng.pos[:, 1]
+        for n in range(B):
+            where = _heading_point(eng.events[n])
+            end = final[n] if where is None else where
+            d = end - pt[n]
+            if float(np.linalg.norm(d)) < 0.02:  # not hit, or barely moved: keep the aim
+                continue
+            err = (_deg(d) - want[n] + 180.0) % 360.0 - 180.0
+            if abs(err) < 20.0:
+                normal[n] -= err
+        for n, k in enumerate(pots):
+            rad = math.radians(normal[n])
+            ghost = pt[n] - reach[n] * np.array([math.cos(rad), math.sin(rad)])
+            cands.angle[k] = _deg(ghost - pc)
+
+
+def _heading_point(events: list[dict]) -> np.ndarray | None:
+    """Where the object ball (index 1) first meets a cushion or a ball again after it was hit."""
+    hit = False
+    for ev in events:
+        if 1 not in ev["i"]:
+            continue
+        if ev["type"] == "ball_ball" and not hit:
+            hit = True
+            continue
+        if hit and ev["type"] in ("cushion", "ball_ball"):
+            k = ev["i"].index(1)
+            return np.array([ev["balls"][k]["x"], ev["balls"][k]["y"]])
+    return None
+
+
+# ------------------------------------------------------------------------------ judging
+
+
+def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics) -> Engine:
+    B, n = len(cands), len(t.ids)
+    pos = np.broadcast_to(t.pos, (B, n, 2)).copy()
+    vel = np.zeros((B, n, 2))
+    w = np.zeros((B, n, 3))
+    for b in range(B):
+        v, s = strike(cands.speed[b], cands.angle[b], cands.side[b], cands.top[b],
+                      float(t.radius[t.cue]))
+        vel[b, t.cue], w[b, t.cue] = v, s
+    eng = Engine(table, physics, pos, vel, w, t.radius, t.mass, record=True)
+    eng.run_events(duration=SIM_SECONDS)
+    return eng
+
+
+def _call(state: State, targets: list[str], t: _Table, cands: _Cands, b: int, summary,
+          pockets: _Pockets) -> tuple[str, str] | None:
+    """The call for candidate b: only for the 8 when it is the legal target. The pocket the
+    simulation drops it in, else the pocket aimed at, else the one nearest the 8."""
+    if state.mode != "8ball" or targets != ["8"] or not pockets.names:
+        return None
+    if "8" in summary.pocketed:
+        return ("8", summary.pocketed["8"])
+    if cands.pocket[b] >= 0:
+        return ("8", pockets.names[cands.pocket[b]])
+    p8 = t.pos[t.ids.index("8")]
+    k = int(np.argmin(np.linalg.norm(pockets.aim - p8, axis=1)))
+    return ("8", pockets.names[k])
+
+
+def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarray, list, list]:
+    """Score every simulated table; returns (scores, calls, notes)."""
+    B, n = eng.B, eng.N
+    alive = eng.state != POCKETED
+    final = eng.pos
+    scores = np.zeros(B)
+    calls: list = []
+    notes: list = []
+    leave_for: list[tuple[int, str, State]] = []  # (table, "me"|"you", state for next shot)
+    for b in range(B):
+        summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
+        called = _call(state, targets, t, cands, b, summary, pockets)
+        out, nxt = judge(replace(state, called=called), summary)
+        calls.append(called)
+        tgt = t.ids[cands.target[b]] if cands.target[b] >= 0 else None
+        aimed = pockets.names[cands.pocket[b]] if cands.pocket[b] >= 0 else None
+        potted = summary.object_pocketed
+        if out.winner is not None:
+            if out.winner == state.shooter:
+                scores[b] = cands.chance[b] * WIN + (1 - cands.chance[b]) * MISS \
+                    if cands.kind[b] == "pot" else FLUKE * WIN + (1 - FLUKE) * MISS
+            else:
+                scores[b] = LOSS
+            notes.append(out.reason)
+        elif out.foul is not None:
+            scores[b] = FOUL
+            notes.append(f"foul: {out.reason}")
+        elif out.continue_turn:
+            intended = (tgt is not None and aimed is not None
+                        and summary.pocketed.get(tgt) == aimed)
+            p = cands.chance[b] if intended else FLUKE
+            if cands.kind[b] == "break":
+                p = 1.0
+            scores[b] = p * CONTINUE + (1 - p) * MISS
+            leave_for.append((b, "me", nxt))
+            if intended:
+                notes.append(f"{tgt} in the {aimed} pocket")
+            else:
+                how = "the break" if cands.kind[b] == "break" else "a kiss or combination"
+                notes.append(f"{', '.join(potted)} in by {how}")
+        else:
+            scores[b] = PASS
+            leave_for.append((b, "you", nxt))
+            word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
+            if word is None:
+                word = f"try {tgt} in the {aimed} pocket"
+            notes.append(f"{word} on the {tgt}" if cands.kind[b] in ("safety", "kick")
+                         else word)
+    if leave_for:
+        rows = [b for b, _, _ in leave_for]
+        tmask = np.zeros((len(rows), n), bool)
+        for r, (b, _, nxt) in enumerate(leave_for):
+            present = [t.ids[k] for k in range(n) if alive[b, k]]
+            nxt_t = legal_targets(nxt, present) if "cue" in present else []
+            tmask[r] = [bid in nxt_t for bid in t.ids]
+        cue_alive = alive[rows, t.cue]
+        chance, _ = _chances(final[rows, t.cue], final[rows], alive[rows], tmask, t.radius,
+                             t.cue, pockets, table, lv.sigma)
+        value = _leave(chance)
+        for r, (b, who, _) in enumerate(leave_for):
+            if not cue_alive[r]:
+                continue
+            if who == "me":
+                p = 1.0 if cands.kind[b] == "break" else cands.chance[b]
+                scores[b] += p * POSITION * value[r]
+            else:
+                scores[b] -= LEAVE * value[r]
+    return scores, calls, notes
+
+
+# ----------------------------------------------------------------------------------- API
+
+
+def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                on_table, state: State, *, level: str = "normal",
+                max_candidates: int = 256) -> list[Plan]:
+    """Every candidate shot, simulated in one batch and scored, in a fixed order (no aim
+    error added). Arguments as for `choose_shot`; the list is empty when no object ball is
+    on the table."""
+    if isinstance(max_candidates, bool) or not isinstance(max_candidates, (int, np.integer)) \
+            or max_candidates < MIN_CANDIDATES:
+        raise ValueError(f"max_candidates: must be an integer of at least {MIN_CANDIDATES}")
+    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, 0)
+    lv = LEVELS[level]
+    budget = max(int(max_candidates * lv.share), MIN_CANDIDATES)
+    targets = legal_targets(state, t.ids)
+    pockets = _pockets(table, float(t.radius[t.cue]))
+    if state.is_break:
+        cands = _break_cands(t, targets)
+    else:
+        reserve = min(budget // 4, 8 * max(len(targets), 1))
+        cands = _pot_cands(t, targets, pockets, table, physics, lv, budget - reserve)
+        _calibrate(t, cands, pockets, table, physics)
+        safe = _safety_cands(t, targets, table, budget - len(cands))
+        for k in range(len(safe)):
+            cands.add(safe.speed[k], safe.angle[k], safe.side[k], safe.top[k], safe.target[k],
+                      safe.pocket[k], safe.kind[k], safe.chance[k])
+    if len(cands) == 0:
+        return []
+    eng = _simulate(t, cands, table, physics)
+    scores, calls, notes = _score(state, targets, t, cands, eng, table, pockets, lv)
+    return [Plan(cands.speed[b], (cands.angle[b] + 180.0) % 360.0 - 180.0, cands.side[b],
+                 cands.top[b], calls[b], float(scores[b]), notes[b]) for b in range(len(cands))]
+
+
+def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                on_table, state: State, *, level: str = "normal", seed: int = 0,
+                max_candidates: int = 256) -> Plan:
+    """The computer's shot for the player `state.shooter` (see the module's docstring).
+
+    `ids`, `pos` (N, 2), `radius`, `mass` (numbers or one per ball) describe the balls;
+    `on_table` (N booleans) says which are on the table. "easy" plays its choice with a
+    seeded aim and speed error. Deterministic for a given seed.
+    """
+    _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
+    plans = score_shots(table, physics, ids, pos, radius, mass, on_table, state, level=level,
+                        max_candidates=max_candidates)
+    if not plans:  # nothing to aim at: roll the cue ball up the table
+        return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, "no object ball on the table")
+    # The first of equal scores: candidates come in a fixed order.
+    best = max(range(len(plans)), key=lambda k: (plans[k].score, -k))
+    plan = plans[best]
+    if LEVELS[level].noise:
+        rng = np.random.default_rng(seed)
+        angle = plan.angle + float(rng.normal(0.0, LEVELS[level].sigma))
+        speed = float(np.clip(plan.speed * (1 + rng.normal(0.0, EASY_SPEED_ERROR)), 0.1,
+                              BREAK_SPEEDS[-1]))
+        plan = plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)
+    return plan
+
+
+def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
+    """Legal cue ball spots among xy (M, 2): on the table, no overlap, in the kitchen if asked."""
+    r = float(t.radius[t.cue])
+    x, y = xy[:, 0], xy[:, 1]
+    margin = 1e-3
+    ok = (x >= r + margin) & (x <= table.length - r - margin)
+    ok &= (y >= r + margin) & (y <= table.width - r - margin)
+    if area == "kitchen":
+        ok &= x <= table.head_spot[0] - margin
+    others = [k for k in range(len(t.ids)) if k != t.cue]
+    if others:
+        d = np.linalg.norm(xy[:, None] - t.pos[others][None], axis=-1)
+        ok &= (d >= r + t.radius[others][None] + 2 * margin).all(axis=1)
+    return ok
+
+
+def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                     on_table, state: State, area: str, *, level: str = "normal",
+                     seed: int = 0) -> tuple[float, float]:
+    """Where to put the cue ball in hand: `area` "anywhere" or "kitchen" (behind the head
+    string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
+    distances, and a coarse grid as a fallback, are scored by the shots they leave.
+
+    The cue ball's entry in `pos` is ignored (it is being placed); it must be in `ids` and
+    marked on the table.
+    """
+    if area not in AREAS:
+        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
+    lv = LEVELS[level]
+    r = float(t.radius[t.cue])
+    pockets = _pockets(table, r)
+    targets = legal_targets(state, t.ids)
+    spots = []
+    if state.is_break:
+        spots.append(np.array(table.head_spot))
+    dists = (0.3, 0.15, 0.5)[: lv.spots]
+    for b in targets:
+        i = t.ids.index(b)
+        for k in range(len(pockets.names)):
+            u = pockets.aim[k] - t.pos[i]
+            u = u / max(float(np.linalg.norm(u)), 1e-9)
+            if float(np.dot(u, pockets.out[k])) <= pockets.cos_limit[k]:
+                continue
+            ghost = t.pos[i] - (r + t.radius[i]) * u
+            for cut in (0.0, 15.0, -15.0, 30.0, -30.0):
+                c = math.radians(cut)
+                d = np.array([u[0] * math.cos(c) - u[1] * math.sin(c),
+                              u[0] * math.sin(c) + u[1] * math.cos(c)])
+                for s in dists:
+                    spots.append(ghost - s * d)
+    hi = table.head_spot[0] if area == "kitchen" else table.length
+    gx = np.linspace(0.05, hi - 0.02, 12)
+    gy = np.linspace(0.05, table.width - 0.05, 8)
+    spots += [np.array([x, y]) for x in gx for y in gy]
+    xy = np.array(spots)
+    xy = xy[_spot_ok(xy, t, table, area)]
+    if len(xy) == 0:
+        raise ValueError(f"area: no free spot for the cue ball in the {area}")
+    if state.is_break:
+        return float(xy[0, 0]), float(xy[0, 1])
+    M, n = len(xy), len(t.ids)
+    balls = np.broadcast_to(t.pos, (M, n, 2)).copy()
+    balls[:, t.cue] = xy
+    tmask = np.broadcast_to(np.array([b in targets for b in t.ids]), (M, n))
+    chance, _ = _chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue, pockets,
+                         table, lv.sigma)
+    value = _leave(chance)
+    best = int(np.argmax(value))
+    spot = xy[best]
+    if lv.noise:
+        rng = np.random.default_rng(seed)
+        moved = spot + rng.normal(0.0, EASY_SPOT_ERROR, 2)
+        if _spot_ok(moved[None], t, table, area)[0]:
+            spot = moved
+    return float(spot[0]), float(spot[1])
