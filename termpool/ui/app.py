@@ -169,6 +169,11 @@ class App:
         self.side = self.top = 0.0
         self.push_out = False
         self._aim_cache = None
+        if m.frame_over and m.winner is None:
+            won = m.players[m.frame_winner]
+            m.new_frame()
+            self.message.append((f"{won} wins the frame ({m.scores[0]}-{m.scores[1]}); "
+                                 f"{m.players[m.shooter]} breaks", "good"))
         if m.winner is not None:
             self.phase = "over"
         elif m.option is not None:
@@ -232,18 +237,15 @@ class App:
         self.called_k = int(np.argmax(score))
 
     def _finish_shot(self) -> None:
-        out = self.run.finish()
         m = self.match
-        self.message = []
+        before = int(m.on_table.sum())
+        out = self.run.finish()
         if out.foul:
-            self.message.append((f"Foul: {out.reason}", "foul"))
-            if self.opts.bell:
-                self.bells += 1
+            self.message = [(f"Foul: {out.reason}", "foul")]
         else:
-            self.message.append((out.reason, "good" if out.continue_turn else "plain"))
-        if self.opts.bell and not out.foul and any(
-                not m.on_table[k] for k in range(len(m.ids)) if m.ids[k] != "cue"):
-            pass
+            self.message = [(out.reason, "good" if out.continue_turn else "plain")]
+        if self.opts.bell and (out.foul or int(m.on_table.sum()) < before):
+            self.bells += 1  # a pocketed ball or a foul
         self._turn_start()
 
     # -------------------------------------------------------------------------- the clock
@@ -436,7 +438,9 @@ class App:
         elif action == "fast_forward":
             self.fast = not self.fast
         elif action == "undo" and self.match.state.mode == "practice":
-            self.match.undo()
+            if self.match.history:
+                self.match.take_back()
+                self.message = [("took the last shot back", "dim")]
             self._turn_start()
         elif action == "rerack" and self.match.state.mode == "practice":
             self.match.rerack()
@@ -530,10 +534,13 @@ class App:
 
     def _positions(self):
         m = self.match
-        if self.run is not None:
-            e = self.run.engine
-            return e.pos[0], e.state[0]
-        state = np.where(m.on_table, 0, POCKETED)
+        state = np.where(m.on_table, 0, POCKETED).astype(np.int8)
+        if self.run is not None:  # the engine holds only the balls that were on the table
+            e, rows = self.run.engine, self.run.rows
+            pos = m.pos.copy()
+            pos[rows] = e.pos[0]
+            state[rows] = e.state[0]
+            return pos, state
         if self.phase == "place":
             pos = m.pos.copy()
             state = state.copy()
@@ -609,7 +616,7 @@ class App:
                                                   "power"), "power"))
         title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
         if self.opts.frames > 1:
-            title += f" · frame {m.frame} of {self.opts.frames}"
+            title += f" · race to {self.opts.frames}"
         return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
                          widgets=widgets)
 
@@ -633,7 +640,9 @@ class App:
                 out.append((f"tip {self.side:+.1f} side {self.top:+.1f} top", "dim"))
         elif self.phase == "place":
             where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
-            out.append((f"{name}: ball in hand {where}; arrows move, Enter places", "turn"))
+            what = "break" if m.state.is_break else "shoot"
+            out.append((f"{name} to {what} · ball in hand {where}: arrows move, Enter places",
+                        "turn"))
         elif self.phase == "run":
             out.append(("fast ×4 (F)" if self.fast else "F: fast forward", "dim"))
         elif self.phase == "cpu":

@@ -33,6 +33,7 @@ FRAME_S = 1 / 60
 
 class App(Protocol):
     done: bool
+    dirty: bool  # something changed since the last `cells`
 
     def key(self, key, t: float) -> None: ...
     def tick(self, t: float) -> None: ...
@@ -140,6 +141,9 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
             screen.resize(cols, rows)
             term.write("\x1b[H\x1b[2J")
         s = screen.render(*app.cells(cols, rows))
+        if getattr(app, "bells", 0):
+            s += "\a"
+            app.bells = 0
         if s:
             term.write(s)
 
@@ -180,7 +184,7 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
                 ks = bt.inkey(timeout=0)
             now = time.monotonic()
             app.tick(now)
-            if now >= next_frame or flags["resized"]:
+            if (now >= next_frame and app.dirty) or flags["resized"]:
                 draw(now)
                 next_frame = max(next_frame + FRAME_S, now)
         return 0

@@ -1,0 +1,162 @@
+"""End to end: the real `termpool` in a pseudo-terminal, played with keys, read through pyte.
+
+These tests wait for screens (with generous timeouts) rather than for times: nothing asserts on
+wall-clock speed.
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import termios
+
+import pytest
+
+pytest.importorskip("pyte")
+if sys.platform == "win32":  # pragma: no cover
+    pytest.skip("needs a POSIX pty", allow_module_level=True)
+
+from pty_game import PtyGame, restored  # noqa: E402
+
+
+def cooked(fd: int) -> bool:
+    """The terminal is back in its normal (canonical, echoing) mode."""
+    lflag = termios.tcgetattr(fd)[3]
+    return bool(lflag & termios.ICANON) and bool(lflag & termios.ECHO)
+
+
+def table_cells(g: PtyGame) -> list:
+    """What the table area shows: characters and colours of every cell above the panel."""
+    buf = g.screen.buffer
+    return [(r, c, buf[r][c].data, buf[r][c].fg, buf[r][c].bg)
+            for r in range(g.rows - 6) for c in range(g.cols)]
+
+
+@pytest.fixture
+def game():
+    made = []
+
+    def start(*args, **kw):
+        g = PtyGame(*args, **kw)
+        made.append(g)
+        return g
+
+    yield start
+    for g in made:
+        g.close()
+
+
+def test_play_a_shot_and_quit_restores_the_terminal(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    before = table_cells(g)
+    g.send("\x1b[C" * 3, pause=0.3)  # aim a little to the right of the rack
+    g.send(" ", pause=1.2)  # a tap with no auto-repeat: the oscillating meter starts
+    g.send(" ", pause=0.2)  # ... and the second tap strikes
+    assert g.wait_for("You to shoot", timeout=60), g.text()
+    assert table_cells(g) != before  # the balls moved
+    g.send("q")
+    assert g.wait_for("Quit termpool?")
+    g.send("y")
+    assert g.wait() == 0
+    assert restored(g.raw)
+    assert cooked(g.fd)
+
+
+def test_no_arguments_opens_the_menu(game) -> None:
+    g = game(cols=90, rows=30)
+    assert g.wait_for("8-ball vs computer"), g.text()
+    for item in ("8-ball, two players", "9-ball", "Practice", "Help", "Quit"):
+        assert item in g.text()
+    g.send("5")  # practice
+    assert g.wait_for("You to break"), g.text()
+    g.send("q")
+    g.send("y")
+    assert g.wait() == 0 and restored(g.raw)
+
+
+def test_first_frame_comes_before_any_terminal_query(game) -> None:
+    # A pty answers no queries: the table must already be on screen when we ask for kitty
+    # keyboard support, so a silent terminal costs a bounded wait after the first frame.
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    assert b"\x1b[?u" in g.raw
+    assert g.raw.index("▀".encode()) < g.raw.index(b"\x1b[?u")
+    g.send("q")
+    g.send("y")
+    assert g.wait() == 0
+
+
+@pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 128 + 15), (signal.SIGHUP, 128 + 1)])
+def test_signals_restore_the_terminal(game, sig, code) -> None:
+    g = game("play", "--mode", "8ball", "--opponent", "human", cols=100, rows=32)
+    assert g.wait_for("Player 1 to break"), g.text()
+    g.kill(sig)
+    assert g.wait() == code
+    assert restored(g.raw)
+    assert cooked(g.fd)
+
+
+def test_ctrl_c_restores_the_terminal(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    g.send("\x03")
+    assert g.wait() == 130
+    assert restored(g.raw) and cooked(g.fd)
+
+
+def test_ctrl_z_puts_the_terminal_back_then_redraws(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    mark = len(g.raw)
+    g.send("\x1a", pause=0.5)
+    g.kill(signal.SIGCONT)  # a job-control shell's `fg` (here the child may not stop at all)
+    g.pump(0.5)
+    after = g.raw[mark:]
+    assert b"\x1b[?1049l" in after and b"\x1b[?1049h" in after
+    assert after.index(b"\x1b[?1049l") < after.rindex(b"\x1b[?1049h")
+    assert g.wait_for("You to break")
+    g.send("q")
+    g.send("y")
+    assert g.wait() == 0
+
+
+def test_resize_relays_out_and_tiny_windows_get_a_message(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    g.resize(30, 10)
+    assert g.wait_for("make the window at least"), g.text()
+    g.resize(120, 40)
+    assert g.wait_for("You to break"), g.text()
+    rows = g.text().splitlines()
+    assert "make the window" not in g.text()
+    assert len(rows) == 40 and len(rows[0]) == 120
+    g.send("q")
+    g.send("y")
+    assert g.wait() == 0 and restored(g.raw)
+
+
+def test_an_exception_inside_the_app_restores_the_terminal(game) -> None:
+    code = (
+        "import sys\n"
+        "from termpool.ui import term\n"
+        "class Boom:\n"
+        "    done = False\n"
+        "    dirty = True\n"
+        "    depth = 'truecolor'\n"
+        "    n = 0\n"
+        "    def key(self, k, t): pass\n"
+        "    def wake_in(self, t): return 0.0\n"
+        "    def cells(self, c, r):\n"
+        "        from termpool.ui.panel import blank_cells\n"
+        "        return blank_cells(c, r, False)\n"
+        "    def tick(self, t):\n"
+        "        self.n += 1\n"
+        "        if self.n > 3: raise RuntimeError('boom')\n"
+        "term.run(Boom(), 'truecolor')\n"
+    )
+    g = game("-c", code, cols=80, rows=24, python_args=True)
+    g.wait()
+    assert g.status == 1
+    assert restored(g.raw) and cooked(g.fd)
+    assert b"RuntimeError: boom" in g.raw
