@@ -74,7 +74,7 @@ class App:
         self.opts = opts or Options()
         self.keymap = keymap if keymap is not None else KeyMap()
         self.depth = resolve_depth(self.opts.colors, env)
-        self.aimctl = AimControl()
+        self.aimctl = AimControl(self.keymap)
         self.set_input_mode(input_mode)
         self.done = False
         self.dirty = True

@@ -112,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
 def _headless(args: argparse.Namespace, opts, keymap) -> int:
     from termpool.ui.app import App
     from termpool.ui.headless import play
-    from termpool.ui.keys import parse_script
+    from termpool.ui.keys import legacy_events, parse_script
 
     cols, rows = _size(args.size)
     if not args.keys:
@@ -127,7 +127,7 @@ def _headless(args: argparse.Namespace, opts, keymap) -> int:
         raise PlayError(f"--keys: {e}") from None
     mode = {"auto": "release", "kitty": "release"}.get(args.input, args.input)
     if mode != "release":  # without the kitty protocol a terminal never reports releases
-        events = [(t, k) for t, k in events if k.kind != "release"]
+        events = legacy_events(events)
     app = App(opts, keymap, mode)
     screen = play(app, events, cols, rows)
     sys.stdout.write(screen + "\n")
