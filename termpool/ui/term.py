@@ -5,9 +5,10 @@ times, advances on `tick(now)` and hands back cells. This module owns everything
 undone: the alternate screen, the hidden cursor, cbreak mode, the kitty keyboard flags. They are
 restored on every way out (normal exit, Ctrl-C, SIGTERM, SIGHUP, exceptions) and around Ctrl-Z.
 
-Start-up never waits on the terminal: the first frame is written before the one query we make
-(kitty keyboard support, answered by a DA1 boundary so a terminal that ignores it costs at most
-`query_timeout`).
+Start-up never waits on the terminal: the first frame is written before any query (blessed's
+start-up probes and ours for the kitty keyboard protocol), and every query is bounded by
+`query_timeout`, so a terminal that ignores them all costs well under a second, after the
+table is already on screen.
 """
 
 from __future__ import annotations
@@ -97,11 +98,8 @@ def _size(out) -> tuple[int, int]:
 def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25,
         set_input_mode: Callable[[str], None] | None = None) -> int:
     """Run `app` on the process's terminal until it is done. Returns the exit status."""
-    import blessed
-
     from termpool.ui.keys import from_keystroke
 
-    bt = blessed.Terminal()
     out = sys.stdout
     term = Terminal(sys.stdin.fileno(), out)
     cols, rows = _size(out)
@@ -152,6 +150,12 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
         now = time.monotonic()
         app.tick(now)
         draw(now)  # the first frame goes out before any query
+        # blessed probes the terminal when it starts (XTGETTCAP, XTVERSION), waiting 5 s per
+        # query by default: a terminal that ignores queries would hang us for seconds.
+        os.environ.setdefault("BLESSED_QUERY_TIMEOUT_SECONDS", str(query_timeout))
+        import blessed
+
+        bt = blessed.Terminal()
         if kitty:
             with bt.cbreak():
                 state = bt.get_kitty_keyboard_state(timeout=query_timeout)
