@@ -324,11 +324,18 @@ def _from_blessed_name(ks: object) -> Key | None:
 
 
 def from_keystroke(ks: object) -> Key | None:
-    """A blessed `Keystroke` (from `Terminal.inkey()`) -> Key, or None (timeout, no key)."""
+    """A blessed `Keystroke` (from `Terminal.inkey()`) -> Key, or None (timeout, no key).
+
+    The keystroke's text is decoded; when that does not give exactly one key (a sequence
+    only the terminfo entry knows), blessed's name for it is used instead.
+    """
     keys = decode(str(ks))
-    if keys:
+    if len(keys) == 1:
         return keys[0]
-    return _from_blessed_name(ks)
+    named = _from_blessed_name(ks)
+    if named is not None:
+        return named
+    return keys[0] if keys else None
 
 
 # ----------------------------------------------------------------------------- scripts
