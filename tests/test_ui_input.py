@@ -127,6 +127,20 @@ def test_decode_never_raises_and_names_are_valid(text):
         assert key.name == key.name.lower()
 
 
+@settings(max_examples=300, deadline=None)
+@given(st.text(max_size=30), st.sampled_from(["", "\x1b", "\x1b[", "\x1bO", "\x1b[1;", "\x1b[9"]))
+def test_decode_never_raises_on_any_text(text, prefix):
+    for key in decode(prefix + text):
+        assert key.name in NAMED_KEYS or len(key.name) == 1
+
+
+def test_decode_recovers_after_broken_sequences():
+    # a character that cannot be in a CSI sequence ends it; what follows is read again
+    assert decode("\x1b[1;\rq") == [K("enter"), K("q")]
+    assert decode("\x1b[99999999999999999999u\x1b[27;5;1114112~\x1b[1114112uq") == [K("q")]
+    assert decode("\x1bO\u00b2Pq") == [K("p", shift=True), K("q")]
+
+
 def _blessed_mapper():
     from blessed.keyboard import DEFAULT_SEQUENCE_MIXIN, get_keyboard_codes
 
