@@ -162,7 +162,13 @@ def _mods(value: int) -> dict[str, bool]:
 
 
 def _int(text: str, default: int) -> int:
-    return int(text) if text.isdigit() else default
+    """A decimal parameter; the default when empty or not a plain (short) number."""
+    ok = 0 < len(text) <= 9 and all("0" <= c <= "9" for c in text)
+    return int(text) if ok else default
+
+
+def _chr(code: int) -> str | None:
+    return chr(code) if 0 <= code < 0x110000 else None
 
 
 def _mod_field(field: str) -> tuple[dict[str, bool], str]:
@@ -183,12 +189,13 @@ def _kitty_key(params: str) -> Key | None:
     elif code in _KITTY_PUA:
         name = _KITTY_PUA[code]
     elif 32 < code < 0xE000 or code > 0xF8FF:
-        ch = chr(code)
-        if not ch.isprintable():
+        ch = _chr(code)
+        if ch is None or not ch.isprintable():
             return None
         name = ch.lower()
         if mods["shift"] and not ch.isalpha():  # "?" is shift+"/": report the character
-            name = chr(shifted) if shifted else _US_SHIFTED.get(ch, ch)
+            alt = _chr(shifted) if shifted else _US_SHIFTED.get(ch, ch)
+            name = alt if alt and alt.isprintable() else ch
     else:
         return None  # modifier keys alone, media keys, caps lock ...
     return Key(name, kind, **mods)
@@ -202,10 +209,11 @@ def _csi_key(params: str, final: str) -> Key | None:
         return _kitty_key(params) if fields else None
     if final == "~":
         if len(fields) >= 3 and fields[0] == "27":  # xterm modifyOtherKeys
-            key = _char_key(chr(_int(fields[2], 0)))
-            mods = _mods(_int(fields[1], 1))
+            ch = _chr(_int(fields[2], -1))
+            key = _char_key(ch) if ch else None
             if key is None:
                 return None
+            mods = _mods(_int(fields[1], 1))
             return replace(key, shift=key.shift or mods["shift"], ctrl=key.ctrl or mods["ctrl"],
                            alt=mods["alt"])
         name = _TILDE_NUMBERS.get(_int(fields[0], -1)) if fields else None
@@ -225,7 +233,7 @@ def _csi_key(params: str, final: str) -> Key | None:
 
 def _ss3_key(rest: str) -> tuple[Key | None, int]:
     """SS3 (ESC O) sequences: the key and how many characters after ESC O it used."""
-    if rest[:1].isdigit() and len(rest) >= 2 and rest[1] in "PQRS":  # Konsole: ESC O 2 P
+    if "1" <= rest[0] <= "9" and len(rest) >= 2 and rest[1] in "PQRS":  # Konsole: ESC O 2 P
         return Key(_CSI_LETTERS[rest[1]], **_mods(int(rest[0]))), 2
     ch = rest[0]
     if ch in _CSI_LETTERS:
@@ -237,16 +245,22 @@ def _ss3_key(rest: str) -> tuple[Key | None, int]:
     return None, 1
 
 
-def _read_csi(text: str, i: int) -> tuple[str, str, int] | None:
-    """Parameters, final character and end index of the CSI sequence whose body starts at i."""
+def _read_csi(text: str, i: int) -> tuple[str, str, int]:
+    """Parameters, final character and end index of the CSI sequence whose body starts at i.
+
+    The final is "" if the text ends first, and "?" plus the bad character's index if a
+    character that cannot be in a CSI sequence comes first.
+    """
     j = i
     while j < len(text) and "\x30" <= text[j] <= "\x3f":
         j += 1
     params = text[i:j]
     while j < len(text) and "\x20" <= text[j] <= "\x2f":
         j += 1
-    if j >= len(text) or not "\x40" <= text[j] <= "\x7e":
-        return None
+    if j >= len(text):
+        return params, "", j
+    if not "\x40" <= text[j] <= "\x7e":
+        return params, "?", j
     return params, text[j], j + 1
 
 
@@ -261,10 +275,11 @@ def _decode_one(text: str, i: int) -> tuple[Key | None, int]:
     if nxt == "[" and i + 2 < len(text):
         if text[i + 2] == "[" and i + 3 < len(text) and text[i + 3] in "ABCDE":
             return Key(f"f{'ABCDE'.index(text[i + 3]) + 1}"), i + 4  # linux console F1-F5
-        csi = _read_csi(text, i + 2)
-        if csi is None:
-            return None, len(text)  # cut-off sequence: nothing usable follows
-        params, final, end = csi
+        params, final, end = _read_csi(text, i + 2)
+        if final == "":
+            return None, end  # cut off: nothing usable follows
+        if final == "?":
+            return None, end  # broken: drop it, decode on from the character that broke it
         if final == "~" and params == "200":  # bracketed paste: skip the pasted text
             stop = text.find(_PASTE_END, end)
             return None, len(text) if stop < 0 else stop + len(_PASTE_END)
@@ -324,11 +339,18 @@ def _from_blessed_name(ks: object) -> Key | None:
 
 
 def from_keystroke(ks: object) -> Key | None:
-    """A blessed `Keystroke` (from `Terminal.inkey()`) -> Key, or None (timeout, no key)."""
+    """A blessed `Keystroke` (from `Terminal.inkey()`) -> Key, or None (timeout, no key).
+
+    The keystroke's text is decoded; when that does not give exactly one key (a sequence
+    only the terminfo entry knows), blessed's name for it is used instead.
+    """
     keys = decode(str(ks))
-    if keys:
+    if len(keys) == 1:
         return keys[0]
-    return _from_blessed_name(ks)
+    named = _from_blessed_name(ks)
+    if named is not None:
+        return named
+    return keys[0] if keys else None
 
 
 # ----------------------------------------------------------------------------- scripts
