@@ -565,3 +565,15 @@ def test_bad_saved_match(change, words) -> None:
     change(d)
     with pytest.raises(ValueError, match=words):
         Match.from_json(d)
+
+
+def test_warning_before_a_third_foul() -> None:
+    m = Match("9ball", three_foul=True, players=("Ann", "Bob"))
+    assert m.warning() is None
+    setup(m, {**SCRATCH, "1": (1.0, 0.6), "9": (0.5, 1.0)}, fouls=(1, 2))
+    assert m.warning() is None  # Ann shoots, on one foul
+    m.state = replace(m.state, shooter=1)
+    assert "Bob is on two fouls" in m.warning()
+    m = Match("9ball", players=("Ann", "Bob"))  # no rule, no warning
+    m.state = replace(m.state, fouls=(2, 2))
+    assert m.warning() is None

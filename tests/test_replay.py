@@ -243,3 +243,10 @@ def test_a_practice_match_with_take_backs_replays(capsys, tmp_path) -> None:
     m.begin(replace(Shot(6.0, 2.0), side=0.2)).finish()
     rc, out, _ = run_cli(capsys, write(tmp_path, m.to_json()))
     assert rc == 0 and out.splitlines()[-1] == "3 shots: all identical"
+
+
+def test_summary_names_the_players(saved, capsys, tmp_path) -> None:
+    rc, out, _ = run_cli(capsys, write(tmp_path, saved))
+    first = out.splitlines()[0]
+    assert rc == 0 and first.startswith("shot 1 (frame 1, Ann): identical, ")
+    assert first.endswith(saved["shots"][0]["outcome"]["reason"])

@@ -198,6 +198,15 @@ class Match:
     def balls_on_table(self) -> list[str]:
         return [b for b, on in zip(self.ids, self.on_table, strict=True) if on]
 
+    def warning(self) -> str | None:
+        """The WPA warning owed to the shooter before a shot that could be their third
+        consecutive foul (9-ball with `three_foul`), else None."""
+        s = self.state
+        if not s.three_foul or s.fouls[s.shooter] < 2 or self.frame_over:
+            return None
+        return (f"{self.players[s.shooter]} is on two fouls: a third foul in a row loses "
+                "the frame")
+
     def needs_call(self) -> bool:
         """True when the shooter must name a pocket: 8-ball, their group cleared, the 8 next."""
         s = self.state
