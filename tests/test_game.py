@@ -14,6 +14,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from termpool.game import Match, Shot
 from termpool.game import layout as lay
@@ -21,6 +23,7 @@ from termpool.physics.params import BALL_RADIUS as R
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
 from termpool.rules.common import MODE_BALLS, SOLIDS, STRIPES
+from termpool.scene import load_scene
 
 T = Table.preset("9ft")
 L, W = T.length, T.width
@@ -577,3 +580,35 @@ def test_warning_before_a_third_foul() -> None:
     m = Match("9ball", players=("Ann", "Bob"))  # no rule, no warning
     m.state = replace(m.state, fouls=(2, 2))
     assert m.warning() is None
+
+
+# ------------------------------------------------------------------------------ properties
+
+coord_x = st.floats(-0.05, L + 0.05, allow_nan=False)
+coord_y = st.floats(-0.05, W + 0.05, allow_nan=False)
+
+
+@given(x=coord_x, y=coord_y, area=st.sampled_from(["anywhere", "kitchen"]))
+def test_an_accepted_placement_makes_a_valid_scene(x: float, y: float, area: str) -> None:
+    m = Match("8ball", seed=1)
+    m.ball_in_hand = area
+    if m.placement_error(x, y) is None:
+        m.place_cue(x, y)
+        scene = load_scene(m.scene_dict())  # raises on an overlap or a ball off the table
+        assert area == "anywhere" or x <= L / 4
+        for name, p, n in lay.mouth_lines(T):
+            assert float(np.dot(scene.pos[0] - p, n)) >= R - 1e-9, name
+
+
+@given(st.lists(st.tuples(st.floats(FOOT[0] - 0.3, L - R), st.floats(W / 2 - 0.1, W / 2 + 0.1)),
+                max_size=8))
+def test_a_respot_never_overlaps(others: list) -> None:
+    pts = np.array(others, float).reshape(-1, 2)
+    x, y = lay.respot_point(T, R, pts, np.full(len(pts), R))
+    assert y == W / 2 and R <= x <= L - R
+    if len(pts):
+        assert (np.hypot(pts[:, 0] - x, pts[:, 1] - y) >= 2 * R - 1e-9).all()
+    # Nothing free lies between the spot and the chosen point (it is the nearest behind).
+    if x > FOOT[0]:
+        for z in np.linspace(FOOT[0], x, 50)[:-1]:
+            assert len(pts) and (np.hypot(pts[:, 0] - z, pts[:, 1] - y) < 2 * R - 1e-9).any()
