@@ -61,7 +61,8 @@ Choices made:
   ever advances whole steps), so the live shot and its replay take identical steps.
 """
 
-from termpool.game.match import DT, Match, Shot, ShotRun
+from termpool.game.match import Match
 from termpool.game.record import ReplayError, read_replay, replay
+from termpool.game.turn import DT, Shot, ShotRun
 
 __all__ = ["DT", "Match", "ReplayError", "Shot", "ShotRun", "read_replay", "replay"]
