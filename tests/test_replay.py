@@ -133,9 +133,8 @@ def nudge(x: float) -> float:
         (lambda s: s["final"][2].update(state="rolling"), "final[2].state"),
         (lambda s: s["outcome"].update(reason="a fluke"), "outcome.reason"),
         (lambda s: s["shot"].update(angle=nudge(s["shot"]["angle"])), "events"),
-        # A ball the shot leaves alone: it simply ends where the scene now puts it.
-        (lambda s: s["scene"]["balls"][4].update(x=nudge(s["scene"]["balls"][4]["x"])),
-         "final[4].x"),
+        (lambda s: s["scene"]["balls"][0].update(x=nudge(s["scene"]["balls"][0]["x"])),
+         "events"),
         (lambda s: s.update(steps=s["steps"] + 1), "steps"),
         (lambda s: s["final"][0].update(vx=-0.0), "final[0].vx"),  # bit for bit: -0.0 != 0.0
     ],
@@ -148,6 +147,17 @@ def test_tampered_replay_is_caught(saved, capsys, tmp_path, change, where) -> No
     bad = [line for line in out.splitlines() if "DIFFERS" in line]
     assert len(bad) == 1 and bad[0].startswith("shot 2 ") and where in bad[0]
     assert out.splitlines()[-1].endswith("1 differ")
+
+
+def test_a_moved_ball_the_shot_leaves_alone_is_caught(saved, capsys, tmp_path) -> None:
+    """A ball no event names ends where the (tampered) scene puts it: its final place differs."""
+    data = copy.deepcopy(saved)
+    rec = data["shots"][1]
+    named = {b for ev in rec["events"] for b in ev["ids"]}
+    k, ball = next((k, b) for k, b in enumerate(rec["scene"]["balls"]) if b["id"] not in named)
+    ball["x"] = nudge(ball["x"])
+    rc, out, _ = run_cli(capsys, write(tmp_path, data))
+    assert rc == 1 and f"DIFFERS: final[{k}].x: recorded " in out.splitlines()[1]
 
 
 def test_first_difference() -> None:
