@@ -471,12 +471,13 @@ def test_practice_scratch_keeps_the_shooter() -> None:
 
 def test_practice_take_back_restores_the_table() -> None:
     m = Match("practice", seed=3)
+    live = m.pos  # a UI may hold the array: it must see the restored table
     m.begin(Shot(8.0, 0.0)).finish()
     pos1, on1, state1 = m.pos.copy(), m.on_table.copy(), m.state
     m.begin(Shot(3.0, 30.0)).finish()
     assert len(m.history) == 2 and not np.array_equal(m.pos, pos1)
     m.take_back()
-    assert np.array_equal(m.pos, pos1) and np.array_equal(m.on_table, on1)
+    assert np.array_equal(m.pos, pos1) and np.array_equal(m.on_table, on1) and live is m.pos
     assert m.state == state1 and len(m.history) == 1
     m.take_back()
     assert m.history == [] and m.state.is_break and at(m, "cue") == HEAD

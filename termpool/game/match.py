@@ -316,7 +316,7 @@ class Match:
         if not self._undo:
             raise ValueError("take_back: no shot to take back")
         snap = self._undo.pop()
-        self.pos, self.on_table = snap["pos"], snap["on_table"]
+        self.pos[:], self.on_table[:] = snap["pos"], snap["on_table"]  # same arrays: views stay
         self.state, self.ball_in_hand = snap["state"], snap["ball_in_hand"]
         self.option, self.last_outcome = snap["option"], snap["last_outcome"]
         del self.history[snap["history"]:]
