@@ -319,11 +319,17 @@ def _replay(args: argparse.Namespace) -> int:
     except ReplayError as e:
         return _fail(str(e))
     bad = [s for s in shots if not s["ok"]]
+    players = (data.get("match") or {}).get("players") if isinstance(data.get("match"),
+                                                                      dict) else None
+    if not (isinstance(players, list) and len(players) == 2):
+        players = None
     if args.json:
         sys.stdout.write(json.dumps({"identical": not bad, "shots": shots}, indent=1) + "\n")
     else:
         for s in shots:
-            head = f"shot {s['n']} (frame {s['frame']}, player {s['player']}): "
+            who = (players[s["player"]] if players and s["player"] in (0, 1)
+                   else f"player {s['player']}")
+            head = f"shot {s['n']} (frame {s['frame']}, {who}): "
             if s["ok"]:
                 sys.stdout.write(f"{head}identical, {s['events']} events; {s['reason']}\n")
             else:

@@ -28,7 +28,9 @@ physics=None, three_foul=False, theme="standard", dt=1/60)`:
   (the options answered, with the shot they followed).
 - `begin(shot) -> ShotRun`; `ShotRun.step(dt)`, `.done`, `.finish() -> Outcome`, `.engine`
   (holds only the balls on the table: `.ids`, rows `.rows` of the match's arrays).
-- `choose(option)`, `new_frame()`, practice's `rerack()` and `take_back()`, `to_json()`,
+- `needs_call()`, `warning()` (9-ball three-foul warning, or None), `placement_error(x, y)`,
+  `place_cue(x, y)`, `choose(option)`, `new_frame()`, practice's `rerack()` and
+  `take_back()`, `to_json()`,
   `Match.from_json(data)`, `scene_dict()` (the table now, as a scene).
 
 Choices made:
@@ -61,7 +63,8 @@ Choices made:
   ever advances whole steps), so the live shot and its replay take identical steps.
 """
 
-from termpool.game.match import DT, Match, Shot, ShotRun
+from termpool.game.match import Match
 from termpool.game.record import ReplayError, read_replay, replay
+from termpool.game.turn import DT, Shot, ShotRun
 
 __all__ = ["DT", "Match", "ReplayError", "Shot", "ShotRun", "read_replay", "replay"]

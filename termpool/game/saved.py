@@ -10,7 +10,8 @@ from termpool.physics.params import Physics
 from termpool.rules.common import Outcome
 from termpool.scene import SceneError, _table
 
-from .match import FORMAT, OPTIONS, state_from_json
+from .match import FORMAT, OPTIONS
+from .turn import state_from_json
 
 AREAS = (None, "anywhere", "kitchen")
 
