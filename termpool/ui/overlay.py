@@ -251,8 +251,9 @@ def spin_face_cells(side: float, top: float, size: tuple[int, int] = (7, 4), *,
     dist = np.hypot(X, Y)
     # Layers, each pixel its topmost: 0 backdrop, 1 face, 2 limit circle, 3 tip.
     layer = np.zeros((2 * rows, cols), dtype=np.int8)
-    layer[dist <= rp] = 1
-    layer[(dist <= rp) & (np.abs(dist - 0.5 * rp) <= 0.5)] = 2
+    face = dist * dist <= rp * rp - 0.3  # as disc_mask rounds balls: no lone pixel at the poles
+    layer[face] = 1
+    layer[face & (np.abs(dist - 0.5 * rp) <= 0.5)] = 2
     off = math.hypot(side, top)
     k = 1.0 if off <= 1.0 else 1.0 / off  # a point off the face is shown on its edge
     tx, ty = side * k * rp, -top * k * rp
