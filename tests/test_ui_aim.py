@@ -32,13 +32,17 @@ from termpool.ui.palette import (
     AIM,
     AIM_C,
     BUTT_C,
+    CUE,
+    EIGHT,
     GUIDE_C,
     PLACE_BAD_C,
     PLACE_OK_C,
     POWER_C,
+    SOLID,
     SPIN_DOT_C,
     SPIN_LIMIT_C,
     STICK_C,
+    STRIPE,
     TIP_C,
 )
 from termpool.ui.table_view import TableView, layout
@@ -105,6 +109,8 @@ def test_pocketed_balls_are_ignored():
 def test_different_radii_meet_at_the_sum():
     a = trace([[0.5, 0.6], [1.2, 0.6]], 0.0, radius=[0.03, 0.02])
     assert a.ghost[0] == pytest.approx(1.2 - 0.05, abs=1e-12)
+    assert trace([[0.5, 0.6], [1.2, 0.6]], 0.0, radius=None).ghost[0] == pytest.approx(
+        1.2 - 2 * R, abs=1e-12)
 
 
 @pytest.mark.parametrize("angle, ghost", [
@@ -226,6 +232,7 @@ def test_exact_axis_directions():
     ({"cue": 3}, "aim.cue"),
     ({"cue": -1}, "aim.cue"),
     ({"on_table": [True]}, "aim.on_table"),
+    ({"on_table": [0, 0]}, "aim.on_table"),  # engine state codes, not a mask
 ])
 def test_bad_input_names_the_field(kw, field):
     args = {"angle": 0.0, "cue": 0, "on_table": None} | kw
@@ -446,7 +453,7 @@ def test_overlays_leave_the_balls_alone(view):
     pos = np.array([[0.5, 0.6], [1.3, 0.6 + R], [1.35 + 3 * R, 0.6 + 3 * R]])
     cv = view.draw(ids, pos, None, R, canvas=view.background.copy())
     before = cv.copy()
-    balls = np.isin(before.tag, [6, 7, 8, 9])
+    balls = np.isin(before.tag, [SOLID, STRIPE, EIGHT, CUE])
     a = trace(pos, 0.0)
     draw_aim(cv, lay, a, pos[0], R)
     draw_cue_stick(cv, lay, pos[0], R, 0.0, 0.5)
@@ -513,6 +520,14 @@ def test_overlays_clip_at_the_canvas_edge():
     draw_aim(cv, small, Aim((50.0, 50.0), "none", None, None, None, None), (0.05, 0.05), R)
     draw_placement(cv, small, (-5.0, -5.0), R, True)
     assert (cv.tag == AIM).any()
+
+
+def test_mono_aim_off_the_grid_is_clipped(view):
+    chars = view.mono(["cue"], np.array([[0.7, 0.4]]), None, R)
+    before = chars.copy()
+    mono_aim(chars, view.layout, Aim((60.0, -40.0), "cushion", None, (1.0, 0.0), None, None),
+             (0.7, 0.4))
+    assert (chars != before).any() and (before[chars != before] == " ").all()
 
 
 def test_mono_aim_marks_the_line_and_the_ghost(view):
@@ -626,6 +641,8 @@ def test_stick_bad_input_names_the_field(view):
         draw_cue_stick(cv, view.layout, (1.0, 0.5), R, 0.0, float("nan"))
     with pytest.raises(ValueError, match="stick.angle"):
         draw_cue_stick(cv, view.layout, (1.0, 0.5), R, float("nan"), 0.0)
+    with pytest.raises(ValueError, match="stick.cue_pos"):
+        draw_cue_stick(cv, view.layout, (float("nan"), 0.5), R, 0.0, 0.0)
 
 
 def test_blit_cells_copies_and_clips():

@@ -51,6 +51,8 @@ BUTT_M = 0.45  # dark butt length
 TIP_HALF_M, BUTT_HALF_M = 0.0065, 0.015  # stick half widths at the tip and the butt
 EIGHTHS = "▏▎▍▌▋▊▉"  # partial cells of the power bar, 1/8 .. 7/8
 
+Cells = tuple[np.ndarray, np.ndarray | None, np.ndarray | None]  # chars, fg, bg (None: mono)
+
 _IS_BALL = np.zeros(256, dtype=bool)
 _IS_BALL[[SOLID, STRIPE, EIGHT, CUE]] = True
 
@@ -157,6 +159,8 @@ def draw_cue_stick(canvas: Canvas, lay: Layout, cue_pos, radius: float, angle_de
         raise ValueError("stick.pull: must be finite")
     if not math.isfinite(angle_deg):
         raise ValueError("stick.angle: must be finite")
+    if not all(math.isfinite(float(v)) for v in (cue_pos[0], cue_pos[1], radius)):
+        raise ValueError("stick.cue_pos: position and radius must be finite")
     pull = min(1.0, max(0.0, float(pull)))
     w, h = canvas.width, canvas.height
     dx, dy = aim_direction(angle_deg)
@@ -212,6 +216,8 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
 
     def mark(ix, iy, glyph):
         r, col = iy // 2, ix
+        ok = (r >= 0) & (r < rows) & (col >= 0) & (col < cols)
+        r, col = r[ok], col[ok]
         blank = chars[r, col] == " "
         chars[r[blank], col[blank]] = glyph
 
@@ -222,8 +228,8 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
         glyph = "-/|\\"[int(((slope + 22.5) % 180) // 45)]
         mark(*_segment(lay, w, h, g + n * 3 * radius, g + n * (3 * radius + OBJECT_LINE_M)),
              glyph)
-    if aim.hit in ("ball", "cushion"):
-        gx, gy = lay.to_pixels(g[0], g[1])
+    gx, gy = lay.to_pixels(g[0], g[1])
+    if aim.hit in ("ball", "cushion") and math.isfinite(gx) and math.isfinite(gy):
         mark(np.array([math.floor(gx)]), np.array([math.floor(gy)]), "o")
     mark(*_segment(lay, w, h, c, g), ".")
 
@@ -232,7 +238,7 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
 
 
 def spin_face_cells(side: float, top: float, size: tuple[int, int] = (7, 4), *,
-                    mono: bool = False):
+                    mono: bool = False) -> Cells:
     """A small cue-ball face, size = (cols, rows) cells, with the tip's point on it: side > 0
     moves it right, top > 0 up (units of R); a grey circle marks the miscue limit, 0.5 R.
 
@@ -266,7 +272,7 @@ def spin_face_cells(side: float, top: float, size: tuple[int, int] = (7, 4), *,
     return to_cells(colours[layer])
 
 
-def power_meter_cells(level: float, width: int, label: str = ""):
+def power_meter_cells(level: float, width: int, label: str = "") -> Cells:
     """One row of `width` cells: the label, then a bar filled in proportion to level (0..1)
     to an eighth of a cell, its empty part dotted. (chars, fg, bg) like canvas.to_cells."""
     if not math.isfinite(level):
@@ -297,7 +303,7 @@ def power_meter_cells(level: float, width: int, label: str = ""):
     return chars, fg, bg
 
 
-def blit_cells(dst, src, row: int, col: int) -> None:
+def blit_cells(dst: Cells, src: Cells, row: int, col: int) -> None:
     """Copy cells `src` into `dst` (both (chars, fg, bg)) at row, col, clipped; colours are
     skipped where either side has none (mono)."""
     dc, dfg, dbg = dst
