@@ -66,8 +66,9 @@ def _ball_px(lay: Layout, radius: float) -> float:
 
 
 def _segment(lay: Layout, w: int, h: int, p0, p1, dotted: bool = False):
-    """Pixels (ix, iy) a straight segment p0 -> p1 (table metres) crosses on a w x h canvas,
-    each once; dotted keeps DOT_ON of every DOT_PERIOD pixels counted from p0."""
+    """Pixels (ix, iy) a straight segment p0 -> p1 (table metres) crosses on a w x h canvas
+    (some twice: painting them again is harmless and cheaper than sorting them out); dotted
+    keeps DOT_ON of every DOT_PERIOD pixels counted from p0."""
     x0, y0 = lay.to_pixels(p0[0], p0[1])
     x1, y1 = lay.to_pixels(p1[0], p1[1])
     x0, y0, x1, y1 = float(x0), float(y0), float(x1), float(y1)
@@ -85,9 +86,7 @@ def _segment(lay: Layout, w: int, h: int, p0, p1, dotted: bool = False):
     ix = np.floor(x0 + ux * s).astype(np.int64)
     iy = np.floor(y0 + uy * s).astype(np.int64)
     keep = (ix >= 0) & (ix < w) & (iy >= 0) & (iy < h)
-    lin = np.unique(iy[keep] * w + ix[keep])
-    iy, ix = np.divmod(lin, w)
-    return ix, iy
+    return ix[keep], iy[keep]
 
 
 def _ring(lay: Layout, w: int, h: int, centre, r_px: float, half: float = 0.5):
