@@ -5,7 +5,10 @@ python benchmarks/render.py
 - frame build time at 200x60: canvas + balls + cells + diffed escape string, per frame, for
   the frames of a simulated break (and for a full first frame);
 - bytes written per frame during the break at 80x24, diffed frames at 60 Hz, per colour depth;
-- idle frames (nothing moved): bytes written.
+- idle frames (nothing moved): bytes written;
+- aiming at 200x60: frames of the rack at rest with the aim sweeping one quarter degree a
+  frame, the stick charging and the spin face and power bar in the panel; the whole frame and
+  the overlays alone (aim_trace, draw_aim / mono_aim, draw_cue_stick, the two widgets).
 
 Targets (issue 5): build <= 3 ms at 200x60; average <= 3 KB per frame during a break at
 80x24; idle frames 0 bytes.
@@ -23,7 +26,17 @@ if __name__ == "__main__":
 
 from termpool.physics.engine import Engine  # noqa: E402
 from termpool.scene import load_scene  # noqa: E402
-from termpool.ui.frame import Renderer  # noqa: E402
+from termpool.ui.aim import aim_trace  # noqa: E402
+from termpool.ui.canvas import to_cells  # noqa: E402
+from termpool.ui.frame import Renderer, draw_panel  # noqa: E402
+from termpool.ui.overlay import (  # noqa: E402
+    blit_cells,
+    draw_aim,
+    draw_cue_stick,
+    mono_aim,
+    power_meter_cells,
+    spin_face_cells,
+)
 
 BREAK = {"table": "9ft", "balls": "8ball", "shot": {"speed": 8.0, "angle": 0}}
 
@@ -59,6 +72,47 @@ def frame_bytes(scene, samples, cols: int, rows: int, depth: str):
     return first, sizes, idle
 
 
+def aim_times(scene, cols: int, rows: int, depth: str, frames: int = 240):
+    """Per-frame build time of aiming frames, whole and overlays only (s)."""
+    r = Renderer(scene.table, cols, rows, depth)
+    lay, view = r.layout, r.view
+    ids, pos, rad = scene.ids, scene.pos, scene.radius
+    cue = ids.index("cue")
+    on = [True] * len(ids)
+    col, row, ncols, _nrows = lay.panel_rect
+    whole, over = [], []
+    r.frame(ids, pos, None, rad)
+    for k in range(frames):
+        angle, pull = -30.0 + 0.25 * k, (k % 60) / 60
+        t0 = time.perf_counter()
+        if r.mono:
+            cells = (view.mono(ids, pos, None, rad), None, None)
+        else:
+            cv = view.draw(ids, pos, None, rad)
+        t1 = time.perf_counter()
+        aim = aim_trace(scene.table, pos, rad, on, cue, angle)
+        if r.mono:
+            mono_aim(cells[0], lay, aim, pos[cue])
+        else:
+            draw_aim(cv, lay, aim, pos[cue], rad[cue])
+            draw_cue_stick(cv, lay, pos[cue], rad[cue], angle, pull)
+        face = spin_face_cells(0.2, -0.1, mono=r.mono)
+        power = power_meter_cells(pull, ncols - 2, "power")
+        t2 = time.perf_counter()
+        if not r.mono:
+            cells = to_cells(cv)
+        draw_panel(cells, lay, ids, None, r.title, r.mono)
+        t3 = time.perf_counter()
+        blit_cells(cells, face, row + 6, col + 1)
+        blit_cells(cells, power, row + 11, col + 1)
+        t4 = time.perf_counter()
+        r.screen.render(*cells)
+        t5 = time.perf_counter()
+        whole.append(t5 - t0)
+        over.append((t2 - t1) + (t4 - t3))
+    return whole, over
+
+
 def main() -> int:
     scene, samples = break_samples()
     print(f"break: {len(samples)} frames at 60 Hz ({samples[-1][0]:.2f} s to rest)")
@@ -77,6 +131,16 @@ def main() -> int:
         moving = sizes[: next((k for k in range(len(sizes) - 1, -1, -1) if sizes[k]), 0) + 1]
         print(f"  {depth:<10}                       {statistics.mean(moving):7.0f} "
               f"{statistics.mean(sizes[:60]):9.0f} {max(sizes):7d}   {first:7d}     {max(idle)}")
+    print()
+    print("aiming at 200x60 (ms): rack at rest,     whole frame        overlays alone")
+    print("aim sweeping, stick charging             median    p95      median    p95")
+    for depth in ("truecolor", "256", "16", "mono"):
+        whole, over = aim_times(scene, 200, 60, depth)
+        w_ms = sorted(x * 1e3 for x in whole)
+        o_ms = sorted(x * 1e3 for x in over)
+        print(f"  {depth:<10}                             {statistics.median(w_ms):6.2f} "
+              f"{w_ms[int(0.95 * (len(w_ms) - 1))]:6.2f}    {statistics.median(o_ms):6.2f} "
+              f"{o_ms[int(0.95 * (len(o_ms) - 1))]:6.2f}")
     print()
     print("targets: build <= 3 ms at 200x60, <= 3 KB/frame during a break at 80x24, idle 0 B")
     return 0

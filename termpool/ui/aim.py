@@ -18,6 +18,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from termpool.physics.params import BALL_RADIUS
 from termpool.physics.table import Table
 
 # A touching ball counts as hit only when the aim closes on it by more than this (m per m of
@@ -83,7 +84,8 @@ def aim_trace(table: Table, pos, radius, on_table, cue: int, angle_deg: float, *
     """Cast the cue ball's centre from pos[cue] along angle_deg (ccw from +x); the first thing
     it meets wins (a ball on a tie).
 
-    pos (N, 2) or (1, N, 2) m; radius a number or (N,); on_table None (all) or a boolean mask
+    pos (N, 2) or (1, N, 2) m; radius a number, (N,) or None (the standard ball); on_table
+    None (all) or a boolean mask
     (N,) of balls still on the table (pocketed balls are ignored). rail_gap is the centre's
     distance from a cushion nose (and a jaw tip) at contact: the cue ball's radius by default;
     pass the engine's `rc` for the cue ball to match its cushion contacts exactly.
@@ -95,9 +97,15 @@ def aim_trace(table: Table, pos, radius, on_table, cue: int, angle_deg: float, *
     n = p.shape[0]
     if not isinstance(cue, (int, np.integer)) or not 0 <= cue < n:
         raise ValueError(f"aim.cue: no ball {cue} among {n}")
-    rad = np.broadcast_to(np.asarray(radius, dtype=float), (n,))
-    alive = (np.ones(n, dtype=bool) if on_table is None
-             else np.asarray(on_table, dtype=bool).reshape(-1))
+    rad = np.broadcast_to(np.asarray(BALL_RADIUS if radius is None else radius, float), (n,))
+    if on_table is None:
+        alive = np.ones(n, dtype=bool)
+    else:
+        alive = np.asarray(on_table).reshape(-1)
+        # Engine state codes would pass as numbers and silently mean the wrong thing.
+        if alive.dtype != bool:
+            raise ValueError("aim.on_table: must be booleans (e.g. state != POCKETED), "
+                             f"not {alive.dtype}")
     if alive.shape[0] != n:
         raise ValueError(f"aim.on_table: {alive.shape[0]} flags for {n} balls")
     c = p[cue]

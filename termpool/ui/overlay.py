@@ -51,6 +51,8 @@ BUTT_M = 0.45  # dark butt length
 TIP_HALF_M, BUTT_HALF_M = 0.0065, 0.015  # stick half widths at the tip and the butt
 EIGHTHS = "▏▎▍▌▋▊▉"  # partial cells of the power bar, 1/8 .. 7/8
 
+Cells = tuple[np.ndarray, np.ndarray | None, np.ndarray | None]  # chars, fg, bg (None: mono)
+
 _IS_BALL = np.zeros(256, dtype=bool)
 _IS_BALL[[SOLID, STRIPE, EIGHT, CUE]] = True
 
@@ -64,8 +66,9 @@ def _ball_px(lay: Layout, radius: float) -> float:
 
 
 def _segment(lay: Layout, w: int, h: int, p0, p1, dotted: bool = False):
-    """Pixels (ix, iy) a straight segment p0 -> p1 (table metres) crosses on a w x h canvas,
-    each once; dotted keeps DOT_ON of every DOT_PERIOD pixels counted from p0."""
+    """Pixels (ix, iy) a straight segment p0 -> p1 (table metres) crosses on a w x h canvas
+    (some twice: painting them again is harmless and cheaper than sorting them out); dotted
+    keeps DOT_ON of every DOT_PERIOD pixels counted from p0."""
     x0, y0 = lay.to_pixels(p0[0], p0[1])
     x1, y1 = lay.to_pixels(p1[0], p1[1])
     x0, y0, x1, y1 = float(x0), float(y0), float(x1), float(y1)
@@ -83,9 +86,7 @@ def _segment(lay: Layout, w: int, h: int, p0, p1, dotted: bool = False):
     ix = np.floor(x0 + ux * s).astype(np.int64)
     iy = np.floor(y0 + uy * s).astype(np.int64)
     keep = (ix >= 0) & (ix < w) & (iy >= 0) & (iy < h)
-    lin = np.unique(iy[keep] * w + ix[keep])
-    iy, ix = np.divmod(lin, w)
-    return ix, iy
+    return ix[keep], iy[keep]
 
 
 def _ring(lay: Layout, w: int, h: int, centre, r_px: float, half: float = 0.5):
@@ -157,6 +158,8 @@ def draw_cue_stick(canvas: Canvas, lay: Layout, cue_pos, radius: float, angle_de
         raise ValueError("stick.pull: must be finite")
     if not math.isfinite(angle_deg):
         raise ValueError("stick.angle: must be finite")
+    if not all(math.isfinite(float(v)) for v in (cue_pos[0], cue_pos[1], radius)):
+        raise ValueError("stick.cue_pos: position and radius must be finite")
     pull = min(1.0, max(0.0, float(pull)))
     w, h = canvas.width, canvas.height
     dx, dy = aim_direction(angle_deg)
@@ -212,6 +215,8 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
 
     def mark(ix, iy, glyph):
         r, col = iy // 2, ix
+        ok = (r >= 0) & (r < rows) & (col >= 0) & (col < cols)
+        r, col = r[ok], col[ok]
         blank = chars[r, col] == " "
         chars[r[blank], col[blank]] = glyph
 
@@ -222,8 +227,8 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
         glyph = "-/|\\"[int(((slope + 22.5) % 180) // 45)]
         mark(*_segment(lay, w, h, g + n * 3 * radius, g + n * (3 * radius + OBJECT_LINE_M)),
              glyph)
-    if aim.hit in ("ball", "cushion"):
-        gx, gy = lay.to_pixels(g[0], g[1])
+    gx, gy = lay.to_pixels(g[0], g[1])
+    if aim.hit in ("ball", "cushion") and math.isfinite(gx) and math.isfinite(gy):
         mark(np.array([math.floor(gx)]), np.array([math.floor(gy)]), "o")
     mark(*_segment(lay, w, h, c, g), ".")
 
@@ -232,7 +237,7 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
 
 
 def spin_face_cells(side: float, top: float, size: tuple[int, int] = (7, 4), *,
-                    mono: bool = False):
+                    mono: bool = False) -> Cells:
     """A small cue-ball face, size = (cols, rows) cells, with the tip's point on it: side > 0
     moves it right, top > 0 up (units of R); a grey circle marks the miscue limit, 0.5 R.
 
@@ -251,8 +256,9 @@ def spin_face_cells(side: float, top: float, size: tuple[int, int] = (7, 4), *,
     dist = np.hypot(X, Y)
     # Layers, each pixel its topmost: 0 backdrop, 1 face, 2 limit circle, 3 tip.
     layer = np.zeros((2 * rows, cols), dtype=np.int8)
-    layer[dist <= rp] = 1
-    layer[(dist <= rp) & (np.abs(dist - 0.5 * rp) <= 0.5)] = 2
+    face = dist * dist <= rp * rp - 0.3  # as disc_mask rounds balls: no lone pixel at the poles
+    layer[face] = 1
+    layer[face & (np.abs(dist - 0.5 * rp) <= 0.5)] = 2
     off = math.hypot(side, top)
     k = 1.0 if off <= 1.0 else 1.0 / off  # a point off the face is shown on its edge
     tx, ty = side * k * rp, -top * k * rp
@@ -265,7 +271,7 @@ def spin_face_cells(side: float, top: float, size: tuple[int, int] = (7, 4), *,
     return to_cells(colours[layer])
 
 
-def power_meter_cells(level: float, width: int, label: str = ""):
+def power_meter_cells(level: float, width: int, label: str = "") -> Cells:
     """One row of `width` cells: the label, then a bar filled in proportion to level (0..1)
     to an eighth of a cell, its empty part dotted. (chars, fg, bg) like canvas.to_cells."""
     if not math.isfinite(level):
@@ -296,7 +302,7 @@ def power_meter_cells(level: float, width: int, label: str = ""):
     return chars, fg, bg
 
 
-def blit_cells(dst, src, row: int, col: int) -> None:
+def blit_cells(dst: Cells, src: Cells, row: int, col: int) -> None:
     """Copy cells `src` into `dst` (both (chars, fg, bg)) at row, col, clipped; colours are
     skipped where either side has none (mono)."""
     dc, dfg, dbg = dst
