@@ -54,6 +54,7 @@ def test_play_a_shot_and_quit_restores_the_terminal(game) -> None:
     g.send("\x1b[C" * 3, pause=0.3)  # aim a little to the right of the rack
     g.send(" ", pause=1.2)  # a tap with no auto-repeat: the oscillating meter starts
     g.send(" ", pause=0.2)  # ... and the second tap strikes
+    g.send("f")  # fast forward
     assert g.wait_for("You to shoot", timeout=60), g.text()
     assert table_cells(g) != before  # the balls moved
     g.send("q")

@@ -5,15 +5,21 @@ times, advances on `tick(now)` and hands back cells. This module owns everything
 undone: the alternate screen, the hidden cursor, cbreak mode, the kitty keyboard flags. They are
 restored on every way out (normal exit, Ctrl-C, SIGTERM, SIGHUP, exceptions) and around Ctrl-Z.
 
-Start-up never waits on the terminal: the first frame is written before any query (blessed's
-start-up probes and ours for the kitty keyboard protocol), and every query is bounded by
-`query_timeout`, so a terminal that ignores them all costs well under a second, after the
-table is already on screen.
+Start-up never waits on the terminal: the first frame is written before the one query we make
+(kitty keyboard support, followed by a DA1 request that nearly every terminal answers), and
+that wait is bounded by `query_timeout`, so a terminal that ignores queries costs a quarter of
+a second after the table is already on screen. Input is read here and decoded by
+``ui.keys.decode``; blessed supplies the terminal's own terminfo strings without probing it
+(its start-up probes wait up to 5 s each on a silent terminal).
 """
 
 from __future__ import annotations
 
+import codecs
+import io
 import os
+import re
+import select
 import signal
 import sys
 import termios
@@ -26,6 +32,11 @@ from termpool.ui.output import Screen
 
 ENTER = "\x1b[?1049h\x1b[?25l\x1b[H\x1b[2J"  # alternate screen, hide cursor, clear
 LEAVE = "\x1b[0m\x1b[?2026l\x1b[?25h\x1b[?1049l"  # reset, end sync, show cursor, main screen
+KITTY_QUERY = "\x1b[?u\x1b[c"  # kitty flags, then DA1 as the boundary every terminal answers
+_KITTY_REPLY = re.compile(r"\x1b\[\?\d*u")
+_DA1_REPLY = re.compile(r"\x1b\[\?[\d;]*c")
+_CUT_OFF = re.compile(r"\x1b(\[[0-?]*[ -/]*|O|\x1b|\x1b\[[0-?]*)?$")  # a sequence still arriving
+ESC_WAIT = 0.03  # s to wait for the rest of a sequence cut by a read
 KITTY_FLAGS = 1 | 2 | 8  # disambiguate, report press/repeat/release, all keys as escapes
 KITTY_PUSH = f"\x1b[>{KITTY_FLAGS}u"
 KITTY_POP = "\x1b[<u"
@@ -63,6 +74,7 @@ class Terminal:
         self.saved = termios.tcgetattr(fd_in)
         self.kitty = False
         self.active = False
+        self.enter_s, self.leave_s = _mode_strings()
 
     def write(self, s: str) -> None:
         try:
@@ -73,18 +85,34 @@ class Terminal:
 
     def enter(self) -> None:
         tty.setcbreak(self.fd_in, termios.TCSANOW)
-        self.write(ENTER + (KITTY_PUSH if self.kitty else ""))
+        self.write(self.enter_s + (KITTY_PUSH if self.kitty else ""))
         self.active = True
 
     def leave(self) -> None:
         if not self.active:
             return
         self.active = False
-        self.write((KITTY_POP if self.kitty else "") + LEAVE)
+        self.write((KITTY_POP if self.kitty else "") + self.leave_s)
         try:
             termios.tcsetattr(self.fd_in, termios.TCSADRAIN, self.saved)
         except termios.error:
             pass
+
+
+def _mode_strings() -> tuple[str, str]:
+    """Enter/leave strings from the terminal's terminfo entry (through blessed, given a
+    non-tty stream so it probes nothing), falling back to the xterm sequences."""
+    try:
+        import blessed
+
+        bt = blessed.Terminal(stream=io.StringIO(), force_styling=True)
+        enter = bt.enter_fullscreen + bt.hide_cursor
+        leave = bt.normal_cursor + bt.exit_fullscreen
+        if "\x1b" in enter and "\x1b" in leave:
+            return enter + "\x1b[H\x1b[2J", "\x1b[0m\x1b[?2026l" + leave
+    except Exception:  # a broken terminfo entry must not keep anyone from playing
+        pass
+    return ENTER, LEAVE
 
 
 def _size(out) -> tuple[int, int]:
@@ -95,13 +123,60 @@ def _size(out) -> tuple[int, int]:
         return 80, 24
 
 
+class Input:
+    """Bytes from the terminal -> keys, waiting briefly for sequences cut by a read."""
+
+    def __init__(self, fd: int) -> None:
+        self.fd = fd
+        self.utf8 = codecs.getincrementaldecoder("utf-8")("replace")
+        self.pending = ""  # text read but not yet decoded (e.g. during the kitty query)
+        self.closed = False
+
+    def _read(self, timeout: float) -> str:
+        r, _, _ = select.select([self.fd], [], [], timeout)
+        if not r:
+            return ""
+        try:
+            data = os.read(self.fd, 4096)
+        except OSError:
+            data = b""
+        if not data:
+            self.closed = True  # the terminal is gone
+        return self.utf8.decode(data)
+
+    def keys(self, timeout: float) -> list:
+        from termpool.ui.keys import decode
+
+        text = self.pending + ("" if self.pending else self._read(timeout))
+        self.pending = ""
+        while text and _CUT_OFF.search(text) and not self.closed:
+            more = self._read(ESC_WAIT)
+            if not more:
+                break
+            text += more
+        return decode(text) if text else []
+
+    def ask_kitty(self, term: Terminal, timeout: float) -> bool:
+        """Does the terminal speak the kitty keyboard protocol? Keys typed meanwhile are kept."""
+        term.write(KITTY_QUERY)
+        text = ""
+        end = time.monotonic() + timeout
+        while not _DA1_REPLY.search(text) and not self.closed:
+            left = end - time.monotonic()
+            if left <= 0:
+                break
+            text += self._read(left)
+        ok = _KITTY_REPLY.search(text) is not None
+        self.pending += _DA1_REPLY.sub("", _KITTY_REPLY.sub("", text))
+        return ok
+
+
 def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25,
         set_input_mode: Callable[[str], None] | None = None) -> int:
     """Run `app` on the process's terminal until it is done. Returns the exit status."""
-    from termpool.ui.keys import from_keystroke
-
     out = sys.stdout
     term = Terminal(sys.stdin.fileno(), out)
+    keys_in = Input(sys.stdin.fileno())
     cols, rows = _size(out)
     screen = Screen(cols, rows, depth, sync=True)
     flags = {"resized": False, "suspend": False}
@@ -130,8 +205,9 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
         signal.signal(signal.SIGTSTP, on_tstp)
         term.enter()
         screen.invalidate()
+        flags["resized"] = True  # the size may have changed while we were away
 
-    def draw(now: float) -> None:
+    def draw() -> None:
         nonlocal cols, rows
         if flags["resized"]:
             flags["resized"] = False
@@ -147,21 +223,11 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
 
     try:
         term.enter()
-        now = time.monotonic()
-        app.tick(now)
-        draw(now)  # the first frame goes out before any query
-        # blessed probes the terminal when it starts (XTGETTCAP, XTVERSION), waiting 5 s per
-        # query by default: a terminal that ignores queries would hang us for seconds.
-        os.environ.setdefault("BLESSED_QUERY_TIMEOUT_SECONDS", str(query_timeout))
-        import blessed
-
-        bt = blessed.Terminal()
-        if kitty:
-            with bt.cbreak():
-                state = bt.get_kitty_keyboard_state(timeout=query_timeout)
-            if state is not None:
-                term.kitty = True
-                term.write(KITTY_PUSH)
+        app.tick(time.monotonic())
+        draw()  # the first frame goes out before the query
+        if kitty and keys_in.ask_kitty(term, query_timeout):
+            term.kitty = True
+            term.write(KITTY_PUSH)
         if set_input_mode is not None:
             set_input_mode("release" if term.kitty else "repeat")
         next_frame = time.monotonic()
@@ -172,24 +238,24 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
             now = time.monotonic()
             wake = app.wake_in(now)
             timeout = 0.5 if wake is None else max(0.0, min(wake, next_frame - now, 0.5))
-            ks = bt.inkey(timeout=timeout)
-            while ks:
+            if flags["resized"]:
+                timeout = 0.0
+            for key in keys_in.keys(timeout):
                 now = time.monotonic()
-                key = from_keystroke(ks)
-                if key is not None:
-                    if key.ctrl and key.name == "z":  # kitty mode reports Ctrl-Z as a key
-                        if key.kind == "press":
-                            suspend()
-                    elif key.ctrl and key.name == "c":
-                        if key.kind == "press":
-                            raise KeyboardInterrupt
-                    else:
-                        app.key(key, now)
-                ks = bt.inkey(timeout=0)
+                if key.ctrl and key.name == "z":  # kitty mode reports Ctrl-Z as a key
+                    if key.kind == "press":
+                        suspend()
+                elif key.ctrl and key.name == "c":
+                    if key.kind == "press":
+                        raise KeyboardInterrupt
+                else:
+                    app.key(key, now)
+            if keys_in.closed:
+                raise Stop(signal.SIGHUP)
             now = time.monotonic()
             app.tick(now)
             if (now >= next_frame and app.dirty) or flags["resized"]:
-                draw(now)
+                draw()
                 next_frame = max(next_frame + FRAME_S, now)
         return 0
     except KeyboardInterrupt:
