@@ -13,6 +13,7 @@ Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls m
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -158,6 +159,11 @@ class App:
         k = int(np.argmin(np.hypot(d[:, 0], d[:, 1])))
         self.angle = math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0
 
+    def names(self, text: str) -> str:
+        """The referee's words with "player 0" / "player 1" replaced by the players' names."""
+        names = self.match.players
+        return re.sub(r"\b[Pp]layer ([01])\b", lambda g: names[int(g.group(1))], text)
+
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
 
@@ -240,10 +246,11 @@ class App:
         m = self.match
         before = int(m.on_table.sum())
         out = self.run.finish()
+        reason = self.names(out.reason)
         if out.foul:
-            self.message = [(f"Foul: {out.reason}", "foul")]
+            self.message = [(f"Foul: {reason}", "foul")]
         else:
-            self.message = [(out.reason, "good" if out.continue_turn else "plain")]
+            self.message = [(reason, "good" if out.continue_turn else "plain")]
         if self.opts.bell and (out.foul or int(m.on_table.sum()) < before):
             self.bells += 1  # a pocketed ball or a foul
         self._turn_start()
@@ -343,6 +350,7 @@ class App:
         self.now = t
         action = self.keymap.action(key)
         if key.kind == "release" and action != "shoot":
+            self.aimctl.step(key, t)  # a release ends an aim hold: the next press is a tap
             return
         if self.overlay is not None:
             self._overlay_key(key, action)

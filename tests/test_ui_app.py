@@ -1,0 +1,258 @@
+"""The game's app driven headless: keys on a virtual clock in, screens and shots out."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from termpool.ui.app import App, Options, power_to_speed
+from termpool.ui.controls import PowerCharge
+from termpool.ui.headless import play, screen_text
+from termpool.ui.keys import Key, legacy_events, parse_script
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def app_for(mode="practice", opponent="human", colors="mono", input_mode="release", **kw) -> App:
+    return App(Options(mode=mode, opponent=opponent, colors=colors, **kw), input_mode=input_mode)
+
+
+def run_script(app: App, script: str, cols=100, rows=32, legacy=False, frames=None) -> str:
+    events = parse_script(script)
+    if legacy:
+        events = legacy_events(events)
+    return play(app, events, cols, rows, frames)
+
+
+def shots(app: App) -> list[dict]:
+    return [rec["shot"] for rec in app.match.history]
+
+
+# ------------------------------------------------------------------------- power and aim
+
+def test_held_space_with_key_releases_shoots_with_the_power_held() -> None:
+    app = app_for()
+    run_script(app, "enter wait 0.2 space-hold 0.6 wait 1")
+    (shot,) = shots(app)
+    level = 0.6 / PowerCharge("release").full_time
+    assert shot["speed"] == pytest.approx(power_to_speed(level), rel=1e-9)
+
+
+def test_held_space_on_a_legacy_terminal_is_inferred_from_auto_repeat() -> None:
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2 space-hold 0.9 wait 1", legacy=True)
+    (shot,) = shots(app)
+    full = PowerCharge("repeat").full_time
+    # The inferred release is one repeat interval after the last repeat: within 0.05 s.
+    lo, hi = power_to_speed((0.9 - 0.05) / full), power_to_speed((0.9 + 0.05) / full)
+    assert lo <= shot["speed"] <= hi
+
+
+def test_classic_meter_press_to_start_press_to_strike() -> None:
+    app = app_for(input_mode="classic")
+    run_script(app, "enter wait 0.2 space wait 0.5 space wait 1", legacy=True)
+    assert len(shots(app)) == 1
+
+
+def test_balls_move_and_the_turn_comes_back_to_aim() -> None:
+    app = app_for()
+    rack = app.match.pos.copy()
+    screen = run_script(app, "enter wait 0.2 space-hold 1.0 wait 1")
+    assert len(app.match.history) == 1
+    assert app.run is None and app.phase in ("aim", "place")
+    assert not np.allclose(app.match.pos[1:], rack[1:])
+    assert "You to shoot" in screen or "You to break" in screen or "ball in hand" in screen
+
+
+def test_aim_keys_turn_the_shot_half_a_degree_a_tap() -> None:
+    app = app_for(mode="8ball")
+    run_script(app, "enter right*4 space-hold 1.0 wait 1")
+    assert shots(app)[0]["angle"] == pytest.approx(360.0 - 4 * 0.5)
+
+
+def test_spin_keys_set_the_tip_and_stay_inside_the_miscue_limit() -> None:
+    app = app_for(mode="8ball")
+    run_script(app, "enter w w d space-hold 1.0 wait 1")
+    s = shots(app)[0]
+    assert (s["side"], s["top"]) == pytest.approx((0.1, 0.2))
+    app = app_for(mode="8ball")
+    run_script(app, "enter w*9 a*9 space-hold 1.0 wait 1")
+    s = shots(app)[0]
+    assert np.hypot(s["side"], s["top"]) == pytest.approx(0.5)
+    assert s["side"] < 0 < s["top"]
+
+
+def test_no_shot_while_balls_move() -> None:
+    app = app_for()
+    run_script(app, "enter wait 0.2 space-hold 1.0 space-hold 1.0 wait 1")
+    assert len(shots(app)) == 1  # the second hold came while the balls were rolling
+
+
+# ------------------------------------------------------------------------ ball in hand
+
+def test_ball_in_hand_refuses_a_spot_on_another_ball() -> None:
+    app = app_for()
+    assert app.phase == "place"
+    app.cursor = [float(v) for v in app.match.pos[app.match.ids.index("1")]]
+    app.key(Key("enter"), 0.0)
+    assert app.phase == "place"
+    text = screen_text(app.cells(100, 32)[0])
+    assert "Can't place the cue ball there" in text
+
+
+def test_ball_in_hand_arrows_move_the_cue_ball() -> None:
+    app = app_for()
+    x0, y0 = app.cursor
+    run_script(app, "up*3 left*2")
+    assert app.cursor[1] > y0 and app.cursor[0] < x0
+    app.key(Key("enter"), 10.0)
+    c = app.match.ids.index("cue")
+    assert app.phase == "aim" and tuple(app.match.pos[c]) == pytest.approx(tuple(app.cursor))
+
+
+# ---------------------------------------------------------------------- pause, quit, help
+
+def test_pause_freezes_the_shot_and_any_key_resumes() -> None:
+    app = app_for()
+    run_script(app, "enter wait 0.2 space-hold 1.0 wait 0.5 p")
+    assert app.phase == "run" and app.overlay == "pause"
+    t = app.run.engine.time
+    for k in range(300):
+        app.tick(10.0 + k / 60)
+    assert app.run.engine.time == t
+    assert "paused" in screen_text(app.cells(100, 32)[0])
+    app.key(Key("x"), 20.0)
+    for k in range(60):
+        app.tick(20.0 + k / 60)
+    assert app.overlay is None and app.run.engine.time > t
+
+
+def test_quit_asks_first() -> None:
+    app = app_for()
+    run_script(app, "q")
+    assert app.overlay == "quit" and not app.done
+    assert "Quit termpool?" in screen_text(app.cells(100, 32)[0])
+    app.key(Key("n"), 1.0)
+    assert app.overlay is None and not app.done
+    app.key(Key("q"), 2.0)
+    app.key(Key("y"), 2.1)
+    assert app.done
+
+
+def test_help_lists_the_key_bindings() -> None:
+    app = app_for()
+    app.key(Key("h"), 0.0)
+    text = screen_text(app.cells(120, 40)[0])
+    for line in app.keymap.help_lines()[:5]:
+        assert line.strip()[:20] in text
+
+
+def test_menu_picks_a_game() -> None:
+    app = App(Options(colors="mono"))
+    assert app.phase == "menu"
+    assert "8-ball vs computer" in screen_text(app.cells(100, 32)[0])
+    run_script(app, "down down enter")
+    assert app.match.mode == "9ball" and app.cpu == (False, True)
+
+
+def test_tiny_window_gets_a_message_and_the_game_survives() -> None:
+    app = app_for()
+    assert "make the window at least" in screen_text(app.cells(30, 10)[0])
+    assert "You to break" in screen_text(app.cells(100, 32)[0])
+
+
+def test_idle_app_asks_for_nothing() -> None:
+    app = app_for()
+    run_script(app, "enter")
+    app.cells(100, 32)
+    app.tick(50.0)
+    assert app.wake_in(50.0) is None and not app.dirty
+
+
+# ------------------------------------------------------------------------ screens
+
+def test_diffed_frames_decode_to_the_same_screen_as_a_full_frame() -> None:
+    pyte = pytest.importorskip("pyte")
+    from termpool.ui.output import Screen
+
+    app = app_for(colors="truecolor")
+    frames: list[str] = []
+    run_script(app, "enter right*3 space-hold 1.0 wait 1", cols=80, rows=24, frames=frames)
+    assert len(frames) > 30
+    diffed = pyte.Screen(80, 24)
+    pyte.Stream(diffed).feed("".join(frames))
+    full = pyte.Screen(80, 24)
+    pyte.Stream(full).feed(Screen(80, 24, "truecolor").render(*app.cells(80, 24)))
+    for r in range(24):
+        for c in range(80):
+            a, b = diffed.buffer[r][c], full.buffer[r][c]
+            assert (a.data, a.bg) == (b.data, b.bg), (r, c)
+            if b.data != " ":  # a blank cell's foreground colour shows nowhere
+                assert a.fg == b.fg, (r, c)
+
+
+def test_panel_names_players_and_fouls_in_words() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    # A feeble break that does not reach the rack: a foul, and the turn passes.
+    run_script(app, "enter space wait 20")
+    text = screen_text(app.cells(120, 40)[0])
+    assert "Foul" in text
+    assert "player 0" not in text and "player 1" not in text
+    assert app.match.shooter == 1
+
+
+def test_computer_takes_its_turn() -> None:
+    app = app_for(mode="8ball", opponent="cpu")
+    run_script(app, "enter space wait 60")
+    assert any(rec["player"] == 1 for rec in app.match.history)
+
+
+# ---------------------------------------------------------------------------- the CLI
+
+def cli(*args: str, stdin: str = "") -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "termpool", *args], cwd=ROOT, input=stdin,
+                          capture_output=True, text=True, timeout=300,
+                          env={"PATH": "/usr/bin:/bin", "PYTHONPATH": str(ROOT)})
+
+
+def test_headless_play_prints_the_screen_and_a_replayable_record(tmp_path) -> None:
+    keys = tmp_path / "keys.txt"
+    keys.write_text("enter wait 0.2 right*2 space-hold 1.0 wait 1\n")
+    rec = tmp_path / "match.json"
+    p = cli("play", "--headless", "--mode", "practice", "--size", "90x30", "--keys", str(keys),
+            "--record", str(rec), "--colors", "mono")
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.rstrip("\n").split("\n")
+    assert len(lines) == 30 and max(len(s) for s in lines) <= 90
+    assert "You to" in p.stdout
+    data = json.loads(rec.read_text())
+    assert len(data["shots"]) == 1
+    r = cli("replay", str(rec))
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--keys", "-"], "script token 1 'spce'"),
+    (["--keys", "-", "--size", "100by30"], "--size"),
+    (["--keys", "/nonexistent/keys.txt"], "--keys"),
+    ([], "--keys"),
+])
+def test_headless_bad_input_is_one_line_and_exit_2(args, needle) -> None:
+    p = cli("play", "--headless", *args, stdin="spce")
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0], p.stderr
+
+
+def test_bad_keymap_file_is_one_line_and_exit_2(tmp_path) -> None:
+    conf = tmp_path / "keys.conf"
+    conf.write_text("aim_ccw = left\nno_such_action = x\n")
+    p = cli("play", "--headless", "--keys", "-", "--keymap", str(conf), stdin="q y")
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and "line 2" in lines[0]
