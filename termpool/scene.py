@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from termpool.physics.cue import strike
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.table import PRESETS, Table
 
 
@@ -239,18 +239,20 @@ def _balls(spec: Any, table: Table) -> list[dict]:
     return [_ball(b, i) for i, b in enumerate(spec)]
 
 
-def _check_layout(balls: list[dict], table: Table) -> None:
+def _check_layout(balls: list[dict], table: Table, physics: Physics) -> None:
     seen: dict[str, int] = {}
     for i, b in enumerate(balls):
         tag = f"balls[{i}] (id '{b['id']}')"
         if b["id"] in seen:
             raise SceneError(f"{tag}: duplicate id (also balls[{seen[b['id']]}])")
         seen[b["id"]] = i
-        if not table.inside(b["x"], b["y"], b["radius"]):
+        # A ball touching a rail has its centre nose_reach (< radius) from the nose line.
+        reach = nose_reach(b["radius"], physics.cushion_height)
+        if not table.on_bed(b["x"], b["y"], reach):
             raise SceneError(
                 f"{tag}: off the table at ({b['x']:g}, {b['y']:g}); the centre must lie within "
-                f"[{b['radius']:g}, {table.length - b['radius']:g}] x "
-                f"[{b['radius']:g}, {table.width - b['radius']:g}]"
+                f"[{reach:g}, {table.length - reach:g}] x [{reach:g}, {table.width - reach:g}] "
+                "(or in a pocket's mouth, clear of the jaws)"
             )
         for j in range(i):
             o = balls[j]
@@ -413,7 +415,7 @@ def load_scene(src: str | os.PathLike | dict) -> Scene:
     except ValueError as e:
         raise SceneError(str(e)) from None
     balls = _balls(raw.get("balls", "8ball"), table)
-    _check_layout(balls, table)
+    _check_layout(balls, table, physics)
     if "shot" in raw:
         _apply_shot(raw["shot"], balls)
     game = _game(raw["game"], balls, table, raw.get("shot")) if "game" in raw else None

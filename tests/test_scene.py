@@ -371,3 +371,58 @@ def test_example_specifics() -> None:
     assert abs(d[0] * rel[1] - d[1] * rel[0]) == pytest.approx(R, rel=1e-3)
     assert len(load_scene(ROOT / "examples" / "nineball.json").ids) == 10
     assert load_scene(ROOT / "examples" / "draw.json").w[0, 1] < 0
+
+
+# ------------------------------------------------------------- where a ball may rest
+
+
+def one_ball(x: float, y: float) -> dict:
+    return {"balls": [{"id": "1", "x": x, "y": y}]}
+
+
+def test_a_ball_touching_a_rail_nose_is_on_the_table() -> None:
+    # The nose is above the equator, so a ball touching it has its centre nearer than R.
+    t, h, r = Table.preset("9ft"), Physics().cushion_height, BALL_RADIUS
+    sin_t = (h - r) / r
+    reach = r * math.sqrt(1 - sin_t * sin_t)
+    assert reach < r
+    load_scene(one_ball(0.7, t.width - reach))
+    load_scene(one_ball(t.length - reach, 0.6))
+    with pytest.raises(SceneError, match="off the table"):
+        load_scene(one_ball(0.7, t.width - reach + 1e-5))
+
+
+def test_a_ball_in_a_pocket_mouth_is_on_the_table_but_not_over_the_hole() -> None:
+    t = Table.preset("9ft")
+    x = t.length / 2
+    load_scene(one_ball(x, t.width - 0.5 * BALL_RADIUS))  # past the rail line, between the jaws
+    k = t.hole_names.index("side_left")
+    hx, hy = t.hole_c[k]
+    with pytest.raises(SceneError, match="off the table"):
+        load_scene(one_ball(hx, hy))
+    with pytest.raises(SceneError, match="off the table"):
+        load_scene(one_ball(0.7, t.width + 0.01))  # in the rail, far from any pocket
+
+
+def test_every_layout_the_engine_leaves_loads_as_a_scene() -> None:
+    # Balls come to rest against rails and in pocket mouths; the next shot's scene must load.
+    from termpool.physics.engine import POCKETED, Engine
+
+    base = load_scene({"balls": "8ball"})
+    rng = np.random.default_rng(5)
+    B = 24
+    pos = np.repeat(base.pos[None], B, axis=0)
+    vel = np.zeros_like(pos)
+    w = np.zeros(pos.shape[:2] + (3,))
+    for b in range(B):
+        pos[b, 0, 1] += rng.uniform(-0.2, 0.2)
+        aim = base.pos[1] + rng.uniform(-0.03, 0.03, 2) - pos[b, 0]
+        angle = math.degrees(math.atan2(aim[1], aim[0]))
+        v, spin = strike(rng.uniform(3, 9), angle, rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3))
+        vel[b, 0], w[b, 0] = v, spin
+    eng = Engine(base.table, base.physics, pos, vel, w, record=False)
+    eng.run(1 / 60)
+    for b in range(B):
+        balls = [{"id": base.ids[k], "x": float(eng.pos[b, k, 0]), "y": float(eng.pos[b, k, 1])}
+                 for k in range(len(base.ids)) if eng.state[b, k] != POCKETED]
+        load_scene({"balls": balls})

@@ -143,3 +143,27 @@ class Table:
     def inside(self, x: float, y: float, r: float) -> bool:
         """True when a ball of radius r at (x, y) lies within the cushion noses."""
         return r <= x <= self.length - r and r <= y <= self.width - r
+
+    def on_bed(self, x: float, y: float, r: float, tol: float = 1e-6) -> bool:
+        """True when a ball of radius r at (x, y) is in play: within the cushion noses, or in
+        a pocket's mouth (a ball can stop there, past the line of the rail noses) clear of the
+        rails and jaws by `tol` and not yet over the hole."""
+        if self.inside(x, y, r):
+            return True
+        if not self.hole_r.size or not (math.isfinite(x) and math.isfinite(y)):
+            return False
+        p = np.array([x, y], float)
+        mouth = max(self.corner_mouth, self.side_mouth)
+        if np.hypot(*(self.points - p).T).min() > mouth:
+            return False  # nowhere near a pocket
+        if (np.hypot(*(self.hole_c - p).T) <= self.hole_r).any():
+            return False  # over a hole: pocketed
+        d = self.seg_b - self.seg_a
+        rel = p - self.seg_a
+        t = (rel * d).sum(axis=1) / (d * d).sum(axis=1)
+        beside = (t >= 0) & (t <= 1)
+        if (beside & ((rel * self.seg_n).sum(axis=1) < r - tol)).any():
+            return False  # behind or into a rail or jaw
+        near = self.seg_a + np.clip(t, 0, 1)[:, None] * d
+        gap = min(np.hypot(*(near - p).T).min(), np.hypot(*(self.points - p).T).min())
+        return bool(gap >= r - tol)
