@@ -58,6 +58,7 @@ class Options:
     aid: bool = True
     bell: bool = False
     theme: str = "standard"
+    three_foul: bool = False  # 9-ball: three fouls in a row lose the frame
 
 
 def power_to_speed(level: float) -> float:
@@ -114,7 +115,8 @@ class App:
             names = ("You", "You")
         self.cpu = (False, opponent == "cpu" and mode != "practice")
         self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
-                           seed=self.opts.seed, theme=self.opts.theme)
+                           seed=self.opts.seed, theme=self.opts.theme,
+                           three_foul=self.opts.three_foul and mode == "9ball")
         self._geom = None
         self.run = None
         self.message = []
@@ -162,7 +164,10 @@ class App:
     def names(self, text: str) -> str:
         """The referee's words with "player 0" / "player 1" replaced by the players' names."""
         names = self.match.players
-        return re.sub(r"\b[Pp]layer ([01])\b", lambda g: names[int(g.group(1))], text)
+        text = re.sub(r"\b[Pp]layer ([01])\b", lambda g: names[int(g.group(1))], text)
+        for a, b in YOU_GRAMMAR:
+            text = text.replace(a, b)
+        return text
 
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
@@ -516,7 +521,7 @@ class App:
     def _geometry(self, cols: int, rows: int):
         if self._geom is None or self._geom[:2] != (cols, rows):
             lay = layout(cols, rows, self.table)
-            view = TableView(self.table, lay) if lay is not None else None
+            view = TableView(self.table, lay, self.opts.theme) if lay is not None else None
             self._geom = (cols, rows, lay, view)
         return self._geom[2], self._geom[3]
 
@@ -599,16 +604,19 @@ class App:
         players = []
         for p in range(2):
             group = "" if st.groups is None else st.groups[p]
-            balls = []
+            balls, down = [], []
             if group:
-                balls = [k for k, b in enumerate(m.ids) if b in GROUPS[group] and m.on_table[k]]
+                mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
+                balls = [k for k in mine if m.on_table[k]]
+                down = [k for k in mine if not m.on_table[k]]
             label = group
             if group and self.opts.theme != "standard":
                 from termpool.rules.themes import group_label
 
                 label = group_label(group, self.opts.theme)
-            players.append(PlayerLine(m.players[p], label, balls, m.scores[p],
-                                      p == m.shooter and self.phase != "over", st.fouls[p]))
+            fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
+            players.append(PlayerLine(m.players[p], label, balls, down, m.scores[p],
+                                      p == m.shooter and self.phase != "over", fouls))
         if st.mode == "practice":
             players = players[:1]
         status = list(self.message)
@@ -626,7 +634,7 @@ class App:
         if self.opts.frames > 1:
             title += f" · race to {self.opts.frames}"
         return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
-                         widgets=widgets)
+                         widgets=widgets, theme=self.opts.theme)
 
     def _status(self) -> list[tuple[str, str]]:
         m = self.match
@@ -643,7 +651,9 @@ class App:
             elif m.state.push_out == "available":
                 s += " · O: push-out"
             out.append((s, "turn"))
-            out.append((f"power: {self.charge.label}", "dim"))
+            power = f"power {round(100 * self.charge.level(self.now))}% · " \
+                if self.charge.active else "power: "
+            out.append((power + self.charge.label, "dim"))
             if self.side or self.top:
                 out.append((f"tip {self.side:+.1f} side {self.top:+.1f} top", "dim"))
         elif self.phase == "place":
@@ -683,6 +693,9 @@ class App:
         return cells
 
 
+YOU_GRAMMAR = (("You continues", "You continue"), ("You loses", "You lose"),
+               ("You wins", "You win"), ("You has", "You have"), ("You's", "your"),
+               ("You is", "You are"))
 OPTION_KEYS = {
     "rerack_or_accept": {"r": "rerack", "a": "accept"},
     "shoot_or_pass": {"s": "shoot", "p": "pass"},

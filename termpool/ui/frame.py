@@ -20,11 +20,11 @@ from termpool.ui.palette import (
     CUE,
     DIM_TEXT_C,
     EIGHT,
-    MONO_GLYPH,
     STRIPE,
     STRIPE_WHITE_C,
     TEXT_C,
     ball_style,
+    mono_glyph,
 )
 from termpool.ui.table_view import MIN_COLS, MIN_ROWS, Layout, TableView, layout
 
@@ -38,14 +38,15 @@ def _on_table(ids: Sequence[str], state) -> list[int]:
     return [k for k in range(len(ids)) if st[k] != POCKETED]
 
 
-def _ball_tokens(ids: Sequence[str], which: list[int], mono: bool) -> list[tuple]:
+def _ball_tokens(ids: Sequence[str], which: list[int], mono: bool,
+                 theme: str = "standard") -> list[tuple]:
     """Panel labels (text, fg, bg) for balls: solids as the number on the ball's colour,
     stripes as the number in the colour on white, the cue ball as 'c'."""
     out = []
     for k in which:
-        st = ball_style(ids[k], k)
+        st = ball_style(ids[k], k, theme)
         if mono:
-            out.append((MONO_GLYPH[st.tag] + st.number, None, None))
+            out.append((mono_glyph(st) + st.number, None, None))
         elif st.tag == STRIPE:
             out.append((f"{st.number:>2}", st.colour.rgb, STRIPE_WHITE_C.rgb))
         elif st.tag == CUE:

@@ -73,9 +73,13 @@ BALL_C = {
     8: Colour((30, 30, 34), 234, 0),  # black
 }
 
+# The "classic" theme (UK pub pool, the seed game): reds and yellows, no stripes.
+CLASSIC_RED_C = Colour((200, 25, 25), 160, 9)
+CLASSIC_YELLOW_C = Colour((245, 205, 30), 220, 11)
+
 ALL_COLOURS = (
     BACKDROP_C, FELT_C, CUSHION_C, RAIL_C, DIAMOND_C, POCKET_C, CUE_C, STRIPE_WHITE_C,
-    TEXT_C, DIM_TEXT_C, *BALL_C.values(),
+    TEXT_C, DIM_TEXT_C, *BALL_C.values(), CLASSIC_RED_C, CLASSIC_YELLOW_C,
     AIM_C, GUIDE_C, STICK_C, BUTT_C, TIP_C, PLACE_OK_C, PLACE_BAD_C, POWER_C, SPIN_DOT_C,
     SPIN_LIMIT_C,
 )
@@ -98,8 +102,10 @@ class BallStyle(NamedTuple):
     number: str  # the label shown in panels
 
 
-def ball_style(ball_id: str, index: int = 0) -> BallStyle:
-    """Standard colours for ids 'cue' and '1'..'15'; other ids cycle through the solids."""
+def ball_style(ball_id: str, index: int = 0, theme: str = "standard") -> BallStyle:
+    """Standard colours for ids 'cue' and '1'..'15'; other ids cycle through the solids.
+    theme "classic": 1-7 red, 9-15 yellow, all plain (`mono_glyph` keeps the stripes' glyph
+    for the yellows, so mono still tells the groups apart)."""
     bid = str(ball_id)
     if bid.lower() in CUE_IDS:
         return BallStyle(CUE, CUE_C, "c")
@@ -110,7 +116,16 @@ def ball_style(ball_id: str, index: int = 0) -> BallStyle:
     if 1 <= n <= 15:
         if n == 8:
             return BallStyle(EIGHT, BALL_C[8], "8")
+        if theme == "classic":
+            return BallStyle(SOLID, CLASSIC_RED_C if n < 8 else CLASSIC_YELLOW_C, str(n))
         if n > 8:
             return BallStyle(STRIPE, BALL_C[n - 8], str(n))
         return BallStyle(SOLID, BALL_C[n], str(n))
     return BallStyle(SOLID, BALL_C[1 + index % 7], bid[:2])
+
+
+def mono_glyph(style: BallStyle) -> str:
+    """The glyph of a ball in mono: by its tag, with classic yellows drawn as the stripes."""
+    if style.colour is CLASSIC_YELLOW_C:
+        return MONO_GLYPH[STRIPE]
+    return MONO_GLYPH[style.tag]

@@ -29,6 +29,7 @@ class PlayerLine:
     name: str
     group: str = ""  # "solids", "reds", "" while open
     balls: list[int] = field(default_factory=list)  # indices of the balls still to pot
+    down: list[int] = field(default_factory=list)  # indices of the group's balls pocketed
     score: int = 0
     turn: bool = False
     fouls: int = 0
@@ -44,6 +45,7 @@ class PanelInfo:
     spin: tuple[float, float] | None = None  # (side, top) in units of R, shown on a cue-ball face
     power: tuple[float, str] | None = None  # (level 0..1, label) while charging
     widgets: list = field(default_factory=list)  # (cells, where) blocks drawn by the app
+    theme: str = "standard"
 
 
 def _tone(t: str):
@@ -104,8 +106,11 @@ def draw_panel(cells, lay: Layout, info: PanelInfo, mono: bool = False) -> None:
         _bottom(cells, col + 1, row, ncols - 2, nrows, info, mono)
 
 
-def _tokens(cells, r: int, c: int, end: int, ids, balls: list[int], mono: bool) -> None:
-    for text, fg, bg in _ball_tokens(ids, balls, mono):
+def _tokens(cells, r: int, c: int, end: int, p: PlayerLine, info: PanelInfo, mono: bool) -> None:
+    """The balls a player still has to pot, in colour, then the ones already down, dim."""
+    toks = _ball_tokens(info.ids, p.balls, mono, info.theme)
+    toks += [(f"{info.ids[k]:>2}", DIM_TEXT_C.rgb, BACKDROP_C.rgb) for k in p.down]
+    for text, fg, bg in toks:
         if c + len(text) > end:
             break
         put_text(cells, r, c, text, fg, bg)
@@ -123,12 +128,19 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         _paste(cells, block, r0, right)
     w = right - c0 - 1
     r = r0
-    for p in info.players[:2]:
-        if r >= r0 + nrows - 2 and len(info.players) > 1 and nrows < 4:
-            break
-        c = _player(cells, r, c0, w, p, info.ids, mono)
-        _tokens(cells, r, c, c0 + w, info.ids, p.balls, mono)
+    if nrows < 6 and len(info.players) > 1:
+        # Short panels: both players share a row so the status keeps two.
+        c, half = c0, c0 + w // 2
+        for k, p in enumerate(info.players[:2]):
+            start = c0 if k == 0 else max(c + 1, half)
+            c = _player(cells, r, start, w - (start - c0), p, info.ids, mono)
+            _tokens(cells, r, c, (half - 1) if k == 0 else c0 + w, p, info, mono)
         r += 1
+    else:
+        for p in info.players[:2]:
+            c = _player(cells, r, c0, w, p, info.ids, mono)
+            _tokens(cells, r, c, c0 + w, p, info, mono)
+            r += 1
     lines = []
     for text, tone in info.status:
         lines += [(s, tone) for s in _wrap(text, w)]
@@ -147,8 +159,8 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
     for p in info.players:
         _player(cells, r, c0, width, p, info.ids, mono)
         r += 1
-        if p.balls:
-            _tokens(cells, r, c0 + 2, c0 + width, info.ids, p.balls, mono)
+        if p.balls or p.down:
+            _tokens(cells, r, c0 + 2, c0 + width, p, info, mono)
             r += 1
         r += 1
     for text, tone in info.status:

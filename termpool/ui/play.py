@@ -27,6 +27,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--level", choices=LEVELS, default="normal", help="the computer's skill")
     p.add_argument("--theme", choices=("standard", "classic"), default="standard",
                    help="ball colours: numbered solids and stripes, or reds and yellows")
+    p.add_argument("--three-foul", action="store_true",
+                   help="9-ball: three fouls in a row lose the frame")
     p.add_argument("--no-aid", action="store_true", help="start with the aim line off (G)")
     p.add_argument("--bell", action="store_true", help="ring the bell on a foul (N toggles)")
     p.add_argument("--input", choices=INPUTS, default="auto",
@@ -64,7 +66,7 @@ def _options(args: argparse.Namespace):
         raise PlayError("--frames: must be at least 1")
     return Options(mode=args.mode, opponent=args.opponent, table=args.table, colors=args.colors,
                    frames=args.frames, seed=args.seed, level=args.level, aid=not args.no_aid,
-                   bell=args.bell, theme=args.theme)
+                   bell=args.bell, theme=args.theme, three_foul=args.three_foul)
 
 
 def _keymap(path: str | None):

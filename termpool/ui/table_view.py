@@ -31,7 +31,6 @@ from termpool.ui.palette import (
     DIAMOND_C,
     FELT,
     FELT_C,
-    MONO_GLYPH,
     POCKET,
     POCKET_C,
     RAIL,
@@ -39,6 +38,7 @@ from termpool.ui.palette import (
     STRIPE,
     STRIPE_WHITE_C,
     ball_style,
+    mono_glyph,
 )
 
 MIN_COLS, MIN_ROWS = 40, 12
@@ -320,8 +320,8 @@ def draw_ball(cv: Canvas, cx: float, cy: float, rr: float, style) -> None:
 class TableView:
     """A table drawn for one layout: the background is built once; `draw` adds the balls."""
 
-    def __init__(self, table: Table, lay: Layout):
-        self.table, self.layout = table, lay
+    def __init__(self, table: Table, lay: Layout, theme: str = "standard"):
+        self.table, self.layout, self.theme = table, lay, theme
         self.background = draw_background(table, lay)
         self._canvas = self.background.copy()
         self._styles: dict[tuple[str, int], object] = {}
@@ -330,7 +330,7 @@ class TableView:
         key = (ball_id, index)
         st = self._styles.get(key)
         if st is None:
-            st = self._styles[key] = ball_style(ball_id, index)
+            st = self._styles[key] = ball_style(ball_id, index, self.theme)
         return st
 
     def _balls(self, ids, pos, state, radius):
@@ -371,5 +371,5 @@ class TableView:
         for x, y, _rr, style in self._balls(ids, pos, state, radius):
             c, r = int(math.floor(x)), int(math.floor(y)) // 2
             if 0 <= r < rows and 0 <= c < cols:
-                chars[r, c] = MONO_GLYPH[style.tag]
+                chars[r, c] = mono_glyph(style)
         return chars
