@@ -256,3 +256,31 @@ def test_bad_keymap_file_is_one_line_and_exit_2(tmp_path) -> None:
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and "line 2" in lines[0]
+
+
+def test_push_out_then_pass_with_p_which_is_not_pause_here() -> None:
+    app = app_for(mode="9ball", opponent="human")
+    run_script(app, "enter space-hold 1.2 wait 20")
+    if app.phase == "place":
+        app.key(Key("enter"), 100.0)
+    assert app.match.state.push_out == "available"
+    pusher = app.match.shooter
+    run_script(app, "o space-hold 0.3 wait 20")
+    assert app.phase == "option" and app.match.option == "shoot_or_pass"
+    assert app.match.shooter != pusher
+    assert "pass" in screen_text(app.cells(100, 32)[0])
+    app.key(Key("p"), 200.0)
+    assert app.overlay is None and app.match.option is None
+    assert app.match.shooter == pusher
+
+
+def test_game_over_n_starts_a_new_game_and_does_not_toggle_the_bell() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    run_script(app, "enter space-hold 1.0 wait 20")
+    app.match.winner = 0  # as if the 8 had just gone down legally
+    app._turn_start()
+    assert app.phase == "over" and "wins" in screen_text(app.cells(100, 32)[0])
+    bell = app.opts.bell
+    app.key(Key("n"), 300.0)
+    assert app.opts.bell == bell
+    assert app.match.history == [] and app.phase == "place"

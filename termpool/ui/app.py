@@ -360,6 +360,9 @@ class App:
         if self.overlay is not None:
             self._overlay_key(key, action)
             return
+        if self.phase in ("option", "over") and key.kind == "press" and self._answer(key):
+            self.dirty = True
+            return  # their letters (P: pass, N: new game) come before the global keys
         if action == "help" and key.kind == "press":
             self.overlay = "help"
         elif action == "quit" and key.kind == "press":
@@ -485,23 +488,29 @@ class App:
     def _key_cpu(self, key, action, t) -> None:
         self._key_run(key, action, t)
 
-    def _key_option(self, key, action, t) -> None:
-        if key.kind != "press":
-            return
-        answers = OPTION_KEYS.get(self.match.option, {})
-        pick = answers.get(key.name)
-        if pick is not None:
+    def _answer(self, key) -> bool:
+        """A letter answering the option box or the game-over box; False if it is not one."""
+        if self.phase == "option":
+            pick = OPTION_KEYS.get(self.match.option, {}).get(key.name)
+            if pick is None:
+                return False
             self.match.choose(pick)
             self._turn_start()
-
-    def _key_over(self, key, action, t) -> None:
-        if key.kind != "press":
-            return
-        if key.name == "n" or action == "confirm":
+            return True
+        if key.name == "n" or key.name == "enter":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
             self.phase = "menu"
             self.match = None
+        else:
+            return False
+        return True
+
+    def _key_option(self, key, action, t) -> None:
+        pass  # only the answers (see _answer) and the global keys
+
+    def _key_over(self, key, action, t) -> None:
+        pass
 
     # ------------------------------------------------------------------------ the screen
     def aim(self):
