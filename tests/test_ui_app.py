@@ -284,3 +284,50 @@ def test_game_over_n_starts_a_new_game_and_does_not_toggle_the_bell() -> None:
     app.key(Key("n"), 300.0)
     assert app.opts.bell == bell
     assert app.match.history == [] and app.phase == "place"
+
+
+@pytest.mark.parametrize("cols, rows", [(80, 24), (120, 40), (200, 60)])
+@pytest.mark.parametrize("depth", ["truecolor", "256", "16", "mono"])
+def test_game_screen_at_sizes_and_depths(cols, rows, depth) -> None:
+    pyte = pytest.importorskip("pyte")
+    from termpool.ui.output import Screen
+
+    app = app_for(mode="8ball", colors=depth)
+    app.key(Key("enter"), 0.0)  # place the cue ball on the head spot: aiming at the rack
+    scr = pyte.Screen(cols, rows)
+    pyte.Stream(scr).feed(Screen(cols, rows, depth).render(*app.cells(cols, rows)))
+    text = "\n".join(scr.display)
+    assert "Player 1 to break" in text
+    lay = app._geom[2]
+    c = app.match.ids.index("cue")
+    x, y = lay.to_pixels(*app.match.pos[c])
+    cell = scr.buffer[int(y) // 2][int(x)]
+    felt = scr.buffer[(lay.py + lay.ph // 4) // 2][lay.px + lay.pw // 2]  # open cloth
+    if depth == "mono":
+        assert cell.data == "○"
+    else:
+        pixel = cell.fg if int(y) % 2 == 0 else cell.bg  # the upper or lower half of the cell
+        assert pixel != felt.bg  # the cue ball is drawn where it is, over the cloth
+        if depth == "truecolor":
+            r, g, b = (int(felt.bg[k:k + 2], 16) for k in (0, 2, 4))
+            assert g > r and g > b  # the felt is green
+            r, g, b = (int(pixel[k:k + 2], 16) for k in (0, 2, 4))
+            assert min(r, g, b) > 200  # the cue ball is white
+
+
+def test_resizing_during_a_shot_relays_out_without_losing_the_shot() -> None:
+    app = app_for()
+    app.key(Key("enter"), 0.0)
+    app.key(Key("space"), 0.1)
+    app.key(Key("space", kind="release"), 1.1)  # held for a second: the shot starts
+    assert app.phase == "run"
+    sizes = [(80, 24), (30, 10), (160, 50), (100, 32)]
+    for k, (cols, rows) in enumerate(sizes):
+        app.tick(10.0 + k * 0.1)
+        chars = app.cells(cols, rows)[0]
+        assert chars.shape == (rows, cols)
+    for k in range(60 * 60):
+        app.tick(11.0 + k / 60)
+        if app.phase != "run":
+            break
+    assert len(app.match.history) == 1
