@@ -352,16 +352,38 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     return cands
 
 
-def _mirror_aims(p: np.ndarray, table: Table, r: float) -> list[np.ndarray]:
-    """Images of point p in the four rails (lines where a ball's centre meets the cushion)."""
+def _kick_aims(pc: np.ndarray, pt: np.ndarray, table: Table, rc: float,
+               bounce: float) -> list[float]:
+    """Aim angles (degrees) of one-rail kicks from pc to pt, one per rail.
+
+    The ball's centre meets a rail on the line rc from its nose. A rebound keeps the speed
+    along the rail and keeps `bounce` of the speed across it, so the contact point splits the
+    way in the ratio a*bounce : b of the two balls' distances from that line (a mirror image
+    is bounce = 1)."""
     L, W = table.length, table.width
-    x, y = float(p[0]), float(p[1])
-    return [np.array([x, -y + 2 * r]), np.array([x, 2 * (W - r) - y]),
-            np.array([-x + 2 * r, y]), np.array([2 * (L - r) - x, y])]
+    aims = []
+    for axis, line in ((1, rc), (1, W - rc), (0, rc), (0, L - rc)):
+        a, b = abs(float(pc[axis]) - line), abs(float(pt[axis]) - line)
+        along = 1 - axis
+        if a + b < 1e-9:
+            continue
+        s = (float(pt[along]) * a * bounce + float(pc[along]) * b) / (a * bounce + b)
+        hit = np.empty(2)
+        hit[axis], hit[along] = line, s
+        aims.append(_deg(hit - pc))
+    return aims
 
 
-def _safety_cands(t: _Table, targets: list[str], table: Table, budget: int) -> _Cands:
-    """Soft full and half-ball hits at each legal ball, and one-rail kicks at it."""
+def _contact_offset(table: Table, physics: Physics, radius: float) -> float:
+    """How far a ball's centre stops from a cushion nose (the nose is above the centre)."""
+    sin_t = min(max((physics.cushion_height - radius) / radius, -0.95), 0.95)
+    return radius * math.sqrt(1 - sin_t * sin_t)
+
+
+def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
+                  budget: int) -> _Cands:
+    """Soft full and half-ball hits at each legal ball, and one-rail kicks at it (each rail
+    with two guesses of the rebound: the cushion's restitution, and halfway to a mirror)."""
     cands = _Cands()
     pc = t.pos[t.cue]
     rows = []
@@ -376,10 +398,12 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, budget: int) -> _
         rows.append((1.8, base, i, "safety"))
         rows.append((1.3, base + half, i, "safety"))
         rows.append((1.3, base - half, i, "safety"))
-        for img in _mirror_aims(t.pos[i], table, t.radius[t.cue]):
-            rows.append((2.2, _deg(img - pc), i, "kick"))
+        rc = _contact_offset(table, physics, float(t.radius[t.cue]))
+        for bounce in (physics.e_cushion, (1 + physics.e_cushion) / 2):
+            for aim in _kick_aims(pc, t.pos[i], table, rc, bounce):
+                rows.append((2.2, aim, i, "kick"))
     # Interleave balls so that a small budget still covers every legal ball.
-    per = 8
+    per = 12
     for j in range(per):
         for k in range(j, len(rows), per):
             if len(cands) >= budget:
@@ -494,7 +518,8 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
     scores = np.zeros(B)
     calls: list = []
     notes: list = []
-    leave_for: list[tuple[int, str, State]] = []  # (table, "me"|"you", state for next shot)
+    leave_for: list[tuple[int, float, State]] = []  # (table, pot chance or -1, next state)
+    practice = state.mode == "practice"
     for b in range(B):
         summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
         called = _call(state, targets, t, cands, b, summary, pockets)
@@ -503,24 +528,19 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
         tgt = t.ids[cands.target[b]] if cands.target[b] >= 0 else None
         aimed = pockets.names[cands.pocket[b]] if cands.pocket[b] >= 0 else None
         potted = summary.object_pocketed
+        # How likely the shot is to do in play what it did here: a pot aimed at a pocket
+        # by its chance, the break as it is, anything else (a kiss, a combination) a fluke.
+        intended = tgt is not None and aimed is not None and summary.pocketed.get(tgt) == aimed
+        p = 1.0 if cands.kind[b] == "break" else cands.chance[b] if intended else FLUKE
         if out.winner is not None:
-            if out.winner == state.shooter:
-                scores[b] = cands.chance[b] * WIN + (1 - cands.chance[b]) * MISS \
-                    if cands.kind[b] == "pot" else FLUKE * WIN + (1 - FLUKE) * MISS
-            else:
-                scores[b] = LOSS
+            scores[b] = p * WIN + (1 - p) * MISS if out.winner == state.shooter else LOSS
             notes.append(out.reason)
-        elif out.foul is not None:
+        elif out.foul is not None or (practice and out.ball_in_hand):
             scores[b] = FOUL
-            notes.append(f"foul: {out.reason}")
-        elif out.continue_turn:
-            intended = (tgt is not None and aimed is not None
-                        and summary.pocketed.get(tgt) == aimed)
-            p = cands.chance[b] if intended else FLUKE
-            if cands.kind[b] == "break":
-                p = 1.0
+            notes.append(f"foul: {out.reason}" if out.foul else out.reason)
+        elif out.continue_turn and potted:
             scores[b] = p * CONTINUE + (1 - p) * MISS
-            leave_for.append((b, "me", nxt))
+            leave_for.append((b, p, nxt))
             if intended:
                 notes.append(f"{tgt} in the {aimed} pocket")
             else:
@@ -528,7 +548,8 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
                 notes.append(f"{', '.join(potted)} in by {how}")
         else:
             scores[b] = PASS
-            leave_for.append((b, "you", nxt))
+            if not practice:  # in practice the same player shoots again: nothing to deny
+                leave_for.append((b, -1.0, nxt))
             word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
             if word is None:
                 word = f"try {tgt} in the {aimed} pocket"
@@ -545,14 +566,12 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
         chance, _ = _chances(final[rows, t.cue], final[rows], alive[rows], tmask, t.radius,
                              t.cue, pockets, table, lv.sigma)
         value = _leave(chance)
-        for r, (b, who, _) in enumerate(leave_for):
+        for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
-            if who == "me":
-                p = 1.0 if cands.kind[b] == "break" else cands.chance[b]
-                scores[b] += p * POSITION * value[r]
-            else:
-                scores[b] -= LEAVE * value[r]
+            # After a pot (p >= 0): the shooter's next shot, as likely as the pot itself.
+            # After the turn passes (p < 0): the opponent's.
+            scores[b] += p * POSITION * value[r] if p >= 0 else -LEAVE * value[r]
     return scores, calls, notes
 
 
@@ -576,10 +595,10 @@ def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     if state.is_break:
         cands = _break_cands(t, targets)
     else:
-        reserve = min(budget // 4, 8 * max(len(targets), 1))
+        reserve = min(budget // 3, 12 * max(len(targets), 1))
         cands = _pot_cands(t, targets, pockets, table, physics, lv, budget - reserve)
         _calibrate(t, cands, pockets, table, physics)
-        safe = _safety_cands(t, targets, table, budget - len(cands))
+        safe = _safety_cands(t, targets, table, physics, budget - len(cands))
         for k in range(len(safe)):
             cands.add(safe.speed[k], safe.angle[k], safe.side[k], safe.top[k], safe.target[k],
                       safe.pocket[k], safe.kind[k], safe.chance[k])
