@@ -56,14 +56,17 @@ class Level(NamedTuple):
     sigma: float  # notional aim error (degrees) that weighs how risky a pot is
     noise: bool  # add that aim error (and a speed error) to the chosen plan
     spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+    combos: int  # candidates kept for combinations (two speeds each)
+    verify: int  # best candidates re-simulated under aim error before choosing
 
 
 LEVELS = {
-    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1),
-    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2),
+    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1, 0, 6),
+    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2,
+                    16, 8),
     "hard": Level(2.0, (1.0, 1.5, 2.2, 3.2),
                   ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)),
-                  0.2, False, 3),
+                  0.2, False, 3, 32, 12),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
 MISS = -60.0  # value of a pot that misses in play: the opponent usually gets a shot
@@ -226,11 +229,7 @@ def _chances(cue, balls, alive, target, radius, cue_idx, pockets, table, sigma):
     gx, gy = ghost[..., 0], ghost[..., 1]
     ok &= (gx >= rc) & (gx <= table.length - rc) & (gy >= rc) & (gy <= table.width - rc)
     tol = np.maximum(pockets.half[None, None] * approach - 0.6 * rc, 0.004)
-    # A cue aim error e turns the contact normal by e d1 / (2R cos cut): the tolerance on the
-    # object ball's heading (tol / d2) maps back to the cue through that factor.
-    cue_tol = (tol / np.maximum(d2, 1e-3)) * (rc + radius)[None, :, None] * np.maximum(
-        cos_cut, 1e-3) / np.maximum(d1, 1e-3)
-    chance = _erf(cue_tol / (math.radians(sigma) * math.sqrt(2.0)))
+    chance = _pot_chance(tol, d1, d2, cos_cut, (rc + radius)[None, :, None], sigma)
     # Blockers: every live ball but the target (and the cue ball on the cue's own path).
     idx = np.arange(N)
     dead = ~alive[:, None, :]  # (B, 1, K)
@@ -248,7 +247,17 @@ def _chances(cue, balls, alive, target, radius, cue_idx, pockets, table, sigma):
     return np.where(ok, chance, 0.0), u
 
 
-def _erf(x: np.ndarray) -> np.ndarray:
+def _pot_chance(tol, d1, d2, cos_cut, reach, sigma: float):
+    """Chance that a cue aim error (sd `sigma` degrees) keeps the object ball within `tol` of
+    its line at distance d2. The cue ball travels d1 to the ghost ball; `reach` is the sum of
+    the two radii. An aim error e turns the contact normal by about e d1 / (reach cos cut),
+    so the tolerance on the object ball's heading, tol / d2, maps back through that factor."""
+    cue_tol = (tol / np.maximum(d2, 1e-3)) * reach * np.maximum(cos_cut, 1e-3) / np.maximum(
+        d1, 1e-3)
+    return _erf(cue_tol / (math.radians(sigma) * math.sqrt(2.0)))
+
+
+def _erf(x):
     # Abramowitz-Stegun 7.1.26 (error under 1.5e-7), for x >= 0: numpy has no erf.
     t = 1.0 / (1.0 + 0.3275911 * x)
     poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (
@@ -278,10 +287,13 @@ class _Cands:
         self.top: list[float] = []
         self.target: list[int] = []  # ball index aimed at (-1: none)
         self.pocket: list[int] = []  # pocket aimed at (-1: none)
-        self.kind: list[str] = []  # "break", "pot", "safety", "kick"
+        self.kind: list[str] = []  # "break", "pot", "combo", "safety", "kick"
         self.chance: list[float] = []
+        self.via: list[int] = []  # combo: the ball the target drives into the pocket
+        self.aim: list[tuple[float, float]] = []  # pots and combos: where the target heads
 
-    def add(self, speed, angle, side, top, target, pocket, kind, chance) -> None:
+    def add(self, speed, angle, side, top, target, pocket, kind, chance, via=-1,
+            aim=(0.0, 0.0)) -> None:
         self.speed.append(float(np.clip(speed, 0.0, BREAK_SPEEDS[-1])))
         self.angle.append(float(angle))
         self.side.append(float(side))
@@ -290,6 +302,14 @@ class _Cands:
         self.pocket.append(int(pocket))
         self.kind.append(kind)
         self.chance.append(float(chance))
+        self.via.append(int(via))
+        self.aim.append((float(aim[0]), float(aim[1])))
+
+    def extend(self, other: _Cands) -> None:
+        for k in range(len(other)):
+            self.add(other.speed[k], other.angle[k], other.side[k], other.top[k],
+                     other.target[k], other.pocket[k], other.kind[k], other.chance[k],
+                     other.via[k], other.aim[k])
 
     def __len__(self) -> int:
         return len(self.speed)
@@ -348,7 +368,60 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
         for f in lv.speeds:
             speed = float(np.clip(base * f, *SPEED_RANGE))
             for side, top in lv.spins:
-                cands.add(speed, _deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c)
+                cands.add(speed, _deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c,
+                          aim=pockets.aim[k])
+    return cands
+
+
+def _combo_cands(t, targets, pockets, physics, lv: Level, budget: int) -> _Cands:
+    """Combinations: a legal ball driven into another object ball that goes in.
+
+    The target is sent to the ghost spot of the second ball's pot. The chance is that of
+    both cuts (the first to within a quarter ball of its spot), blockers left to the batch."""
+    cands = _Cands()
+    if budget <= 0 or not len(pockets.names):
+        return cands
+    pc, rc = t.pos[t.cue], float(t.radius[t.cue])
+    rows = []
+    for b in targets:
+        i = t.ids.index(b)
+        ri = float(t.radius[i])
+        for j in range(len(t.ids)):
+            if j in (i, t.cue):
+                continue
+            rj = float(t.radius[j])
+            for k in range(len(pockets.names)):
+                uj = pockets.aim[k] - t.pos[j]
+                d3 = float(np.linalg.norm(uj))
+                uj = uj / max(d3, 1e-9)
+                if float(np.dot(uj, pockets.out[k])) <= pockets.cos_limit[k]:
+                    continue
+                spot = t.pos[j] - (ri + rj) * uj  # where the target must arrive
+                ui = spot - t.pos[i]
+                d2 = float(np.linalg.norm(ui))
+                ui = ui / max(d2, 1e-9)
+                cos2 = float(np.dot(ui, uj))
+                ghost = t.pos[i] - (rc + ri) * ui
+                c = ghost - pc
+                d1 = float(np.linalg.norm(c))
+                if d1 < 1e-3 or cos2 < 0.5:
+                    continue
+                cos1 = float(np.dot(c / d1, ui))
+                if cos1 < math.cos(math.radians(MAX_CUT)):
+                    continue
+                tol = max(float(pockets.half[k]) * float(np.dot(uj, pockets.out[k])) - 0.6 * rc,
+                          0.004)
+                p2 = _pot_chance(tol, d2, d3, cos2, ri + rj, lv.sigma)  # the second ball's cut
+                p1 = _pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.sigma)
+                speed = _pot_speed(d1, d2 + d3, cos1 * cos2, physics)
+                rows.append((p1 * p2, i, j, k, speed, _deg(c), spot))
+    rows.sort(key=lambda r: (-r[0], r[1], r[2], r[3]))
+    for p, i, j, k, speed, angle, spot in rows[: budget // 2]:
+        if p < 1e-4:
+            break
+        for f in (1.0, 1.8):
+            cands.add(float(np.clip(speed * f, *SPEED_RANGE)), angle, 0.0, 0.0, i, k, "combo", p,
+                      via=j, aim=spot)
     return cands
 
 
@@ -413,7 +486,7 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
     return cands
 
 
-def _calibrate(t: _Table, cands: _Cands, pockets: _Pockets, table: Table, physics: Physics,
+def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,
                rounds: int = 2) -> None:
     """Correct the aim of every pot for throw, in place.
 
@@ -421,12 +494,12 @@ def _calibrate(t: _Table, cands: _Cands, pockets: _Pockets, table: Table, physic
     measures where the object ball actually heads, and turns the contact normal by the
     error (a fixed-point iteration: the throw changes little with the normal).
     """
-    pots = [k for k, kind in enumerate(cands.kind) if kind == "pot"]
+    pots = [k for k, kind in enumerate(cands.kind) if kind in ("pot", "combo")]
     if not pots:
         return
     plain = Table(length=table.length, width=table.width, pockets="none")
     tgt = np.array([cands.target[k] for k in pots])
-    want = np.array([_deg(pockets.aim[cands.pocket[k]] - t.pos[cands.target[k]]) for k in pots])
+    want = np.array([_deg(np.array(cands.aim[k]) - t.pos[cands.target[k]]) for k in pots])
     normal = want.copy()
     pc = t.pos[t.cue]
     pt = t.pos[tgt]
@@ -510,8 +583,10 @@ def _call(state: State, targets: list[str], t: _Table, cands: _Cands, b: int, su
     return ("8", pockets.names[k])
 
 
-def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarray, list, list]:
-    """Score every simulated table; returns (scores, calls, notes)."""
+def _score(state, targets, t, cands, eng, table, pockets, lv,
+           sampled: bool = False) -> tuple[np.ndarray, list, list]:
+    """Score every simulated table; returns (scores, calls, notes). With `sampled`, the tables
+    are samples of aim error and every pot counts in full."""
     B, n = eng.B, eng.N
     alive = eng.state != POCKETED
     final = eng.pos
@@ -530,8 +605,10 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
         potted = summary.object_pocketed
         # How likely the shot is to do in play what it did here: a pot aimed at a pocket
         # by its chance, the break as it is, anything else (a kiss, a combination) a fluke.
-        intended = tgt is not None and aimed is not None and summary.pocketed.get(tgt) == aimed
-        p = 1.0 if cands.kind[b] == "break" else cands.chance[b] if intended else FLUKE
+        sunk = t.ids[cands.via[b]] if cands.via[b] >= 0 else tgt  # the ball aimed at a pocket
+        intended = sunk is not None and aimed is not None and summary.pocketed.get(sunk) == aimed
+        p = 1.0 if cands.kind[b] == "break" or sampled else cands.chance[b] if intended \
+            else FLUKE
         if out.winner is not None:
             scores[b] = p * WIN + (1 - p) * MISS if out.winner == state.shooter else LOSS
             notes.append(out.reason)
@@ -541,7 +618,10 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
         elif out.continue_turn and potted:
             scores[b] = p * CONTINUE + (1 - p) * MISS
             leave_for.append((b, p, nxt))
-            if intended:
+            if intended and cands.kind[b] == "combo":
+                notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {aimed} "
+                             "pocket")
+            elif intended:
                 notes.append(f"{tgt} in the {aimed} pocket")
             else:
                 how = "the break" if cands.kind[b] == "break" else "a kiss or combination"
@@ -552,7 +632,7 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
                 leave_for.append((b, -1.0, nxt))
             word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
             if word is None:
-                word = f"try {tgt} in the {aimed} pocket"
+                word = f"try {sunk} in the {aimed} pocket"
             notes.append(f"{word} on the {tgt}" if cands.kind[b] in ("safety", "kick")
                          else word)
     if leave_for:
@@ -578,12 +658,19 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
 # ----------------------------------------------------------------------------------- API
 
 
-def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
-                on_table, state: State, *, level: str = "normal",
-                max_candidates: int = 256) -> list[Plan]:
-    """Every candidate shot, simulated in one batch and scored, in a fixed order (no aim
-    error added). Arguments as for `choose_shot`; the list is empty when no object ball is
-    on the table."""
+class _Eval(NamedTuple):
+    t: _Table
+    targets: list[str]
+    pockets: _Pockets
+    lv: Level
+    cands: _Cands
+    scores: np.ndarray
+    calls: list
+    notes: list
+
+
+def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
+              max_candidates) -> _Eval:
     if isinstance(max_candidates, bool) or not isinstance(max_candidates, (int, np.integer)) \
             or max_candidates < MIN_CANDIDATES:
         raise ValueError(f"max_candidates: must be an integer of at least {MIN_CANDIDATES}")
@@ -596,18 +683,55 @@ def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
         cands = _break_cands(t, targets)
     else:
         reserve = min(budget // 3, 12 * max(len(targets), 1))
-        cands = _pot_cands(t, targets, pockets, table, physics, lv, budget - reserve)
-        _calibrate(t, cands, pockets, table, physics)
-        safe = _safety_cands(t, targets, table, physics, budget - len(cands))
-        for k in range(len(safe)):
-            cands.add(safe.speed[k], safe.angle[k], safe.side[k], safe.top[k], safe.target[k],
-                      safe.pocket[k], safe.kind[k], safe.chance[k])
+        cands = _pot_cands(t, targets, pockets, table, physics, lv,
+                           budget - reserve - lv.combos)
+        cands.extend(_combo_cands(t, targets, pockets, physics, lv,
+                                  min(lv.combos, budget - reserve - len(cands))))
+        _calibrate(t, cands, table, physics)
+        cands.extend(_safety_cands(t, targets, table, physics, budget - len(cands)))
     if len(cands) == 0:
-        return []
+        return _Eval(t, targets, pockets, lv, cands, np.zeros(0), [], [])
     eng = _simulate(t, cands, table, physics)
     scores, calls, notes = _score(state, targets, t, cands, eng, table, pockets, lv)
-    return [Plan(cands.speed[b], (cands.angle[b] + 180.0) % 360.0 - 180.0, cands.side[b],
-                 cands.top[b], calls[b], float(scores[b]), notes[b]) for b in range(len(cands))]
+    return _Eval(t, targets, pockets, lv, cands, scores, calls, notes)
+
+
+def _plan(ev: _Eval, b: int, score: float) -> Plan:
+    c = ev.cands
+    return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
+                ev.calls[b], float(score), ev.notes[b])
+
+
+def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                on_table, state: State, *, level: str = "normal",
+                max_candidates: int = 256) -> list[Plan]:
+    """Every candidate shot, simulated in one batch and scored, in a fixed order (before
+    `choose_shot` checks the best few under aim error). Arguments as for `choose_shot`; the
+    list is empty when no object ball is on the table."""
+    ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
+                   max_candidates)
+    return [_plan(ev, b, ev.scores[b]) for b in range(len(ev.cands))]
+
+
+def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
+    """The best of the top few candidates once aim errors are taken into account.
+
+    Each is simulated again aimed sigma*sqrt(3) to either side (the three-point Gauss-Hermite
+    rule for a normal error: weights 1/6, 2/3, 1/6), all in one batch, and scored as played
+    (a pot counts in full where it goes in). Returns (candidate, its expected score)."""
+    c, lv = ev.cands, ev.lv
+    top = [int(k) for k in np.argsort(-ev.scores, kind="stable")[:lv.verify]]
+    sub = _Cands()
+    offset = math.sqrt(3.0) * lv.sigma
+    for k in top:
+        for d in (0.0, offset, -offset):
+            sub.add(c.speed[k], c.angle[k] + d, c.side[k], c.top[k], c.target[k], c.pocket[k],
+                    c.kind[k], 1.0, c.via[k], c.aim[k])
+    eng = _simulate(ev.t, sub, table, physics)
+    s, _, _ = _score(state, ev.targets, ev.t, sub, eng, table, ev.pockets, lv, sampled=True)
+    expect = (4 * s[0::3] + s[1::3] + s[2::3]) / 6
+    best = int(np.argmax(expect))  # the first of equal scores
+    return top[best], float(expect[best])
 
 
 def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
@@ -616,20 +740,24 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     """The computer's shot for the player `state.shooter` (see the module's docstring).
 
     `ids`, `pos` (N, 2), `radius`, `mass` (numbers or one per ball) describe the balls;
-    `on_table` (N booleans) says which are on the table. "easy" plays its choice with a
-    seeded aim and speed error. Deterministic for a given seed.
+    `on_table` (N booleans) says which are on the table. The best few candidates of the
+    batch are checked under the level's aim error and the best of them is played; "easy"
+    plays it with a seeded aim and speed error. Deterministic for a given seed.
     """
     _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
-    plans = score_shots(table, physics, ids, pos, radius, mass, on_table, state, level=level,
-                        max_candidates=max_candidates)
-    if not plans:  # nothing to aim at: roll the cue ball up the table
+    ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
+                   max_candidates)
+    if len(ev.cands) == 0:  # nothing to aim at: roll the cue ball up the table
         return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, "no object ball on the table")
-    # The first of equal scores: candidates come in a fixed order.
-    best = max(range(len(plans)), key=lambda k: (plans[k].score, -k))
-    plan = plans[best]
-    if LEVELS[level].noise:
+    if state.is_break or ev.lv.verify == 0:  # a break is chaos either way: take the batch's
+        best = int(np.argmax(ev.scores))
+        score = float(ev.scores[best])
+    else:
+        best, score = _verify(ev, state, table, physics)
+    plan = _plan(ev, best, score)
+    if ev.lv.noise:
         rng = np.random.default_rng(seed)
-        angle = plan.angle + float(rng.normal(0.0, LEVELS[level].sigma))
+        angle = plan.angle + float(rng.normal(0.0, ev.lv.sigma))
         speed = float(np.clip(plan.speed * (1 + rng.normal(0.0, EASY_SPEED_ERROR)), 0.1,
                               BREAK_SPEEDS[-1]))
         plan = plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)

@@ -190,6 +190,18 @@ def test_nine_ball_hits_the_lowest_ball_first():
     assert out.foul is None
 
 
+def test_nine_ball_combination_on_the_nine_wins():
+    # The lowest ball (the 2) sits behind the 9 on the diagonal into the foot_left corner: the
+    # 2 cannot be potted there, but driving it into the 9 wins the game.
+    nine, two = corner_line(0.25, 0.6)
+    lay = Layout({"cue": (1.2, 0.45), "2": two, "9": nine, "5": (0.6, 1.0)})
+    state = State(mode="9ball", pocketed=("1", "3", "4", "6", "7", "8"))
+    plan = ai.choose_shot(*lay.args(), state)
+    summary, out, _ = play(lay, plan, state)
+    assert summary.first_contact == "2"
+    assert out.winner == 0
+
+
 def test_kicks_at_a_hidden_lowest_ball():
     # The 1 is hidden behind the 2 and 3: no straight line reaches it, a one-rail kick does.
     lay = Layout({"cue": (0.5, 0.5), "2": (1.2, 0.5 - 1.05 * R), "3": (1.2, 0.5 + 1.05 * R),
