@@ -365,8 +365,8 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
         d2 = float(np.linalg.norm(pockets.aim[k] - t.pos[i]))
         cos_cut = float(np.dot((ghost - t.pos[t.cue]) / max(d1, 1e-9), u[i, k]))
         base = _pot_speed(d1, d2, cos_cut, physics)
-        for f in lv.speeds:
-            speed = float(np.clip(base * f, *SPEED_RANGE))
+        # Speeds clipped to the same value would only repeat a table.
+        for speed in dict.fromkeys(float(np.clip(base * f, *SPEED_RANGE)) for f in lv.speeds):
             for side, top in lv.spins:
                 cands.add(speed, _deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c,
                           aim=pockets.aim[k])
@@ -419,9 +419,8 @@ def _combo_cands(t, targets, pockets, physics, lv: Level, budget: int) -> _Cands
     for p, i, j, k, speed, angle, spot in rows[: budget // 2]:
         if p < 1e-4:
             break
-        for f in (1.0, 1.8):
-            cands.add(float(np.clip(speed * f, *SPEED_RANGE)), angle, 0.0, 0.0, i, k, "combo", p,
-                      via=j, aim=spot)
+        for v in dict.fromkeys(float(np.clip(speed * f, *SPEED_RANGE)) for f in (1.0, 1.8)):
+            cands.add(v, angle, 0.0, 0.0, i, k, "combo", p, via=j, aim=spot)
     return cands
 
 

@@ -213,6 +213,21 @@ def test_kicks_at_a_hidden_lowest_ball():
     assert out.foul is None
 
 
+def test_risky_pots_rank_below_safe_ones():
+    # The 1 is a short straight-in to the head_right corner; the 2 is a long cut that the
+    # exact simulation also pots. Every pot of the 1 outranks every pot of the 2, and the
+    # AI plays the 1.
+    k = 1 / math.sqrt(2)
+    lay = Layout({"cue": (0.95 * k, 0.95 * k), "1": (0.35 * k, 0.35 * k), "2": (1.9, 0.35)})
+    state = State(mode="practice")
+    plans = ai.score_shots(*lay.args(), state)
+    one = [p.score for p in plans if p.note == "1 in the head_right pocket"]
+    two = [p.score for p in plans if p.note.startswith("2 in the")]
+    assert one and two
+    assert min(one) > max(two)
+    assert ai.choose_shot(*lay.args(), state).note == "1 in the head_right pocket"
+
+
 # ------------------------------------------------------------------------------ the 8
 
 
