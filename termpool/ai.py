@@ -1,10 +1,12 @@
 """The computer opponent: candidate shots simulated in one batch and judged by the referee.
 
 `choose_shot` builds candidate strikes (the break: hard shots at the rack's apex; otherwise
-ghost-ball pots for every legal target and pocket at a few speeds and spins, plus soft safeties
-and one-rail kicks at each legal ball), simulates them all in ONE batched Engine, judges every
-table with the rules, and returns the best as a `Plan`. `choose_placement` picks a spot for
-the cue ball in hand from cheap geometry (the shots the spot leaves).
+ghost-ball pots for every legal target and pocket at a few speeds and spins, combinations, and
+soft safeties and one-rail kicks at each legal ball), simulates them all in ONE batched Engine,
+judges every table with the rules and scores it; the best few are simulated again aimed a
+little to either side, and the best expected score is played (`Plan`). `score_shots` returns
+every candidate of the batch with its score. `choose_placement` picks a spot for the cue ball
+in hand from cheap geometry (the shots the spot leaves).
 
 Scores: a win far above a legal pot (the shooter continues) above a shot that passes the turn
 without a foul above a foul above a loss. A pot is weighted by its chance to go in under the
@@ -16,7 +18,8 @@ Cut shots throw the object ball off the line of centres (ball-ball friction), so
 batch each pot's aim is corrected by two cheap rounds on two-ball tables without pockets
 (cue ball and target only): the object ball's measured heading corrects the contact angle.
 
-The module reads the physics and rules and never changes them: no terminal code here.
+Geometry (pockets, chances, blocked paths, kick aims) is in `ai_geometry`. The module reads the
+physics and rules and never changes them; no terminal code here.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from termpool import ai_geometry as geo
 from termpool.physics.cue import strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import Physics
@@ -74,12 +78,10 @@ FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happe
 POSITION = 100.0  # weight of the next shot's chance after a pot
 LEAVE = 60.0  # weight of the opponent's best chance after the turn passes
 SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
-MAX_CUT = 80.0  # degrees; thinner cuts are not tried as pots
 SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
 BREAK_SPEEDS = (8.0, 8.5, 9.0)
 BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
 BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
-CORNER_LIMIT, SIDE_LIMIT = 60.0, 45.0  # degrees off a pocket's axis that still drop
 MIN_CANDIDATES = 8
 EASY_SPEED_ERROR = 0.05  # relative sd of the easy level's speed
 EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
@@ -89,7 +91,7 @@ EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
 
 
 class _Table(NamedTuple):
-    """The balls on the table, in the order given, the cue ball first among them."""
+    """The balls on the table, in the order given; `cue` is the cue ball's index."""
 
     ids: list[str]
     pos: np.ndarray  # (n, 2)
@@ -161,119 +163,6 @@ def legal_targets(state: State, present: Sequence[str]) -> list[str]:
     return own or (["8"] if "8" in here else [])
 
 
-# ---------------------------------------------------------------------------- geometry
-
-
-class _Pockets(NamedTuple):
-    names: tuple[str, ...]
-    aim: np.ndarray  # (P, 2) where an object ball is sent: a ball radius past the mouth
-    out: np.ndarray  # (P, 2) unit vector from the mouth into the pocket
-    half: np.ndarray  # (P,) half the mouth
-    cos_limit: np.ndarray  # (P,) steepest approach that still drops
-
-
-def _pockets(table: Table, radius: float) -> _Pockets:
-    n = len(table.hole_names)
-    if n == 0:
-        z = np.zeros((0, 2))
-        return _Pockets((), z, z, np.zeros(0), np.zeros(0))
-    tips = table.points.reshape(n, 2, 2)  # two jaw tips per pocket, in hole_names order
-    mid = tips.mean(axis=1)
-    out = table.hole_c - mid
-    out /= np.linalg.norm(out, axis=1)[:, None]
-    half = np.linalg.norm(tips[:, 0] - tips[:, 1], axis=1) / 2
-    side = np.array([name.startswith("side") for name in table.hole_names])
-    limit = np.radians(np.where(side, SIDE_LIMIT, CORNER_LIMIT))
-    return _Pockets(tuple(table.hole_names), mid + radius * out, out, half, np.cos(limit))
-
-
-def _blocked(a, b, obst, rad_move, rad_obst, skip) -> np.ndarray:
-    """True where a ball of radius rad_move going from a to b (..., 2) would touch an obstacle.
-
-    a, b: (B, M, 2); obst: (B, K, 2); rad_obst: (K,); skip: (B, M, K) obstacles to ignore.
-    """
-    d = b - a
-    length2 = np.maximum((d * d).sum(-1), 1e-12)
-    rel = obst[:, None] - a[:, :, None]  # (B, M, K, 2)
-    s = np.clip((rel * d[:, :, None]).sum(-1) / length2[:, :, None], 0.0, 1.0)
-    gap = rel - s[..., None] * d[:, :, None]
-    close = (gap * gap).sum(-1) < (rad_move + rad_obst[None, None]) ** 2 - 1e-9
-    return (close & ~skip).any(-1)
-
-
-def _chances(cue, balls, alive, target, radius, cue_idx, pockets, table, sigma):
-    """Chance (B, N, P) that a straight pot of ball i into pocket p goes in from `cue`.
-
-    cue: (B, 2); balls: (B, N, 2); alive, target: (B, N) bool. The chance is that of an aim
-    error (sd `sigma` degrees) staying within the pot's tolerance: the mouth seen from the
-    object ball, shrunk by the distances and the cut. Blocked paths and thin cuts give 0.
-    Also returns the contact normals u (B, N, P, 2).
-    """
-    B, N = balls.shape[:2]
-    P = len(pockets.names)
-    if P == 0:
-        return np.zeros((B, N, 0)), np.zeros((B, N, 0, 2))
-    rc = radius[cue_idx]
-    u = pockets.aim[None, None] - balls[:, :, None]  # (B, N, P, 2)
-    d2 = np.linalg.norm(u, axis=-1)
-    u = u / np.maximum(d2, 1e-9)[..., None]
-    ghost = balls[:, :, None] - (rc + radius)[None, :, None, None] * u
-    c = ghost - cue[:, None, None]
-    d1 = np.linalg.norm(c, axis=-1)
-    c = c / np.maximum(d1, 1e-9)[..., None]
-    cos_cut = (c * u).sum(-1)
-    approach = (u * pockets.out[None, None]).sum(-1)
-    ok = target[:, :, None] & alive[:, :, None] & (cos_cut > math.cos(math.radians(MAX_CUT)))
-    ok &= approach > pockets.cos_limit[None, None]
-    ok &= d1 > 1e-3  # a cue ball frozen to the ghost spot has no line to aim along
-    gx, gy = ghost[..., 0], ghost[..., 1]
-    ok &= (gx >= rc) & (gx <= table.length - rc) & (gy >= rc) & (gy <= table.width - rc)
-    tol = np.maximum(pockets.half[None, None] * approach - 0.6 * rc, 0.004)
-    chance = _pot_chance(tol, d1, d2, cos_cut, (rc + radius)[None, :, None], sigma)
-    # Blockers: every live ball but the target (and the cue ball on the cue's own path).
-    idx = np.arange(N)
-    dead = ~alive[:, None, :]  # (B, 1, K)
-    flat = (B, N * P, 2)
-    skip_t = np.broadcast_to((idx[:, None, None] == idx[None, None, :]), (N, P, N))
-    skip_t = np.broadcast_to(skip_t.reshape(1, N * P, N), (B, N * P, N)) | dead
-    skip_c = skip_t | (idx == cue_idx)[None, None, :]
-    src = np.broadcast_to(cue[:, None, None], ghost.shape).reshape(flat)
-    path1 = _blocked(src, ghost.reshape(flat), balls, rc, radius, skip_c)
-    start = np.broadcast_to(balls[:, :, None], ghost.shape).reshape(flat)
-    end = np.broadcast_to(pockets.aim[None, None], ghost.shape).reshape(flat)
-    rmove = np.broadcast_to(radius[None, :, None], (B, N, P)).reshape(B, N * P)[..., None]
-    path2 = _blocked(start, end, balls, rmove, radius, skip_t)  # the cue ball blocks too
-    ok &= ~(path1 | path2).reshape(B, N, P)
-    return np.where(ok, chance, 0.0), u
-
-
-def _pot_chance(tol, d1, d2, cos_cut, reach, sigma: float):
-    """Chance that a cue aim error (sd `sigma` degrees) keeps the object ball within `tol` of
-    its line at distance d2. The cue ball travels d1 to the ghost ball; `reach` is the sum of
-    the two radii. An aim error e turns the contact normal by about e d1 / (reach cos cut),
-    so the tolerance on the object ball's heading, tol / d2, maps back through that factor."""
-    cue_tol = (tol / np.maximum(d2, 1e-3)) * reach * np.maximum(cos_cut, 1e-3) / np.maximum(
-        d1, 1e-3)
-    return _erf(cue_tol / (math.radians(sigma) * math.sqrt(2.0)))
-
-
-def _erf(x):
-    # Abramowitz-Stegun 7.1.26 (error under 1.5e-7), for x >= 0: numpy has no erf.
-    t = 1.0 / (1.0 + 0.3275911 * x)
-    poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (
-        -1.453152027 + t * 1.061405429))))
-    return 1.0 - poly * np.exp(-x * x)
-
-
-def _leave(chance: np.ndarray) -> np.ndarray:
-    """How good a table is for whoever shoots next, 0..1: the best pot plus a little for
-    each other makeable one (more choices are worth more)."""
-    flat = chance.reshape(chance.shape[0], -1)
-    best = flat.max(axis=1, initial=0.0)
-    count = np.minimum((flat > 0.3).sum(axis=1), 4)
-    return np.minimum(best + 0.05 * count, 1.0) / 1.2
-
-
 # --------------------------------------------------------------------------- candidates
 
 
@@ -315,22 +204,6 @@ class _Cands:
         return len(self.speed)
 
 
-def _deg(v) -> float:
-    return math.degrees(math.atan2(float(v[1]), float(v[0])))
-
-
-def _pot_speed(d1: float, d2: float, cos_cut: float, physics: Physics) -> float:
-    """About the slowest cue speed that rolls the object ball into the pocket.
-
-    A ball rolls a distance d from speed sqrt(2 mu_r g d); a struck or hit ball leaves sliding
-    and rolls at 5/7 of its speed; the cue ball passes cos(cut) of its speed on (times
-    (1 + e) / 2)."""
-    a = physics.mu_roll * physics.g
-    v_obj = math.sqrt(2 * a * (d2 + 0.3)) * 1.4
-    v_hit = v_obj / max(cos_cut, 0.2) / ((1 + physics.e_ball) / 2)
-    return math.sqrt(v_hit * v_hit + 2 * a * d1) * 1.4
-
-
 def _break_cands(t: _Table, targets: list[str]) -> _Cands:
     """Hard shots at the rack's apex: the legal ball nearest the cue ball."""
     cands = _Cands()
@@ -339,7 +212,7 @@ def _break_cands(t: _Table, targets: list[str]) -> _Cands:
     if not choice:
         return cands
     apex = min(choice, key=lambda k: float(np.linalg.norm(p[k] - p[t.cue])))
-    base = _deg(p[apex] - p[t.cue])
+    base = geo.deg(p[apex] - p[t.cue])
     for speed in BREAK_SPEEDS:
         for aim in BREAK_AIMS:
             for side, top in BREAK_SPINS:
@@ -352,7 +225,7 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     n = len(t.ids)
     alive = np.ones((1, n), bool)
     tmask = np.array([[b in targets for b in t.ids]])
-    chance, u = _chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius, t.cue,
+    chance, u = geo.pot_chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius, t.cue,
                          pockets, table, lv.sigma)
     chance, u = chance[0], u[0]
     # Pairs by chance; a blocked pair (chance 0) is left to the safeties.
@@ -364,11 +237,11 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
         d1 = float(np.linalg.norm(ghost - t.pos[t.cue]))
         d2 = float(np.linalg.norm(pockets.aim[k] - t.pos[i]))
         cos_cut = float(np.dot((ghost - t.pos[t.cue]) / max(d1, 1e-9), u[i, k]))
-        base = _pot_speed(d1, d2, cos_cut, physics)
+        base = geo.pot_speed(d1, d2, cos_cut, physics)
         # Speeds clipped to the same value would only repeat a table.
         for speed in dict.fromkeys(float(np.clip(base * f, *SPEED_RANGE)) for f in lv.speeds):
             for side, top in lv.spins:
-                cands.add(speed, _deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c,
+                cands.add(speed, geo.deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c,
                           aim=pockets.aim[k])
     return cands
 
@@ -407,14 +280,14 @@ def _combo_cands(t, targets, pockets, physics, lv: Level, budget: int) -> _Cands
                 if d1 < 1e-3 or cos2 < 0.5:
                     continue
                 cos1 = float(np.dot(c / d1, ui))
-                if cos1 < math.cos(math.radians(MAX_CUT)):
+                if cos1 < math.cos(math.radians(geo.MAX_CUT)):
                     continue
                 tol = max(float(pockets.half[k]) * float(np.dot(uj, pockets.out[k])) - 0.6 * rc,
                           0.004)
-                p2 = _pot_chance(tol, d2, d3, cos2, ri + rj, lv.sigma)  # the second ball's cut
-                p1 = _pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.sigma)
-                speed = _pot_speed(d1, d2 + d3, cos1 * cos2, physics)
-                rows.append((p1 * p2, i, j, k, speed, _deg(c), spot))
+                p2 = geo.pot_chance(tol, d2, d3, cos2, ri + rj, lv.sigma)  # the second ball's cut
+                p1 = geo.pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.sigma)
+                speed = geo.pot_speed(d1, d2 + d3, cos1 * cos2, physics)
+                rows.append((p1 * p2, i, j, k, speed, geo.deg(c), spot))
     rows.sort(key=lambda r: (-r[0], r[1], r[2], r[3]))
     for p, i, j, k, speed, angle, spot in rows[: budget // 2]:
         if p < 1e-4:
@@ -422,34 +295,6 @@ def _combo_cands(t, targets, pockets, physics, lv: Level, budget: int) -> _Cands
         for v in dict.fromkeys(float(np.clip(speed * f, *SPEED_RANGE)) for f in (1.0, 1.8)):
             cands.add(v, angle, 0.0, 0.0, i, k, "combo", p, via=j, aim=spot)
     return cands
-
-
-def _kick_aims(pc: np.ndarray, pt: np.ndarray, table: Table, rc: float,
-               bounce: float) -> list[float]:
-    """Aim angles (degrees) of one-rail kicks from pc to pt, one per rail.
-
-    The ball's centre meets a rail on the line rc from its nose. A rebound keeps the speed
-    along the rail and keeps `bounce` of the speed across it, so the contact point splits the
-    way in the ratio a*bounce : b of the two balls' distances from that line (a mirror image
-    is bounce = 1)."""
-    L, W = table.length, table.width
-    aims = []
-    for axis, line in ((1, rc), (1, W - rc), (0, rc), (0, L - rc)):
-        a, b = abs(float(pc[axis]) - line), abs(float(pt[axis]) - line)
-        along = 1 - axis
-        if a + b < 1e-9:
-            continue
-        s = (float(pt[along]) * a * bounce + float(pc[along]) * b) / (a * bounce + b)
-        hit = np.empty(2)
-        hit[axis], hit[along] = line, s
-        aims.append(_deg(hit - pc))
-    return aims
-
-
-def _contact_offset(table: Table, physics: Physics, radius: float) -> float:
-    """How far a ball's centre stops from a cushion nose (the nose is above the centre)."""
-    sin_t = min(max((physics.cushion_height - radius) / radius, -0.95), 0.95)
-    return radius * math.sqrt(1 - sin_t * sin_t)
 
 
 def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
@@ -463,16 +308,16 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
         i = t.ids.index(b)
         d = t.pos[i] - pc
         dist = float(np.linalg.norm(d))
-        base = _deg(d)
+        base = geo.deg(d)
         half = math.degrees(math.asin(min((t.radius[i] + t.radius[t.cue]) / 2 / max(dist, 1e-9),
                                           1.0)))
         rows.append((0.9, base, i, "safety"))
         rows.append((1.8, base, i, "safety"))
         rows.append((1.3, base + half, i, "safety"))
         rows.append((1.3, base - half, i, "safety"))
-        rc = _contact_offset(table, physics, float(t.radius[t.cue]))
+        rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
         for bounce in (physics.e_cushion, (1 + physics.e_cushion) / 2):
-            for aim in _kick_aims(pc, t.pos[i], table, rc, bounce):
+            for aim in geo.kick_aims(pc, t.pos[i], table, rc, bounce):
                 rows.append((2.2, aim, i, "kick"))
     # Interleave balls so that a small budget still covers every legal ball.
     per = 12
@@ -498,7 +343,7 @@ def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,
         return
     plain = Table(length=table.length, width=table.width, pockets="none")
     tgt = np.array([cands.target[k] for k in pots])
-    want = np.array([_deg(np.array(cands.aim[k]) - t.pos[cands.target[k]]) for k in pots])
+    want = np.array([geo.deg(np.array(cands.aim[k]) - t.pos[cands.target[k]]) for k in pots])
     normal = want.copy()
     pc = t.pos[t.cue]
     pt = t.pos[tgt]
@@ -526,13 +371,13 @@ def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,
             d = end - pt[n]
             if float(np.linalg.norm(d)) < 0.02:  # not hit, or barely moved: keep the aim
                 continue
-            err = (_deg(d) - want[n] + 180.0) % 360.0 - 180.0
+            err = (geo.deg(d) - want[n] + 180.0) % 360.0 - 180.0
             if abs(err) < 20.0:
                 normal[n] -= err
         for n, k in enumerate(pots):
             rad = math.radians(normal[n])
             ghost = pt[n] - reach[n] * np.array([math.cos(rad), math.sin(rad)])
-            cands.angle[k] = _deg(ghost - pc)
+            cands.angle[k] = geo.deg(ghost - pc)
 
 
 def _heading_point(events: list[dict]) -> np.ndarray | None:
@@ -568,7 +413,7 @@ def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics) -> Engin
 
 
 def _call(state: State, targets: list[str], t: _Table, cands: _Cands, b: int, summary,
-          pockets: _Pockets) -> tuple[str, str] | None:
+          pockets: geo.Pockets) -> tuple[str, str] | None:
     """The call for candidate b: only for the 8 when it is the legal target. The pocket the
     simulation drops it in, else the pocket aimed at, else the one nearest the 8."""
     if state.mode != "8ball" or targets != ["8"] or not pockets.names:
@@ -642,9 +487,9 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
             nxt_t = legal_targets(nxt, present) if "cue" in present else []
             tmask[r] = [bid in nxt_t for bid in t.ids]
         cue_alive = alive[rows, t.cue]
-        chance, _ = _chances(final[rows, t.cue], final[rows], alive[rows], tmask, t.radius,
+        chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask, t.radius,
                              t.cue, pockets, table, lv.sigma)
-        value = _leave(chance)
+        value = geo.leave_value(chance)
         for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
@@ -660,7 +505,7 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
 class _Eval(NamedTuple):
     t: _Table
     targets: list[str]
-    pockets: _Pockets
+    pockets: geo.Pockets
     lv: Level
     cands: _Cands
     scores: np.ndarray
@@ -677,7 +522,7 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
     lv = LEVELS[level]
     budget = max(int(max_candidates * lv.share), MIN_CANDIDATES)
     targets = legal_targets(state, t.ids)
-    pockets = _pockets(table, float(t.radius[t.cue]))
+    pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
     if state.is_break:
         cands = _break_cands(t, targets)
     else:
@@ -794,7 +639,7 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     lv = LEVELS[level]
     r = float(t.radius[t.cue])
-    pockets = _pockets(table, r)
+    pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
     spots = []
     if state.is_break:
@@ -828,9 +673,9 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     balls = np.broadcast_to(t.pos, (M, n, 2)).copy()
     balls[:, t.cue] = xy
     tmask = np.broadcast_to(np.array([b in targets for b in t.ids]), (M, n))
-    chance, _ = _chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue, pockets,
+    chance, _ = geo.pot_chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue, pockets,
                          table, lv.sigma)
-    value = _leave(chance)
+    value = geo.leave_value(chance)
     best = int(np.argmax(value))
     spot = xy[best]
     if lv.noise:

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from termpool import ai
+from termpool import ai_geometry as geo
 from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
@@ -404,6 +405,49 @@ def test_plans_are_finite_and_never_a_miscue():
             assert 0 < plan.speed <= 9.0
             assert math.hypot(plan.side, plan.top) <= MISCUE_OFFSET
             strike(plan.speed, plan.angle, plan.side, plan.top, R)  # raises on a miscue
+
+
+# -------------------------------------------------------------------------- geometry
+
+
+def test_erf_matches_the_library():
+    xs = np.linspace(0.0, 4.0, 41)
+    assert np.max(np.abs(geo.erf(xs) - np.array([math.erf(x) for x in xs]))) < 2e-7
+
+
+def test_kick_aims_reflect_in_the_rails():
+    # With a perfect bounce (1) the aim is the target's mirror image in the rail line; with
+    # less bounce the ball leaves the rail flatter, so it must meet the rail nearer the cue
+    # ball: a steeper aim.
+    pc, pt, rc = np.array([0.6, 0.4]), np.array([1.4, 0.5]), 0.9 * R
+    mirror = geo.kick_aims(pc, pt, TABLE, rc, 1.0)
+    assert mirror[0] == pytest.approx(math.degrees(math.atan2(-pt[1] + 2 * rc - pc[1],
+                                                              pt[0] - pc[0])))
+    soft = geo.kick_aims(pc, pt, TABLE, rc, 0.8)
+    assert len(mirror) == len(soft) == 4
+    assert soft[0] < mirror[0]  # on the y = rc rail: aimed further down, into the rail
+
+
+def test_pot_chances_straight_beats_thin_and_blocked_is_zero():
+    ball, cue = corner_line(0.5, 1.0)
+    pockets = geo.pocket_geometry(TABLE, R)
+    k = pockets.names.index("foot_left")
+
+    def chance(balls: dict[str, tuple[float, float]]) -> float:
+        lay = Layout(balls)
+        n = len(lay.ids)
+        c, _ = geo.pot_chances(lay.pos[0][None], lay.pos[None], np.ones((1, n), bool),
+                               np.array([[b == "1" for b in lay.ids]]), np.full(n, R), 0,
+                               pockets, TABLE, 0.3)
+        return float(c[0, 1, k])
+
+    straight = chance({"cue": cue, "1": ball})
+    thin = chance({"cue": (ball[0] - 0.5, ball[1] + 0.25), "1": ball})
+    mid = ((ball[0] + cue[0]) / 2, (ball[1] + cue[1]) / 2)
+    blocked = chance({"cue": cue, "1": ball, "2": mid})
+    assert straight > 0.9
+    assert 0 < thin < straight
+    assert blocked == 0.0
 
 
 # ------------------------------------------------------------------------- bad input
