@@ -246,7 +246,7 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     return cands
 
 
-def _combo_cands(t, targets, pockets, physics, lv: Level, budget: int) -> _Cands:
+def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int) -> _Cands:
     """Combinations: a legal ball driven into another object ball that goes in.
 
     The target is sent to the ghost spot of the second ball's pot. The chance is that of
@@ -255,12 +255,14 @@ def _combo_cands(t, targets, pockets, physics, lv: Level, budget: int) -> _Cands
     if budget <= 0 or not len(pockets.names):
         return cands
     pc, rc = t.pos[t.cue], float(t.radius[t.cue])
+    eight = mode == "8ball"
     rows = []
     for b in targets:
         i = t.ids.index(b)
         ri = float(t.radius[i])
         for j in range(len(t.ids)):
-            if j in (i, t.cue):
+            # In 8-ball only a ball the shooter may pot is worth driving in.
+            if j in (i, t.cue) or (eight and t.ids[j] not in targets):
                 continue
             rj = float(t.radius[j])
             for k in range(len(pockets.names)):
@@ -529,7 +531,7 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
         reserve = min(budget // 3, 12 * max(len(targets), 1))
         cands = _pot_cands(t, targets, pockets, table, physics, lv,
                            budget - reserve - lv.combos)
-        cands.extend(_combo_cands(t, targets, pockets, physics, lv,
+        cands.extend(_combo_cands(t, targets, state.mode, pockets, physics, lv,
                                   min(lv.combos, budget - reserve - len(cands))))
         _calibrate(t, cands, table, physics)
         cands.extend(_safety_cands(t, targets, table, physics, budget - len(cands)))
@@ -615,8 +617,8 @@ def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
     margin = 1e-3
     ok = (x >= r + margin) & (x <= table.length - r - margin)
     ok &= (y >= r + margin) & (y <= table.width - r - margin)
-    if area == "kitchen":
-        ok &= x <= table.head_spot[0] - margin
+    if area == "kitchen":  # on or behind the head string
+        ok &= x <= table.head_spot[0]
     others = [k for k in range(len(t.ids)) if k != t.cue]
     if others:
         d = np.linalg.norm(xy[:, None] - t.pos[others][None], axis=-1)
@@ -642,8 +644,9 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
     spots = []
-    if state.is_break:
-        spots.append(np.array(table.head_spot))
+    if state.is_break:  # the head spot, else the nearest free point of the head string
+        hx, hy = table.head_spot
+        spots += [np.array([hx, hy + s * k * 0.02]) for k in range(25) for s in (1, -1)]
     dists = (0.3, 0.15, 0.5)[: lv.spots]
     for b in targets:
         i = t.ids.index(b)
@@ -673,9 +676,14 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     balls = np.broadcast_to(t.pos, (M, n, 2)).copy()
     balls[:, t.cue] = xy
     tmask = np.broadcast_to(np.array([b in targets for b in t.ids]), (M, n))
-    chance, _ = geo.pot_chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue, pockets,
-                         table, lv.sigma)
+    chance, _ = geo.pot_chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue,
+                                pockets, table, lv.sigma)
     value = geo.leave_value(chance)
+    # Between spots of equal value (say, no pot anywhere), the one nearest a legal ball.
+    legal = [k for k, b in enumerate(t.ids) if b in targets]
+    if legal:
+        near = np.linalg.norm(xy[:, None] - t.pos[legal][None], axis=-1).min(axis=1)
+        value = value - 1e-3 * near / table.length
     best = int(np.argmax(value))
     spot = xy[best]
     if lv.noise:

@@ -320,6 +320,36 @@ def test_placement_avoids_a_crowded_kitchen():
     _placement_ok(lay, xy, "kitchen")
 
 
+def test_break_placement_is_on_the_head_string():
+    sc = load_scene({"table": "9ft", "balls": "9ball"})
+    lay = Layout({b: tuple(sc.pos[k]) for k, b in enumerate(sc.ids)})
+    state = State(mode="9ball", is_break=True)
+    assert ai.choose_placement(*lay.args(), state, "kitchen") == TABLE.head_spot
+    # A ball on the head spot (a contrived table): the cue ball goes beside it on the string.
+    lay = Layout({**{b: tuple(sc.pos[k]) for k, b in enumerate(sc.ids)},
+                  "9": TABLE.head_spot, "8": (1.0, 1.0)})
+    x, y = ai.choose_placement(*lay.args(), state, "kitchen")
+    _placement_ok(lay, (x, y), "kitchen")
+    assert x == TABLE.head_spot[0]
+
+
+def test_table_without_pockets_still_hits_a_legal_ball():
+    plain = Table(pockets="none")
+    ids = ["cue", "1", "2"]
+    pos = np.array([[0.5, 0.5], [1.5, 0.6], [2.0, 1.0]])
+    state = State(mode="9ball", pocketed=tuple(str(k) for k in range(3, 10)))
+    plan = ai.choose_shot(plain, PHYS, ids, pos, R, BALL_MASS, np.ones(3, bool), state)
+    vel, w = np.zeros((3, 2)), np.zeros((3, 3))
+    vel[0], w[0] = strike(plan.speed, plan.angle, plan.side, plan.top, R)
+    eng = Engine(plain, PHYS, pos, vel, w, R, BALL_MASS, record=True)
+    eng.run_events()
+    summary = summarize(eng.events[0], ids)
+    assert summary.first_contact == "1" and summary.rail_balls
+    xy = ai.choose_placement(plain, PHYS, ids, pos, R, BALL_MASS, np.ones(3, bool), state,
+                             "anywhere")
+    assert plain.inside(*xy, R)
+
+
 def test_ball_in_hand_then_pot():
     # With the cue ball in hand anywhere and one ball left, the AI places and then pots it.
     lay = Layout({"cue": (0.2, 0.2), "7": (1.7, 0.8)})
