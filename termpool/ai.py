@@ -225,8 +225,8 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     n = len(t.ids)
     alive = np.ones((1, n), bool)
     tmask = np.array([[b in targets for b in t.ids]])
-    chance, u = geo.pot_chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius, t.cue,
-                         pockets, table, lv.sigma)
+    chance, u = geo.pot_chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius,
+                                t.cue, pockets, table, lv.sigma)
     chance, u = chance[0], u[0]
     # Pairs by chance; a blocked pair (chance 0) is left to the safeties.
     order = [(float(chance[i, k]), i, k) for i, k in zip(*np.nonzero(chance > 1e-4), strict=True)]
@@ -489,8 +489,8 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
             nxt_t = legal_targets(nxt, present) if "cue" in present else []
             tmask[r] = [bid in nxt_t for bid in t.ids]
         cue_alive = alive[rows, t.cue]
-        chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask, t.radius,
-                             t.cue, pockets, table, lv.sigma)
+        chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask,
+                                    t.radius, t.cue, pockets, table, lv.sigma)
         value = geo.leave_value(chance)
         for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
