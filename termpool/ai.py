@@ -80,6 +80,7 @@ LEAVE = 60.0  # weight of the opponent's best chance after the turn passes
 SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
 SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
 BREAK_SPEEDS = (8.0, 8.5, 9.0)
+KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's aim
 BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
 BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
 MIN_CANDIDATES = 8
@@ -301,34 +302,40 @@ def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int
 
 def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
                   budget: int) -> _Cands:
-    """Soft full and half-ball hits at each legal ball, and one-rail kicks at it (each rail
-    with two guesses of the rebound: the cushion's restitution, and halfway to a mirror)."""
+    """Fallbacks at each legal ball, most useful first: soft full and half-ball hits, one-rail
+    kicks (two guesses of the rebound: the cushion's restitution, and halfway to a mirror), a
+    harder one-rail kick, two-rail kicks, then fans of one- and two-rail kicks aimed up to a
+    few degrees to either side (the rebound of a spinning ball is only roughly known: the
+    batch finds the one that hits)."""
     cands = _Cands()
     pc = t.pos[t.cue]
-    rows = []
+    rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
+    e, mid = physics.e_cushion, (1 + physics.e_cushion) / 2
+    per_ball = []
     for b in targets:
         i = t.ids.index(b)
         d = t.pos[i] - pc
-        dist = float(np.linalg.norm(d))
         base = geo.deg(d)
-        half = math.degrees(math.asin(min((t.radius[i] + t.radius[t.cue]) / 2 / max(dist, 1e-9),
-                                          1.0)))
-        rows.append((0.9, base, i, "safety"))
-        rows.append((1.8, base, i, "safety"))
-        rows.append((1.3, base + half, i, "safety"))
-        rows.append((1.3, base - half, i, "safety"))
-        rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
-        for bounce in (physics.e_cushion, (1 + physics.e_cushion) / 2):
-            for aim in geo.kick_aims(pc, t.pos[i], table, rc, bounce):
-                rows.append((2.2, aim, i, "kick"))
-    # Interleave balls so that a small budget still covers every legal ball.
-    per = 12
-    for j in range(per):
-        for k in range(j, len(rows), per):
-            if len(cands) >= budget:
-                return cands
-            speed, angle, i, kind = rows[k]
-            cands.add(speed, angle, 0.0, 0.0, i, -1, kind, 0.0)
+        half = math.degrees(math.asin(min(
+            (t.radius[i] + t.radius[t.cue]) / 2 / max(float(np.linalg.norm(d)), 1e-9), 1.0)))
+        rows = [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
+                (1.3, base - half, "safety")]
+        one = geo.kick_aims(pc, t.pos[i], table, rc, e)
+        two = geo.kick_aims(pc, t.pos[i], table, rc, mid, 2)
+        rows += [(2.2, a, "kick") for a in one + geo.kick_aims(pc, t.pos[i], table, rc, mid)]
+        rows += [(3.5, a, "kick") for a in one]
+        rows += [(3.0, a, "kick") for a in two]
+        rows += [(2.5, a + s * f, "kick") for f in KICK_FAN for s in (1, -1) for a in one]
+        rows += [(3.0, a + s * 1.5, "kick") for s in (1, -1) for a in two]
+        per_ball.append([(speed, angle, i, kind) for speed, angle, kind in rows])
+    # Interleave the balls, rank by rank, so that a small budget still covers every one.
+    for rank in range(max((len(r) for r in per_ball), default=0)):
+        for rows in per_ball:
+            if rank < len(rows):
+                if len(cands) >= budget:
+                    return cands
+                speed, angle, i, kind = rows[rank]
+                cands.add(speed, angle, 0.0, 0.0, i, -1, kind, 0.0)
     return cands
 
 
@@ -528,7 +535,7 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
     if state.is_break:
         cands = _break_cands(t, targets)
     else:
-        reserve = min(budget // 3, 12 * max(len(targets), 1))
+        reserve = min(budget // 3, 24 * max(len(targets), 1))
         cands = _pot_cands(t, targets, pockets, table, physics, lv,
                            budget - reserve - lv.combos)
         cands.extend(_combo_cands(t, targets, state.mode, pockets, physics, lv,

@@ -152,25 +152,37 @@ def pot_speed(d1: float, d2: float, cos_cut: float, physics: Physics) -> float:
     return math.sqrt(v_hit * v_hit + 2 * a * d1) * 1.4
 
 
-def kick_aims(pc: np.ndarray, pt: np.ndarray, table: Table, rc: float,
-               bounce: float) -> list[float]:
-    """Aim angles (degrees) of one-rail kicks from pc to pt, one per rail.
+def _rails(table: Table, rc: float) -> list[tuple[int, float]]:
+    """The four lines a ball's centre meets the rails on, as (axis, coordinate)."""
+    return [(1, rc), (1, table.width - rc), (0, rc), (0, table.length - rc)]
 
-    The ball's centre meets a rail on the line rc from its nose. A rebound keeps the speed
-    along the rail and keeps `bounce` of the speed across it, so the contact point splits the
-    way in the ratio a*bounce : b of the two balls' distances from that line (a mirror image
-    is bounce = 1)."""
-    L, W = table.length, table.width
+
+def _image(p: np.ndarray, axis: int, line: float, bounce: float) -> np.ndarray:
+    """Where p seems to be seen through a rail: a rebound keeps the speed along the rail and
+    `bounce` of the speed across it, so a ball heading for p after the rail travels as if
+    straight to p's image, 1/bounce times as deep behind the line (a mirror at bounce = 1)."""
+    q = np.array(p, dtype=float)
+    q[axis] = line - (q[axis] - line) / bounce
+    return q
+
+
+def kick_aims(pc: np.ndarray, pt: np.ndarray, table: Table, rc: float, bounce: float,
+              rails: int = 1) -> list[float]:
+    """Aim angles (degrees) of kicks from pc to pt: one-rail kicks, one per rail, or with
+    rails=2 two-rail kicks, one per ordered pair of different rails. The ball's centre meets
+    a rail on the line rc from its nose."""
+    lines = _rails(table, rc)
     aims = []
-    for axis, line in ((1, rc), (1, W - rc), (0, rc), (0, L - rc)):
-        a, b = abs(float(pc[axis]) - line), abs(float(pt[axis]) - line)
-        along = 1 - axis
-        if a + b < 1e-9:
-            continue
-        s = (float(pt[along]) * a * bounce + float(pc[along]) * b) / (a * bounce + b)
-        hit = np.empty(2)
-        hit[axis], hit[along] = line, s
-        aims.append(deg(hit - pc))
+    if rails == 1:
+        for axis, line in lines:
+            if abs(float(pc[axis]) - line) + abs(float(pt[axis]) - line) > 1e-9:
+                aims.append(deg(_image(pt, axis, line, bounce) - pc))
+        return aims
+    for first in lines:
+        for second in lines:
+            if second != first:  # unfold the path: the last rail's image, then the first's
+                img = _image(_image(pt, *second, bounce), *first, bounce)
+                aims.append(deg(img - pc))
     return aims
 
 

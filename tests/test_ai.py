@@ -229,6 +229,21 @@ def test_risky_pots_rank_below_safe_ones():
     assert ai.choose_shot(*lay.args(), state).note == "1 in the head_right pocket"
 
 
+def test_kicks_out_of_a_snooker_on_the_eight():
+    # From a real game: on the 8 at the head end, the cue ball at the foot end behind the 9,
+    # 10 and 12. No straight line and no one-rail kick at 2.2 m/s reaches the 8 (everything
+    # the AI tried before its harder, two-rail and fanned kicks); one of those does.
+    lay = Layout({"cue": (2.378, 0.788), "8": (0.485, 0.724), "9": (1.609, 0.671),
+                  "10": (1.174, 0.751), "11": (2.194, 0.181), "12": (1.689, 0.903),
+                  "14": (2.415, 1.109), "15": (2.092, 0.390)})
+    state = State(mode="8ball", groups={0: "solids", 1: "stripes"},
+                  pocketed=tuple(b for b in (*SOLIDS, *STRIPES) if b not in lay.ids))
+    plan = ai.choose_shot(*lay.args(), state)
+    summary, out, _ = play(lay, plan, state)
+    assert summary.first_contact == "8"
+    assert out.foul is None and out.winner is None
+
+
 # ------------------------------------------------------------------------------ the 8
 
 
