@@ -471,6 +471,11 @@ def test_kick_aims_reflect_in_the_rails():
     soft = geo.kick_aims(pc, pt, TABLE, rc, 0.8)
     assert len(mirror) == len(soft) == 4
     assert soft[0] < mirror[0]  # on the y = rc rail: aimed further down, into the rail
+    # Two rails: the y = rc rail first, then the far one: aim at the image of the image.
+    two = geo.kick_aims(pc, pt, TABLE, rc, 1.0, rails=2)
+    assert len(two) == 12
+    y = 2 * rc - (2 * (W - rc) - pt[1])
+    assert two[0] == pytest.approx(math.degrees(math.atan2(y - pc[1], pt[0] - pc[0])))
 
 
 def test_pot_chances_straight_beats_thin_and_blocked_is_zero():
