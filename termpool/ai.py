@@ -134,8 +134,6 @@ def _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed
         raise ValueError("pos: must be numbers, shape (N, 2)") from None
     if p.shape != (n, 2):
         raise ValueError(f"pos: shape {p.shape} does not fit {n} ids (need ({n}, 2))")
-    if not np.isfinite(p).all():
-        raise ValueError("pos: must be finite")
     r = _per_ball(radius, n, "radius")
     m = _per_ball(mass, n, "mass")
     on = np.asarray(on_table)
@@ -144,6 +142,8 @@ def _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed
     cue = ids.index("cue")
     if not on[cue]:
         raise ValueError("on_table: the cue ball is not on the table")
+    if not np.isfinite(p[on]).all():  # balls off the table may be anywhere, NaN included
+        raise ValueError("pos: must be finite for the balls on the table")
     keep = np.nonzero(on)[0]
     sub = [ids[k] for k in keep]
     return _Table(sub, p[keep], r[keep], m[keep], sub.index("cue"))
@@ -541,7 +541,11 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
         cands.extend(_combo_cands(t, targets, state.mode, pockets, physics, lv,
                                   min(lv.combos, budget - reserve - len(cands))))
         _calibrate(t, cands, table, physics)
-        cands.extend(_safety_cands(t, targets, table, physics, budget - len(cands)))
+        # With a likely pot on the table the fallbacks get only their reserve; without one
+        # they may fill the budget (a snooker needs many kicks).
+        likely = any(c > 0.3 for c in cands.chance)
+        cands.extend(_safety_cands(t, targets, table, physics,
+                                   reserve if likely else budget - len(cands)))
     if len(cands) == 0:
         return _Eval(t, targets, pockets, lv, cands, np.zeros(0), [], [])
     eng = _simulate(t, cands, table, physics)
@@ -633,6 +637,24 @@ def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
     return ok
 
 
+def _cue_in_hand(ids, pos, on_table, table: Table):
+    """pos and on_table with the cue ball on the table at the head spot (bad shapes are
+    passed on unchanged for _inputs to report)."""
+    names = [str(b) for b in ids]
+    try:
+        p = np.array(pos, dtype=float)
+        on = np.array(on_table)
+    except (ValueError, TypeError):
+        return pos, on_table
+    n = len(names)
+    if "cue" in names and p.shape == (n, 2) and on.shape == (n,) and on.dtype == bool:
+        k = names.index("cue")
+        p[k] = table.head_spot
+        on[k] = True
+        return p, on
+    return pos, on_table
+
+
 def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
                      on_table, state: State, area: str, *, level: str = "normal",
                      seed: int = 0) -> tuple[float, float]:
@@ -640,11 +662,12 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
     distances, and a coarse grid as a fallback, are scored by the shots they leave.
 
-    The cue ball's entry in `pos` is ignored (it is being placed); it must be in `ids` and
-    marked on the table.
+    The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
+    scratch it is still in a pocket); it must be in `ids`.
     """
     if area not in AREAS:
         raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    pos, on_table = _cue_in_hand(ids, pos, on_table, table)
     t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     lv = LEVELS[level]
     r = float(t.radius[t.cue])

@@ -365,6 +365,16 @@ def test_table_without_pockets_still_hits_a_legal_ball():
     assert plain.inside(*xy, R)
 
 
+def test_placement_after_a_scratch_ignores_where_the_cue_ball_went():
+    # After a scratch the cue ball is in a pocket: not on the table, at the hole's centre.
+    lay, down = after_break()
+    lay.on[0] = False
+    lay.pos[0] = (math.nan, math.nan)
+    state = State(mode="8ball", pocketed=tuple(down), shooter=1)
+    xy = ai.choose_placement(*lay.args(), state, "anywhere")
+    _placement_ok(lay, xy, "anywhere")
+
+
 def test_ball_in_hand_then_pot():
     # With the cue ball in hand anywhere and one ball left, the AI places and then pots it.
     lay = Layout({"cue": (0.2, 0.2), "7": (1.7, 0.8)})
@@ -511,7 +521,7 @@ def test_pot_chances_straight_beats_thin_and_blocked_is_zero():
         ({"seed": "x"}, "seed: must be an integer"),
         ({"ids": ["1", "2"]}, "ids: no cue ball"),
         ({"pos": np.zeros((3, 3))}, "pos: shape (3, 3) does not fit 2 ids"),
-        ({"pos": [[0.5, math.nan], [1.0, 0.5]]}, "pos: must be finite"),
+        ({"pos": [[0.5, math.nan], [1.0, 0.5]]}, "pos: must be finite for the balls on"),
         ({"on_table": [True]}, "on_table: must be 2 booleans"),
         ({"on_table": np.array([False, True])}, "on_table: the cue ball is not on the table"),
         ({"radius": -1.0}, "radius: must be positive and finite"),
