@@ -8,6 +8,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from termpool import ai
 from termpool import ai_geometry as geo
@@ -322,6 +324,22 @@ def test_ball_in_hand_placement_is_legal(area, level):
     for seed in range(3):
         xy = ai.choose_placement(*lay.args(), state, area, level=level, seed=seed)
         _placement_ok(lay, xy, area)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(spots=st.lists(st.tuples(st.floats(R, L - R), st.floats(R, W - R)), min_size=1,
+                      max_size=15),
+       area=st.sampled_from(["anywhere", "kitchen"]), level=st.sampled_from(["easy", "normal"]),
+       seed=st.integers(0, 1000))
+def test_placement_is_legal_for_any_layout(spots, area, level, seed):
+    balls: dict[str, tuple[float, float]] = {"cue": (0.1, 0.1)}
+    for x, y in spots:  # keep the balls that do not overlap those already placed
+        if all(math.hypot(x - p[0], y - p[1]) >= 2 * R for b, p in balls.items() if b != "cue"):
+            balls[str(len(balls))] = (x, y)
+    lay = Layout(balls)
+    state = State(mode="practice")
+    xy = ai.choose_placement(*lay.args(), state, area, level=level, seed=seed)
+    _placement_ok(lay, xy, area)
 
 
 def test_placement_avoids_a_crowded_kitchen():
