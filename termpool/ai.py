@@ -1,10 +1,12 @@
 """The computer opponent: candidate shots simulated in one batch and judged by the referee.
 
 `choose_shot` builds candidate strikes (the break: hard shots at the rack's apex; otherwise
-ghost-ball pots for every legal target and pocket at a few speeds and spins, plus soft safeties
-and one-rail kicks at each legal ball), simulates them all in ONE batched Engine, judges every
-table with the rules, and returns the best as a `Plan`. `choose_placement` picks a spot for
-the cue ball in hand from cheap geometry (the shots the spot leaves).
+ghost-ball pots for every legal target and pocket at a few speeds and spins, combinations, and
+soft safeties and one-rail kicks at each legal ball), simulates them all in ONE batched Engine,
+judges every table with the rules and scores it; the best few are simulated again aimed a
+little to either side, and the best expected score is played (`Plan`). `score_shots` returns
+every candidate of the batch with its score. `choose_placement` picks a spot for the cue ball
+in hand from cheap geometry (the shots the spot leaves).
 
 Scores: a win far above a legal pot (the shooter continues) above a shot that passes the turn
 without a foul above a foul above a loss. A pot is weighted by its chance to go in under the
@@ -16,7 +18,8 @@ Cut shots throw the object ball off the line of centres (ball-ball friction), so
 batch each pot's aim is corrected by two cheap rounds on two-ball tables without pockets
 (cue ball and target only): the object ball's measured heading corrects the contact angle.
 
-The module reads the physics and rules and never changes them: no terminal code here.
+Geometry (pockets, chances, blocked paths, kick aims) is in `ai_geometry`. The module reads the
+physics and rules and never changes them; no terminal code here.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from termpool import ai_geometry as geo
 from termpool.physics.cue import strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import Physics
@@ -56,14 +60,17 @@ class Level(NamedTuple):
     sigma: float  # notional aim error (degrees) that weighs how risky a pot is
     noise: bool  # add that aim error (and a speed error) to the chosen plan
     spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+    combos: int  # candidates kept for combinations (two speeds each)
+    verify: int  # best candidates re-simulated under aim error before choosing
 
 
 LEVELS = {
-    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1),
-    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2),
+    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1, 0, 6),
+    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2,
+                    16, 8),
     "hard": Level(2.0, (1.0, 1.5, 2.2, 3.2),
                   ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)),
-                  0.2, False, 3),
+                  0.2, False, 3, 32, 12),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
 MISS = -60.0  # value of a pot that misses in play: the opponent usually gets a shot
@@ -71,12 +78,11 @@ FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happe
 POSITION = 100.0  # weight of the next shot's chance after a pot
 LEAVE = 60.0  # weight of the opponent's best chance after the turn passes
 SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
-MAX_CUT = 80.0  # degrees; thinner cuts are not tried as pots
 SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
 BREAK_SPEEDS = (8.0, 8.5, 9.0)
+KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's aim
 BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
 BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
-CORNER_LIMIT, SIDE_LIMIT = 60.0, 45.0  # degrees off a pocket's axis that still drop
 MIN_CANDIDATES = 8
 EASY_SPEED_ERROR = 0.05  # relative sd of the easy level's speed
 EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
@@ -86,7 +92,7 @@ EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
 
 
 class _Table(NamedTuple):
-    """The balls on the table, in the order given, the cue ball first among them."""
+    """The balls on the table, in the order given; `cue` is the cue ball's index."""
 
     ids: list[str]
     pos: np.ndarray  # (n, 2)
@@ -128,8 +134,6 @@ def _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed
         raise ValueError("pos: must be numbers, shape (N, 2)") from None
     if p.shape != (n, 2):
         raise ValueError(f"pos: shape {p.shape} does not fit {n} ids (need ({n}, 2))")
-    if not np.isfinite(p).all():
-        raise ValueError("pos: must be finite")
     r = _per_ball(radius, n, "radius")
     m = _per_ball(mass, n, "mass")
     on = np.asarray(on_table)
@@ -138,6 +142,8 @@ def _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed
     cue = ids.index("cue")
     if not on[cue]:
         raise ValueError("on_table: the cue ball is not on the table")
+    if not np.isfinite(p[on]).all():  # balls off the table may be anywhere, NaN included
+        raise ValueError("pos: must be finite for the balls on the table")
     keep = np.nonzero(on)[0]
     sub = [ids[k] for k in keep]
     return _Table(sub, p[keep], r[keep], m[keep], sub.index("cue"))
@@ -158,113 +164,6 @@ def legal_targets(state: State, present: Sequence[str]) -> list[str]:
     return own or (["8"] if "8" in here else [])
 
 
-# ---------------------------------------------------------------------------- geometry
-
-
-class _Pockets(NamedTuple):
-    names: tuple[str, ...]
-    aim: np.ndarray  # (P, 2) where an object ball is sent: a ball radius past the mouth
-    out: np.ndarray  # (P, 2) unit vector from the mouth into the pocket
-    half: np.ndarray  # (P,) half the mouth
-    cos_limit: np.ndarray  # (P,) steepest approach that still drops
-
-
-def _pockets(table: Table, radius: float) -> _Pockets:
-    n = len(table.hole_names)
-    if n == 0:
-        z = np.zeros((0, 2))
-        return _Pockets((), z, z, np.zeros(0), np.zeros(0))
-    tips = table.points.reshape(n, 2, 2)  # two jaw tips per pocket, in hole_names order
-    mid = tips.mean(axis=1)
-    out = table.hole_c - mid
-    out /= np.linalg.norm(out, axis=1)[:, None]
-    half = np.linalg.norm(tips[:, 0] - tips[:, 1], axis=1) / 2
-    side = np.array([name.startswith("side") for name in table.hole_names])
-    limit = np.radians(np.where(side, SIDE_LIMIT, CORNER_LIMIT))
-    return _Pockets(tuple(table.hole_names), mid + radius * out, out, half, np.cos(limit))
-
-
-def _blocked(a, b, obst, rad_move, rad_obst, skip) -> np.ndarray:
-    """True where a ball of radius rad_move going from a to b (..., 2) would touch an obstacle.
-
-    a, b: (B, M, 2); obst: (B, K, 2); rad_obst: (K,); skip: (B, M, K) obstacles to ignore.
-    """
-    d = b - a
-    length2 = np.maximum((d * d).sum(-1), 1e-12)
-    rel = obst[:, None] - a[:, :, None]  # (B, M, K, 2)
-    s = np.clip((rel * d[:, :, None]).sum(-1) / length2[:, :, None], 0.0, 1.0)
-    gap = rel - s[..., None] * d[:, :, None]
-    close = (gap * gap).sum(-1) < (rad_move + rad_obst[None, None]) ** 2 - 1e-9
-    return (close & ~skip).any(-1)
-
-
-def _chances(cue, balls, alive, target, radius, cue_idx, pockets, table, sigma):
-    """Chance (B, N, P) that a straight pot of ball i into pocket p goes in from `cue`.
-
-    cue: (B, 2); balls: (B, N, 2); alive, target: (B, N) bool. The chance is that of an aim
-    error (sd `sigma` degrees) staying within the pot's tolerance: the mouth seen from the
-    object ball, shrunk by the distances and the cut. Blocked paths and thin cuts give 0.
-    Also returns the contact normals u (B, N, P, 2).
-    """
-    B, N = balls.shape[:2]
-    P = len(pockets.names)
-    if P == 0:
-        return np.zeros((B, N, 0)), np.zeros((B, N, 0, 2))
-    rc = radius[cue_idx]
-    u = pockets.aim[None, None] - balls[:, :, None]  # (B, N, P, 2)
-    d2 = np.linalg.norm(u, axis=-1)
-    u = u / np.maximum(d2, 1e-9)[..., None]
-    ghost = balls[:, :, None] - (rc + radius)[None, :, None, None] * u
-    c = ghost - cue[:, None, None]
-    d1 = np.linalg.norm(c, axis=-1)
-    c = c / np.maximum(d1, 1e-9)[..., None]
-    cos_cut = (c * u).sum(-1)
-    approach = (u * pockets.out[None, None]).sum(-1)
-    ok = target[:, :, None] & alive[:, :, None] & (cos_cut > math.cos(math.radians(MAX_CUT)))
-    ok &= approach > pockets.cos_limit[None, None]
-    ok &= d1 > 1e-3  # a cue ball frozen to the ghost spot has no line to aim along
-    gx, gy = ghost[..., 0], ghost[..., 1]
-    ok &= (gx >= rc) & (gx <= table.length - rc) & (gy >= rc) & (gy <= table.width - rc)
-    tol = np.maximum(pockets.half[None, None] * approach - 0.6 * rc, 0.004)
-    # A cue aim error e turns the contact normal by e d1 / (2R cos cut): the tolerance on the
-    # object ball's heading (tol / d2) maps back to the cue through that factor.
-    cue_tol = (tol / np.maximum(d2, 1e-3)) * (rc + radius)[None, :, None] * np.maximum(
-        cos_cut, 1e-3) / np.maximum(d1, 1e-3)
-    chance = _erf(cue_tol / (math.radians(sigma) * math.sqrt(2.0)))
-    # Blockers: every live ball but the target (and the cue ball on the cue's own path).
-    idx = np.arange(N)
-    dead = ~alive[:, None, :]  # (B, 1, K)
-    flat = (B, N * P, 2)
-    skip_t = np.broadcast_to((idx[:, None, None] == idx[None, None, :]), (N, P, N))
-    skip_t = np.broadcast_to(skip_t.reshape(1, N * P, N), (B, N * P, N)) | dead
-    skip_c = skip_t | (idx == cue_idx)[None, None, :]
-    src = np.broadcast_to(cue[:, None, None], ghost.shape).reshape(flat)
-    path1 = _blocked(src, ghost.reshape(flat), balls, rc, radius, skip_c)
-    start = np.broadcast_to(balls[:, :, None], ghost.shape).reshape(flat)
-    end = np.broadcast_to(pockets.aim[None, None], ghost.shape).reshape(flat)
-    rmove = np.broadcast_to(radius[None, :, None], (B, N, P)).reshape(B, N * P)[..., None]
-    path2 = _blocked(start, end, balls, rmove, radius, skip_t)  # the cue ball blocks too
-    ok &= ~(path1 | path2).reshape(B, N, P)
-    return np.where(ok, chance, 0.0), u
-
-
-def _erf(x: np.ndarray) -> np.ndarray:
-    # Abramowitz-Stegun 7.1.26 (error under 1.5e-7), for x >= 0: numpy has no erf.
-    t = 1.0 / (1.0 + 0.3275911 * x)
-    poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (
-        -1.453152027 + t * 1.061405429))))
-    return 1.0 - poly * np.exp(-x * x)
-
-
-def _leave(chance: np.ndarray) -> np.ndarray:
-    """How good a table is for whoever shoots next, 0..1: the best pot plus a little for
-    each other makeable one (more choices are worth more)."""
-    flat = chance.reshape(chance.shape[0], -1)
-    best = flat.max(axis=1, initial=0.0)
-    count = np.minimum((flat > 0.3).sum(axis=1), 4)
-    return np.minimum(best + 0.05 * count, 1.0) / 1.2
-
-
 # --------------------------------------------------------------------------- candidates
 
 
@@ -278,10 +177,13 @@ class _Cands:
         self.top: list[float] = []
         self.target: list[int] = []  # ball index aimed at (-1: none)
         self.pocket: list[int] = []  # pocket aimed at (-1: none)
-        self.kind: list[str] = []  # "break", "pot", "safety", "kick"
+        self.kind: list[str] = []  # "break", "pot", "combo", "safety", "kick"
         self.chance: list[float] = []
+        self.via: list[int] = []  # combo: the ball the target drives into the pocket
+        self.aim: list[tuple[float, float]] = []  # pots and combos: where the target heads
 
-    def add(self, speed, angle, side, top, target, pocket, kind, chance) -> None:
+    def add(self, speed, angle, side, top, target, pocket, kind, chance, via=-1,
+            aim=(0.0, 0.0)) -> None:
         self.speed.append(float(np.clip(speed, 0.0, BREAK_SPEEDS[-1])))
         self.angle.append(float(angle))
         self.side.append(float(side))
@@ -290,25 +192,17 @@ class _Cands:
         self.pocket.append(int(pocket))
         self.kind.append(kind)
         self.chance.append(float(chance))
+        self.via.append(int(via))
+        self.aim.append((float(aim[0]), float(aim[1])))
+
+    def extend(self, other: _Cands) -> None:
+        for k in range(len(other)):
+            self.add(other.speed[k], other.angle[k], other.side[k], other.top[k],
+                     other.target[k], other.pocket[k], other.kind[k], other.chance[k],
+                     other.via[k], other.aim[k])
 
     def __len__(self) -> int:
         return len(self.speed)
-
-
-def _deg(v) -> float:
-    return math.degrees(math.atan2(float(v[1]), float(v[0])))
-
-
-def _pot_speed(d1: float, d2: float, cos_cut: float, physics: Physics) -> float:
-    """About the slowest cue speed that rolls the object ball into the pocket.
-
-    A ball rolls a distance d from speed sqrt(2 mu_r g d); a struck or hit ball leaves sliding
-    and rolls at 5/7 of its speed; the cue ball passes cos(cut) of its speed on (times
-    (1 + e) / 2)."""
-    a = physics.mu_roll * physics.g
-    v_obj = math.sqrt(2 * a * (d2 + 0.3)) * 1.4
-    v_hit = v_obj / max(cos_cut, 0.2) / ((1 + physics.e_ball) / 2)
-    return math.sqrt(v_hit * v_hit + 2 * a * d1) * 1.4
 
 
 def _break_cands(t: _Table, targets: list[str]) -> _Cands:
@@ -319,7 +213,7 @@ def _break_cands(t: _Table, targets: list[str]) -> _Cands:
     if not choice:
         return cands
     apex = min(choice, key=lambda k: float(np.linalg.norm(p[k] - p[t.cue])))
-    base = _deg(p[apex] - p[t.cue])
+    base = geo.deg(p[apex] - p[t.cue])
     for speed in BREAK_SPEEDS:
         for aim in BREAK_AIMS:
             for side, top in BREAK_SPINS:
@@ -332,8 +226,8 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     n = len(t.ids)
     alive = np.ones((1, n), bool)
     tmask = np.array([[b in targets for b in t.ids]])
-    chance, u = _chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius, t.cue,
-                         pockets, table, lv.sigma)
+    chance, u = geo.pot_chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius,
+                                t.cue, pockets, table, lv.sigma)
     chance, u = chance[0], u[0]
     # Pairs by chance; a blocked pair (chance 0) is left to the safeties.
     order = [(float(chance[i, k]), i, k) for i, k in zip(*np.nonzero(chance > 1e-4), strict=True)]
@@ -344,52 +238,108 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
         d1 = float(np.linalg.norm(ghost - t.pos[t.cue]))
         d2 = float(np.linalg.norm(pockets.aim[k] - t.pos[i]))
         cos_cut = float(np.dot((ghost - t.pos[t.cue]) / max(d1, 1e-9), u[i, k]))
-        base = _pot_speed(d1, d2, cos_cut, physics)
-        for f in lv.speeds:
-            speed = float(np.clip(base * f, *SPEED_RANGE))
+        base = geo.pot_speed(d1, d2, cos_cut, physics)
+        # Speeds clipped to the same value would only repeat a table.
+        for speed in dict.fromkeys(float(np.clip(base * f, *SPEED_RANGE)) for f in lv.speeds):
             for side, top in lv.spins:
-                cands.add(speed, _deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c)
+                cands.add(speed, geo.deg(ghost - t.pos[t.cue]), side, top, i, k, "pot", c,
+                          aim=pockets.aim[k])
     return cands
 
 
-def _mirror_aims(p: np.ndarray, table: Table, r: float) -> list[np.ndarray]:
-    """Images of point p in the four rails (lines where a ball's centre meets the cushion)."""
-    L, W = table.length, table.width
-    x, y = float(p[0]), float(p[1])
-    return [np.array([x, -y + 2 * r]), np.array([x, 2 * (W - r) - y]),
-            np.array([-x + 2 * r, y]), np.array([2 * (L - r) - x, y])]
+def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int) -> _Cands:
+    """Combinations: a legal ball driven into another object ball that goes in.
 
-
-def _safety_cands(t: _Table, targets: list[str], table: Table, budget: int) -> _Cands:
-    """Soft full and half-ball hits at each legal ball, and one-rail kicks at it."""
+    The target is sent to the ghost spot of the second ball's pot. The chance is that of
+    both cuts (the first to within a quarter ball of its spot), blockers left to the batch."""
     cands = _Cands()
-    pc = t.pos[t.cue]
+    if budget <= 0 or not len(pockets.names):
+        return cands
+    pc, rc = t.pos[t.cue], float(t.radius[t.cue])
+    eight = mode == "8ball"
     rows = []
     for b in targets:
         i = t.ids.index(b)
-        d = t.pos[i] - pc
-        dist = float(np.linalg.norm(d))
-        base = _deg(d)
-        half = math.degrees(math.asin(min((t.radius[i] + t.radius[t.cue]) / 2 / max(dist, 1e-9),
-                                          1.0)))
-        rows.append((0.9, base, i, "safety"))
-        rows.append((1.8, base, i, "safety"))
-        rows.append((1.3, base + half, i, "safety"))
-        rows.append((1.3, base - half, i, "safety"))
-        for img in _mirror_aims(t.pos[i], table, t.radius[t.cue]):
-            rows.append((2.2, _deg(img - pc), i, "kick"))
-    # Interleave balls so that a small budget still covers every legal ball.
-    per = 8
-    for j in range(per):
-        for k in range(j, len(rows), per):
-            if len(cands) >= budget:
-                return cands
-            speed, angle, i, kind = rows[k]
-            cands.add(speed, angle, 0.0, 0.0, i, -1, kind, 0.0)
+        ri = float(t.radius[i])
+        for j in range(len(t.ids)):
+            # In 8-ball only a ball the shooter may pot is worth driving in.
+            if j in (i, t.cue) or (eight and t.ids[j] not in targets):
+                continue
+            rj = float(t.radius[j])
+            for k in range(len(pockets.names)):
+                uj = pockets.aim[k] - t.pos[j]
+                d3 = float(np.linalg.norm(uj))
+                uj = uj / max(d3, 1e-9)
+                if float(np.dot(uj, pockets.out[k])) <= pockets.cos_limit[k]:
+                    continue
+                spot = t.pos[j] - (ri + rj) * uj  # where the target must arrive
+                ui = spot - t.pos[i]
+                d2 = float(np.linalg.norm(ui))
+                ui = ui / max(d2, 1e-9)
+                cos2 = float(np.dot(ui, uj))
+                ghost = t.pos[i] - (rc + ri) * ui
+                c = ghost - pc
+                d1 = float(np.linalg.norm(c))
+                if d1 < 1e-3 or cos2 < 0.5:
+                    continue
+                cos1 = float(np.dot(c / d1, ui))
+                if cos1 < math.cos(math.radians(geo.MAX_CUT)):
+                    continue
+                tol = max(float(pockets.half[k]) * float(np.dot(uj, pockets.out[k])) - 0.6 * rc,
+                          0.004)
+                p2 = geo.pot_chance(tol, d2, d3, cos2, ri + rj, lv.sigma)  # the second ball's cut
+                p1 = geo.pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.sigma)
+                speed = geo.pot_speed(d1, d2 + d3, cos1 * cos2, physics)
+                rows.append((p1 * p2, i, j, k, speed, geo.deg(c), spot))
+    rows.sort(key=lambda r: (-r[0], r[1], r[2], r[3]))
+    for p, i, j, k, speed, angle, spot in rows[: budget // 2]:
+        if p < 1e-4:
+            break
+        for v in dict.fromkeys(float(np.clip(speed * f, *SPEED_RANGE)) for f in (1.0, 1.8)):
+            cands.add(v, angle, 0.0, 0.0, i, k, "combo", p, via=j, aim=spot)
     return cands
 
 
-def _calibrate(t: _Table, cands: _Cands, pockets: _Pockets, table: Table, physics: Physics,
+def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
+                  budget: int) -> _Cands:
+    """Fallbacks at each legal ball, most useful first: soft full and half-ball hits, one-rail
+    kicks (two guesses of the rebound: the cushion's restitution, and halfway to a mirror), a
+    harder one-rail kick, two-rail kicks, then fans of one- and two-rail kicks aimed up to a
+    few degrees to either side (the rebound of a spinning ball is only roughly known: the
+    batch finds the one that hits)."""
+    cands = _Cands()
+    pc = t.pos[t.cue]
+    rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
+    e, mid = physics.e_cushion, (1 + physics.e_cushion) / 2
+    per_ball = []
+    for b in targets:
+        i = t.ids.index(b)
+        d = t.pos[i] - pc
+        base = geo.deg(d)
+        half = math.degrees(math.asin(min(
+            (t.radius[i] + t.radius[t.cue]) / 2 / max(float(np.linalg.norm(d)), 1e-9), 1.0)))
+        rows = [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
+                (1.3, base - half, "safety")]
+        one = geo.kick_aims(pc, t.pos[i], table, rc, e)
+        two = geo.kick_aims(pc, t.pos[i], table, rc, mid, 2)
+        rows += [(2.2, a, "kick") for a in one + geo.kick_aims(pc, t.pos[i], table, rc, mid)]
+        rows += [(3.5, a, "kick") for a in one]
+        rows += [(3.0, a, "kick") for a in two]
+        rows += [(2.5, a + s * f, "kick") for f in KICK_FAN for s in (1, -1) for a in one]
+        rows += [(3.0, a + s * 1.5, "kick") for s in (1, -1) for a in two]
+        per_ball.append([(speed, angle, i, kind) for speed, angle, kind in rows])
+    # Interleave the balls, rank by rank, so that a small budget still covers every one.
+    for rank in range(max((len(r) for r in per_ball), default=0)):
+        for rows in per_ball:
+            if rank < len(rows):
+                if len(cands) >= budget:
+                    return cands
+                speed, angle, i, kind = rows[rank]
+                cands.add(speed, angle, 0.0, 0.0, i, -1, kind, 0.0)
+    return cands
+
+
+def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,
                rounds: int = 2) -> None:
     """Correct the aim of every pot for throw, in place.
 
@@ -397,12 +347,12 @@ def _calibrate(t: _Table, cands: _Cands, pockets: _Pockets, table: Table, physic
     measures where the object ball actually heads, and turns the contact normal by the
     error (a fixed-point iteration: the throw changes little with the normal).
     """
-    pots = [k for k, kind in enumerate(cands.kind) if kind == "pot"]
+    pots = [k for k, kind in enumerate(cands.kind) if kind in ("pot", "combo")]
     if not pots:
         return
     plain = Table(length=table.length, width=table.width, pockets="none")
     tgt = np.array([cands.target[k] for k in pots])
-    want = np.array([_deg(pockets.aim[cands.pocket[k]] - t.pos[cands.target[k]]) for k in pots])
+    want = np.array([geo.deg(np.array(cands.aim[k]) - t.pos[cands.target[k]]) for k in pots])
     normal = want.copy()
     pc = t.pos[t.cue]
     pt = t.pos[tgt]
@@ -430,13 +380,13 @@ def _calibrate(t: _Table, cands: _Cands, pockets: _Pockets, table: Table, physic
             d = end - pt[n]
             if float(np.linalg.norm(d)) < 0.02:  # not hit, or barely moved: keep the aim
                 continue
-            err = (_deg(d) - want[n] + 180.0) % 360.0 - 180.0
+            err = (geo.deg(d) - want[n] + 180.0) % 360.0 - 180.0
             if abs(err) < 20.0:
                 normal[n] -= err
         for n, k in enumerate(pots):
             rad = math.radians(normal[n])
             ghost = pt[n] - reach[n] * np.array([math.cos(rad), math.sin(rad)])
-            cands.angle[k] = _deg(ghost - pc)
+            cands.angle[k] = geo.deg(ghost - pc)
 
 
 def _heading_point(events: list[dict]) -> np.ndarray | None:
@@ -472,7 +422,7 @@ def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics) -> Engin
 
 
 def _call(state: State, targets: list[str], t: _Table, cands: _Cands, b: int, summary,
-          pockets: _Pockets) -> tuple[str, str] | None:
+          pockets: geo.Pockets) -> tuple[str, str] | None:
     """The call for candidate b: only for the 8 when it is the legal target. The pocket the
     simulation drops it in, else the pocket aimed at, else the one nearest the 8."""
     if state.mode != "8ball" or targets != ["8"] or not pockets.names:
@@ -486,15 +436,18 @@ def _call(state: State, targets: list[str], t: _Table, cands: _Cands, b: int, su
     return ("8", pockets.names[k])
 
 
-def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarray, list, list]:
-    """Score every simulated table; returns (scores, calls, notes)."""
+def _score(state, targets, t, cands, eng, table, pockets, lv,
+           sampled: bool = False) -> tuple[np.ndarray, list, list]:
+    """Score every simulated table; returns (scores, calls, notes). With `sampled`, the tables
+    are samples of aim error and every pot counts in full."""
     B, n = eng.B, eng.N
     alive = eng.state != POCKETED
     final = eng.pos
     scores = np.zeros(B)
     calls: list = []
     notes: list = []
-    leave_for: list[tuple[int, str, State]] = []  # (table, "me"|"you", state for next shot)
+    leave_for: list[tuple[int, float, State]] = []  # (table, pot chance or -1, next state)
+    practice = state.mode == "practice"
     for b in range(B):
         summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
         called = _call(state, targets, t, cands, b, summary, pockets)
@@ -503,35 +456,36 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
         tgt = t.ids[cands.target[b]] if cands.target[b] >= 0 else None
         aimed = pockets.names[cands.pocket[b]] if cands.pocket[b] >= 0 else None
         potted = summary.object_pocketed
+        # How likely the shot is to do in play what it did here: a pot aimed at a pocket
+        # by its chance, the break as it is, anything else (a kiss, a combination) a fluke.
+        sunk = t.ids[cands.via[b]] if cands.via[b] >= 0 else tgt  # the ball aimed at a pocket
+        intended = sunk is not None and aimed is not None and summary.pocketed.get(sunk) == aimed
+        p = 1.0 if cands.kind[b] == "break" or sampled else cands.chance[b] if intended \
+            else FLUKE
         if out.winner is not None:
-            if out.winner == state.shooter:
-                scores[b] = cands.chance[b] * WIN + (1 - cands.chance[b]) * MISS \
-                    if cands.kind[b] == "pot" else FLUKE * WIN + (1 - FLUKE) * MISS
-            else:
-                scores[b] = LOSS
+            scores[b] = p * WIN + (1 - p) * MISS if out.winner == state.shooter else LOSS
             notes.append(out.reason)
-        elif out.foul is not None:
+        elif out.foul is not None or (practice and out.ball_in_hand):
             scores[b] = FOUL
-            notes.append(f"foul: {out.reason}")
-        elif out.continue_turn:
-            intended = (tgt is not None and aimed is not None
-                        and summary.pocketed.get(tgt) == aimed)
-            p = cands.chance[b] if intended else FLUKE
-            if cands.kind[b] == "break":
-                p = 1.0
+            notes.append(f"foul: {out.reason}" if out.foul else out.reason)
+        elif out.continue_turn and potted:
             scores[b] = p * CONTINUE + (1 - p) * MISS
-            leave_for.append((b, "me", nxt))
-            if intended:
+            leave_for.append((b, p, nxt))
+            if intended and cands.kind[b] == "combo":
+                notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {aimed} "
+                             "pocket")
+            elif intended:
                 notes.append(f"{tgt} in the {aimed} pocket")
             else:
                 how = "the break" if cands.kind[b] == "break" else "a kiss or combination"
                 notes.append(f"{', '.join(potted)} in by {how}")
         else:
             scores[b] = PASS
-            leave_for.append((b, "you", nxt))
+            if not practice:  # in practice the same player shoots again: nothing to deny
+                leave_for.append((b, -1.0, nxt))
             word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
             if word is None:
-                word = f"try {tgt} in the {aimed} pocket"
+                word = f"try {sunk} in the {aimed} pocket"
             notes.append(f"{word} on the {tgt}" if cands.kind[b] in ("safety", "kick")
                          else word)
     if leave_for:
@@ -542,29 +496,34 @@ def _score(state, targets, t, cands, eng, table, pockets, lv) -> tuple[np.ndarra
             nxt_t = legal_targets(nxt, present) if "cue" in present else []
             tmask[r] = [bid in nxt_t for bid in t.ids]
         cue_alive = alive[rows, t.cue]
-        chance, _ = _chances(final[rows, t.cue], final[rows], alive[rows], tmask, t.radius,
-                             t.cue, pockets, table, lv.sigma)
-        value = _leave(chance)
-        for r, (b, who, _) in enumerate(leave_for):
+        chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask,
+                                    t.radius, t.cue, pockets, table, lv.sigma)
+        value = geo.leave_value(chance)
+        for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
-            if who == "me":
-                p = 1.0 if cands.kind[b] == "break" else cands.chance[b]
-                scores[b] += p * POSITION * value[r]
-            else:
-                scores[b] -= LEAVE * value[r]
+            # After a pot (p >= 0): the shooter's next shot, as likely as the pot itself.
+            # After the turn passes (p < 0): the opponent's.
+            scores[b] += p * POSITION * value[r] if p >= 0 else -LEAVE * value[r]
     return scores, calls, notes
 
 
 # ----------------------------------------------------------------------------------- API
 
 
-def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
-                on_table, state: State, *, level: str = "normal",
-                max_candidates: int = 256) -> list[Plan]:
-    """Every candidate shot, simulated in one batch and scored, in a fixed order (no aim
-    error added). Arguments as for `choose_shot`; the list is empty when no object ball is
-    on the table."""
+class _Eval(NamedTuple):
+    t: _Table
+    targets: list[str]
+    pockets: geo.Pockets
+    lv: Level
+    cands: _Cands
+    scores: np.ndarray
+    calls: list
+    notes: list
+
+
+def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
+              max_candidates) -> _Eval:
     if isinstance(max_candidates, bool) or not isinstance(max_candidates, (int, np.integer)) \
             or max_candidates < MIN_CANDIDATES:
         raise ValueError(f"max_candidates: must be an integer of at least {MIN_CANDIDATES}")
@@ -572,23 +531,64 @@ def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     lv = LEVELS[level]
     budget = max(int(max_candidates * lv.share), MIN_CANDIDATES)
     targets = legal_targets(state, t.ids)
-    pockets = _pockets(table, float(t.radius[t.cue]))
+    pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
     if state.is_break:
         cands = _break_cands(t, targets)
     else:
-        reserve = min(budget // 4, 8 * max(len(targets), 1))
-        cands = _pot_cands(t, targets, pockets, table, physics, lv, budget - reserve)
-        _calibrate(t, cands, pockets, table, physics)
-        safe = _safety_cands(t, targets, table, budget - len(cands))
-        for k in range(len(safe)):
-            cands.add(safe.speed[k], safe.angle[k], safe.side[k], safe.top[k], safe.target[k],
-                      safe.pocket[k], safe.kind[k], safe.chance[k])
+        reserve = min(budget // 3, 24 * max(len(targets), 1))
+        cands = _pot_cands(t, targets, pockets, table, physics, lv,
+                           budget - reserve - lv.combos)
+        cands.extend(_combo_cands(t, targets, state.mode, pockets, physics, lv,
+                                  min(lv.combos, budget - reserve - len(cands))))
+        _calibrate(t, cands, table, physics)
+        # With a likely pot on the table the fallbacks get only their reserve; without one
+        # they may fill the budget (a snooker needs many kicks).
+        likely = any(c > 0.3 for c in cands.chance)
+        cands.extend(_safety_cands(t, targets, table, physics,
+                                   reserve if likely else budget - len(cands)))
     if len(cands) == 0:
-        return []
+        return _Eval(t, targets, pockets, lv, cands, np.zeros(0), [], [])
     eng = _simulate(t, cands, table, physics)
     scores, calls, notes = _score(state, targets, t, cands, eng, table, pockets, lv)
-    return [Plan(cands.speed[b], (cands.angle[b] + 180.0) % 360.0 - 180.0, cands.side[b],
-                 cands.top[b], calls[b], float(scores[b]), notes[b]) for b in range(len(cands))]
+    return _Eval(t, targets, pockets, lv, cands, scores, calls, notes)
+
+
+def _plan(ev: _Eval, b: int, score: float) -> Plan:
+    c = ev.cands
+    return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
+                ev.calls[b], float(score), ev.notes[b])
+
+
+def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                on_table, state: State, *, level: str = "normal",
+                max_candidates: int = 256) -> list[Plan]:
+    """Every candidate shot, simulated in one batch and scored, in a fixed order (before
+    `choose_shot` checks the best few under aim error). Arguments as for `choose_shot`; the
+    list is empty when no object ball is on the table."""
+    ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
+                   max_candidates)
+    return [_plan(ev, b, ev.scores[b]) for b in range(len(ev.cands))]
+
+
+def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
+    """The best of the top few candidates once aim errors are taken into account.
+
+    Each is simulated again aimed sigma*sqrt(3) to either side (the three-point Gauss-Hermite
+    rule for a normal error: weights 1/6, 2/3, 1/6), all in one batch, and scored as played
+    (a pot counts in full where it goes in). Returns (candidate, its expected score)."""
+    c, lv = ev.cands, ev.lv
+    top = [int(k) for k in np.argsort(-ev.scores, kind="stable")[:lv.verify]]
+    sub = _Cands()
+    offset = math.sqrt(3.0) * lv.sigma
+    for k in top:
+        for d in (0.0, offset, -offset):
+            sub.add(c.speed[k], c.angle[k] + d, c.side[k], c.top[k], c.target[k], c.pocket[k],
+                    c.kind[k], 1.0, c.via[k], c.aim[k])
+    eng = _simulate(ev.t, sub, table, physics)
+    s, _, _ = _score(state, ev.targets, ev.t, sub, eng, table, ev.pockets, lv, sampled=True)
+    expect = (4 * s[0::3] + s[1::3] + s[2::3]) / 6
+    best = int(np.argmax(expect))  # the first of equal scores
+    return top[best], float(expect[best])
 
 
 def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
@@ -597,20 +597,24 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     """The computer's shot for the player `state.shooter` (see the module's docstring).
 
     `ids`, `pos` (N, 2), `radius`, `mass` (numbers or one per ball) describe the balls;
-    `on_table` (N booleans) says which are on the table. "easy" plays its choice with a
-    seeded aim and speed error. Deterministic for a given seed.
+    `on_table` (N booleans) says which are on the table. The best few candidates of the
+    batch are checked under the level's aim error and the best of them is played; "easy"
+    plays it with a seeded aim and speed error. Deterministic for a given seed.
     """
     _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
-    plans = score_shots(table, physics, ids, pos, radius, mass, on_table, state, level=level,
-                        max_candidates=max_candidates)
-    if not plans:  # nothing to aim at: roll the cue ball up the table
+    ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
+                   max_candidates)
+    if len(ev.cands) == 0:  # nothing to aim at: roll the cue ball up the table
         return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, "no object ball on the table")
-    # The first of equal scores: candidates come in a fixed order.
-    best = max(range(len(plans)), key=lambda k: (plans[k].score, -k))
-    plan = plans[best]
-    if LEVELS[level].noise:
+    if state.is_break or ev.lv.verify == 0:  # a break is chaos either way: take the batch's
+        best = int(np.argmax(ev.scores))
+        score = float(ev.scores[best])
+    else:
+        best, score = _verify(ev, state, table, physics)
+    plan = _plan(ev, best, score)
+    if ev.lv.noise:
         rng = np.random.default_rng(seed)
-        angle = plan.angle + float(rng.normal(0.0, LEVELS[level].sigma))
+        angle = plan.angle + float(rng.normal(0.0, ev.lv.sigma))
         speed = float(np.clip(plan.speed * (1 + rng.normal(0.0, EASY_SPEED_ERROR)), 0.1,
                               BREAK_SPEEDS[-1]))
         plan = plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)
@@ -624,13 +628,31 @@ def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
     margin = 1e-3
     ok = (x >= r + margin) & (x <= table.length - r - margin)
     ok &= (y >= r + margin) & (y <= table.width - r - margin)
-    if area == "kitchen":
-        ok &= x <= table.head_spot[0] - margin
+    if area == "kitchen":  # on or behind the head string
+        ok &= x <= table.head_spot[0]
     others = [k for k in range(len(t.ids)) if k != t.cue]
     if others:
         d = np.linalg.norm(xy[:, None] - t.pos[others][None], axis=-1)
         ok &= (d >= r + t.radius[others][None] + 2 * margin).all(axis=1)
     return ok
+
+
+def _cue_in_hand(ids, pos, on_table, table: Table):
+    """pos and on_table with the cue ball on the table at the head spot (bad shapes are
+    passed on unchanged for _inputs to report)."""
+    names = [str(b) for b in ids]
+    try:
+        p = np.array(pos, dtype=float)
+        on = np.array(on_table)
+    except (ValueError, TypeError):
+        return pos, on_table
+    n = len(names)
+    if "cue" in names and p.shape == (n, 2) and on.shape == (n,) and on.dtype == bool:
+        k = names.index("cue")
+        p[k] = table.head_spot
+        on[k] = True
+        return p, on
+    return pos, on_table
 
 
 def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
@@ -640,19 +662,21 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
     distances, and a coarse grid as a fallback, are scored by the shots they leave.
 
-    The cue ball's entry in `pos` is ignored (it is being placed); it must be in `ids` and
-    marked on the table.
+    The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
+    scratch it is still in a pocket); it must be in `ids`.
     """
     if area not in AREAS:
         raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    pos, on_table = _cue_in_hand(ids, pos, on_table, table)
     t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     lv = LEVELS[level]
     r = float(t.radius[t.cue])
-    pockets = _pockets(table, r)
+    pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
     spots = []
-    if state.is_break:
-        spots.append(np.array(table.head_spot))
+    if state.is_break:  # the head spot, else the nearest free point of the head string
+        hx, hy = table.head_spot
+        spots += [np.array([hx, hy + s * k * 0.02]) for k in range(25) for s in (1, -1)]
     dists = (0.3, 0.15, 0.5)[: lv.spots]
     for b in targets:
         i = t.ids.index(b)
@@ -682,9 +706,14 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     balls = np.broadcast_to(t.pos, (M, n, 2)).copy()
     balls[:, t.cue] = xy
     tmask = np.broadcast_to(np.array([b in targets for b in t.ids]), (M, n))
-    chance, _ = _chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue, pockets,
-                         table, lv.sigma)
-    value = _leave(chance)
+    chance, _ = geo.pot_chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue,
+                                pockets, table, lv.sigma)
+    value = geo.leave_value(chance)
+    # Between spots of equal value (say, no pot anywhere), the one nearest a legal ball.
+    legal = [k for k, b in enumerate(t.ids) if b in targets]
+    if legal:
+        near = np.linalg.norm(xy[:, None] - t.pos[legal][None], axis=-1).min(axis=1)
+        value = value - 1e-3 * near / table.length
     best = int(np.argmax(value))
     spot = xy[best]
     if lv.noise:
