@@ -621,6 +621,19 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     return plan
 
 
+def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0) -> Plan:
+    """The plan as a player with these errors (degrees of aim, relative speed; seeded) would
+    play it. The physics is deterministic, so a plan that pots in the batch pots in play: the
+    game gives its "normal" opponent a small error so that it can miss."""
+    if aim_sd <= 0 and speed_sd <= 0:
+        return plan
+    rng = np.random.default_rng(seed)
+    angle = plan.angle + float(rng.normal(0.0, aim_sd)) if aim_sd > 0 else plan.angle
+    speed = plan.speed * (1 + float(rng.normal(0.0, speed_sd))) if speed_sd > 0 else plan.speed
+    speed = float(np.clip(speed, 0.1, BREAK_SPEEDS[-1]))
+    return plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)
+
+
 def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
     """Legal cue ball spots among xy (M, 2): on the table, no overlap, in the kitchen if asked."""
     r = float(t.radius[t.cue])

@@ -566,3 +566,15 @@ def test_placement_area_is_checked():
     lay = Layout({"cue": (0.5, 0.5), "1": (1.5, 0.6)})
     with pytest.raises(ValueError, match="^area: must be one of anywhere, kitchen"):
         ai.choose_placement(*lay.args(), State(mode="practice"), "table")
+
+
+def test_with_error_is_seeded_and_zero_error_keeps_the_plan():
+    plan = ai.Plan(2.0, 30.0, 0.1, 0.2, None, 1.0, "x")
+    assert ai.with_error(plan, 0.0, 0.0, seed=3) == plan
+    a = ai.with_error(plan, 0.25, 0.02, seed=3)
+    assert a == ai.with_error(plan, 0.25, 0.02, seed=3)
+    assert a != ai.with_error(plan, 0.25, 0.02, seed=4)
+    assert a.angle != plan.angle and a.speed != plan.speed
+    assert (a.side, a.top, a.called) == (plan.side, plan.top, plan.called)
+    angles = [ai.with_error(plan, 0.25, 0.0, seed=s).angle - 30.0 for s in range(400)]
+    assert 0.2 < float(np.std(angles)) < 0.3

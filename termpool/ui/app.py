@@ -32,6 +32,8 @@ MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
 FAST = 4.0  # fast-forward factor
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 SPIN_MAX = 0.5  # beyond this the cue strike is a miscue
+CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
+# computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
 CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
 CPU_THINK_FRAME_S = 0.05  # show "thinking" for at least this long before blocking on the plan
 
@@ -347,6 +349,9 @@ class App:
             x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
             m.place_cue(x, y)
         plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
+        aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
+        if not m.state.is_break:
+            plan = ai.with_error(plan, aim_sd, speed_sd, seed)
         self.message = [(f"Computer: {plan.note}", "dim")] if plan.note else []
         return plan
 
