@@ -359,3 +359,36 @@ def test_the_shot_plays_in_real_time_and_fast_forward_is_four_times_faster() -> 
             live.step(DT)
         pos, _ = app._positions()
         assert np.array_equal(pos[app.run.rows], live.engine.pos[0])
+
+
+def test_three_foul_warning_shows_before_the_shot() -> None:
+    from dataclasses import replace
+
+    app = app_for(mode="9ball", opponent="human", three_foul=True)
+    app.key(Key("enter"), 0.0)
+    m = app.match
+    m.state = replace(m.state, fouls=(2, 0))
+    text = screen_text(app.cells(120, 40)[0])
+    assert "Player 1 is on two fouls" in text
+
+
+def test_free_spot_is_legal_even_with_the_head_spot_taken() -> None:
+    from termpool.ui.app import _free_spot
+
+    app = app_for(mode="8ball", opponent="human")
+    m = app.match
+    k = m.ids.index("1")
+    m.pos[k] = m.table.head_spot  # a ball sits on the head spot
+    x, y = _free_spot(m)
+    assert m.placement_error(x, y) is None
+
+
+def test_referee_words_get_the_players_names() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    assert app.names("the table is open and player 0 continues") == \
+        "the table is open and Player 1 continues"
+    assert app.names("Player 1 is on two fouls") == "Player 1 is on two fouls"
+    app = app_for(mode="8ball", opponent="cpu")
+    assert app.names("it is player 0's turn; player 1 loses") == "it is your turn; Computer loses"
+    assert app.names("the table is open and player 0 continues") == \
+        "the table is open and You continue"

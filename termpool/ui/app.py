@@ -167,7 +167,8 @@ class App:
     def names(self, text: str) -> str:
         """The referee's words with "player 0" / "player 1" replaced by the players' names."""
         names = self.match.players
-        text = re.sub(r"\b[Pp]layer ([01])\b", lambda g: names[int(g.group(1))], text)
+        # The referee says "player 0"; the default names are "Player 1" and "Player 2".
+        text = re.sub(r"\bplayer ([01])\b", lambda g: names[int(g.group(1))], text)
         for a, b in YOU_GRAMMAR:
             text = text.replace(a, b)
         return text
@@ -363,6 +364,8 @@ class App:
         seed = self.opts.seed * 1000 + len(m.history)
         if m.ball_in_hand:
             x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
+            if m.placement_error(x, y):  # never expected; the head spot area is the fallback
+                x, y = _free_spot(m)
             m.place_cue(x, y)
         plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
         aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
@@ -671,6 +674,9 @@ class App:
         m = self.match
         name = m.players[m.shooter]
         out = []
+        warn = m.warning() if self.phase in ("aim", "place") else None
+        if warn:
+            out.append((warn, "foul"))
         if self.phase == "aim":
             what = "break" if m.state.is_break else "shoot"
             s = f"{name} to {what}"
@@ -737,6 +743,18 @@ OPTION_TEXT = {
     "shoot_or_pass": ["Your opponent pushed out.", "", "s: shoot from here",
                       "p: pass the shot back"],
 }
+
+
+def _free_spot(m) -> tuple[float, float]:
+    """A legal spot for the cue ball, searched outward from the head spot."""
+    hx, hy = m.table.head_spot
+    r = float(m.radius[m.ids.index("cue")])
+    for k in range(1, 400):
+        for dx, dy in ((0, 1), (0, -1), (-1, 0), (1, 0)):
+            x, y = hx + dx * k * r / 2, hy + dy * k * r / 2
+            if m.placement_error(x, y) is None:
+                return x, y
+    return hx, hy
 
 
 def _cpu_option(option: str) -> str:
