@@ -54,6 +54,8 @@ _TRANSITION_NAMES = {
     (ROLLING, STATIONARY): "roll_to_stop",
     (SPINNING, STATIONARY): "spin_to_stop",
 }
+_ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
+_NONE = np.zeros(0, dtype=np.int64)
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -335,55 +337,57 @@ class Engine(SlowContacts):
 
     def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
         N = self.N
-        kind = np.minimum(code // N, 3)
-        i = np.where(kind < 3, code % N, (code - 3 * N) // N)
-        j = np.where(kind < 3, -1, (code - 3 * N) % N)
-        old_state = self.state[tabs, i]
-        win = np.floor(self.tb[tabs] / WINDOW).astype(np.int64)
-        fresh = win != self._win[tabs]
+        # code: N transitions, N checks, N cushions, then N * N pairs (i, j).
+        q, r = np.divmod(code, N)
+        kind = np.minimum(q, 3)
+        i = np.where(q < 3, r, q - 3)
+        j = np.where(q < 3, -1, r)
+        old_state = self.state[tabs, i] if self.record else None
+        t = self.tb[tabs]
+        win = np.floor(t / WINDOW).astype(np.int64)
+        count = np.where(win != self._win[tabs], 1, self._count[tabs] + 1)
         self._win[tabs] = win
-        self._count[tabs] = np.where(fresh, 1, self._count[tabs] + 1)
-        busy = self._count[tabs] > BUDGET
+        self._count[tabs] = count
+        busy = count > BUDGET
+        any_busy = busy.any()
+        if tabs.size == 1:  # one table (the usual case): pick its kind without array scans
+            which = _ONE
+            tr = cu = pr = _NONE
+            k0 = int(kind[0])
+            if k0 == 0:
+                tr = which
+            elif k0 == 2:
+                cu = which
+            elif k0 == 3:
+                pr = which
+        else:
+            tr = np.flatnonzero(kind == 0)
+            cu = np.flatnonzero(kind == 2)
+            pr = np.flatnonzero(kind == 3)
         labels: dict = {}
         clusters: list[tuple[int, list[int], bool]] = []
-        tr = np.nonzero(kind == 0)[0]
         if tr.size:
             self._transition(tabs[tr], i[tr])
-        cu = np.nonzero(kind == 2)[0]
         if cu.size:
             # A slow bounce of a ball that touches another ball (pressed into the rail), or
             # any bounce over the work bound, is solved with its cluster.
-            squeeze = busy[cu] | self._squeezed(tabs[cu], i[cu])
-            for n in cu[squeeze].tolist():
-                clusters.append((n, [int(i[n])], bool(busy[n])))
+            squeeze = self._squeezed(tabs[cu], i[cu])
+            if any_busy:
+                squeeze |= busy[cu]
             if self.record:
                 labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
                                   strict=True))
-            cu = cu[~squeeze]
+            if squeeze.any():
+                for n in cu[squeeze].tolist():
+                    clusters.append((n, [int(i[n])], bool(busy[n])))
+                cu = cu[~squeeze]
             if cu.size:
                 self._cushion(tabs[cu], i[cu])
-        pr = np.nonzero(kind == 3)[0]
-        more_b, more_i = [tabs[pr]], [j[pr]]
+        more_b, more_i = [tabs], [i]
         if pr.size:
-            # Both balls' states, once, for the closing speed and for whichever response.
-            bp = tabs[pr]
-            states = self._eval(bp, i[pr], self.tb[bp]) + self._eval(bp, j[pr], self.tb[bp])
-            d = states[3] - states[0]
-            closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
-            slow = (closing < self.physics.v_inelastic) | busy[pr]
-            if (~slow).any():
-                f = pr[~slow]
-                self._collide(tabs[f], i[f], j[f], *(x[~slow] for x in states))
-            quiet = slow & ~busy[pr]
-            sl = pr[quiet]
-            if sl.size:
-                alone = self._alone(tabs[sl], i[sl], j[sl])
-                if alone.any():
-                    a = sl[alone]
-                    self._settle(tabs[a], i[a], j[a], *(x[quiet][alone] for x in states))
-                sl = sl[~alone]
-            for n in sl.tolist() + pr[busy[pr]].tolist():
-                clusters.append((n, [int(i[n]), int(j[n])], bool(busy[n])))
+            more_b.append(tabs[pr])
+            more_i.append(j[pr])
+            self._pairs(tabs[pr], i[pr], j[pr], pr, busy[pr] if any_busy else None, clusters)
         extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
         for n, seeds, every in clusters:
             b = int(tabs[n])
@@ -391,9 +395,42 @@ class Engine(SlowContacts):
             more_b.append(np.full(len(members), b))
             more_i.append(np.array(members, dtype=np.int64))
             extra[n] = [k for k in moved if k not in seeds]
-        self._predict(np.concatenate([tabs] + more_b), np.concatenate([i] + more_i))
+        self._predict(np.concatenate(more_b), np.concatenate(more_i))
         if self.record:
             self._log(tabs, kind, i, j, old_state, labels, extra)
+
+    def _pairs(self, b, i, j, pr, busy, clusters) -> None:
+        """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
+        None for none): fast ones collide, slow ones settle alone or go to `clusters`."""
+        n = b.size
+        # Both balls' states, once, for the closing speed and for whichever response.
+        tb = self.tb[b]
+        p, v, w = self._eval(np.concatenate([b, b]), np.concatenate([i, j]),
+                             np.concatenate([tb, tb]))
+        states = (p[:n], v[:n], w[:n], p[n:], v[n:], w[n:])
+        d = states[3] - states[0]
+        closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
+        slow = closing < self.physics.v_inelastic
+        if busy is not None:
+            slow |= busy
+        if not slow.any():
+            self._collide(b, i, j, *states)
+            return
+        fast = ~slow
+        if fast.any():
+            self._collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
+        quiet = slow if busy is None else slow & ~busy
+        sl = np.flatnonzero(quiet)
+        if sl.size:
+            alone = self._alone(b[sl], i[sl], j[sl])
+            if alone.any():
+                a = sl[alone]
+                self._settle(b[a], i[a], j[a], *(x[a] for x in states))
+            sl = sl[~alone]
+        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
+        for k in late:
+            every = busy is not None and bool(busy[k])
+            clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every))
 
     def _transition(self, b, i) -> None:
         t = self.tb[b]
