@@ -56,6 +56,7 @@ _TRANSITION_NAMES = {
 }
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
+_NCOL = 13  # columns of Engine._motion
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -82,6 +83,8 @@ class Engine(SlowContacts):
         horizon: float = HORIZON,
     ) -> None:
         pos = np.asarray(pos, dtype=float)
+        if pos.ndim not in (2, 3) or pos.shape[-1] != 2:
+            raise ValueError(f"pos: shape {pos.shape} is not (N, 2) or (B, N, 2)")
         self.batched = pos.ndim == 3
         if not self.batched:
             pos = pos[None]
@@ -89,19 +92,27 @@ class Engine(SlowContacts):
         self.B, self.N = B, N
         self.table, self.physics, self.record, self.horizon = table, physics, record, horizon
         lead = (B, N) if self.batched else (N,)
-        self.p0 = pos.copy()
-        self.v0 = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
-        self.w0 = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
+        vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
+        w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
         self.radius = _batch(radius, lead, "radius").reshape(B, N)
         self.mass = _batch(mass, lead, "mass").reshape(B, N)
         sin_t = np.clip((physics.cushion_height - self.radius) / self.radius, -0.95, 0.95)
         self.rc = self.radius * np.sqrt(1.0 - sin_t * sin_t)  # centre-to-nose distance at contact
         self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
-        self.t0 = np.zeros((B, N))
+        # Each ball's motion since its clock t0, packed in one array so that evaluating balls
+        # takes one gather (the cost of a pass is the number of numpy calls, not the data):
+        # t0, p0 (2), v0 (2), acc (2), w0 (3), alpha (2, the rate of change of wx, wy), and
+        # the ball's side-spin decay rate. The named fields are views into it.
+        self._motion = np.zeros((B, N, _NCOL))
+        self.t0 = self._motion[..., 0]
+        self.p0 = self._motion[..., 1:3]
+        self.v0 = self._motion[..., 3:5]
+        self.acc = self._motion[..., 5:7]
+        self.w0 = self._motion[..., 7:10]
+        self.alpha = self._motion[..., 10:12]
+        self._motion[..., 12] = self.spin_rate
         self.state = np.zeros((B, N), dtype=np.int8)
         self.pocket = np.full((B, N), -1, dtype=np.int16)
-        self.acc = np.zeros((B, N, 2))
-        self.alpha = np.zeros((B, N, 2))  # rate of change of (wx, wy)
         self.t_trans = np.full((B, N), np.inf)
         self.t_check = np.full((B, N), np.inf)
         self.t_cush = np.full((B, N), np.inf)
@@ -125,25 +136,26 @@ class Engine(SlowContacts):
         self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
-            self._set(b, i, self.tb[b], self.p0[b, i], self.v0[b, i], self.w0[b, i].copy())
+            self._set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
             self._predict(b, i)
             self._refresh(np.arange(B))
 
     # ----------------------------------------------------------------- motion between events
     def _eval(self, b, i, t, spin: bool = True):
         """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
-        d = (t - self.t0[b, i])[..., None]
-        v0 = self.v0[b, i]
-        acc = self.acc[b, i]
-        p = self.p0[b, i] + (v0 + 0.5 * acc * d) * d
+        m = self._motion[b, i]  # a fancy-indexed copy: its w0 columns may be changed in place
+        d = (t - m[..., 0])[..., None]
+        v0 = m[..., 3:5]
+        acc = m[..., 5:7]
+        p = m[..., 1:3] + (v0 + 0.5 * acc * d) * d
         v = v0 + acc * d
         if not spin:
             return p, v, None
-        w = self.w0[b, i]  # a fancy-indexed copy
-        w[..., :2] += self.alpha[b, i] * d
+        w = m[..., 7:10]
+        w[..., :2] += m[..., 10:12] * d
         wz = w[..., 2]
         # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
-        decay = self.spin_rate[b, i] * np.maximum(d[..., 0], 0.0)
+        decay = m[..., 12] * np.maximum(d[..., 0], 0.0)
         w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
         return p, v, w
 
@@ -212,12 +224,7 @@ class Engine(SlowContacts):
         state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
                                                      np.where(spinning, SPINNING, STATIONARY)))
         self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self.t0[b, i] = t
-        self.p0[b, i] = p
-        self.v0[b, i] = v
-        self.w0[b, i] = w
-        self.acc[b, i] = acc
-        self.alpha[b, i] = alpha
+        self._motion[b, i, :12] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
         self.t_trans[b, i] = t + dt
 
     # ----------------------------------------------------------------- predictions
