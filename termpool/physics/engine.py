@@ -57,6 +57,8 @@ _TRANSITION_NAMES = {
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
 _NCOL = 13  # columns of Engine._motion
+_MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
+_LIVE = np.array([s != POCKETED for s in range(5)])
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -90,6 +92,7 @@ class Engine(SlowContacts):
             pos = pos[None]
         B, N = pos.shape[:2]
         self.B, self.N = B, N
+        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
         self.table, self.physics, self.record, self.horizon = table, physics, record, horizon
         lead = (B, N) if self.batched else (N,)
         vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
@@ -230,35 +233,39 @@ class Engine(SlowContacts):
     # ----------------------------------------------------------------- predictions
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
-        N = self.N
         t = self.tb[b]
         st = self.state[b, i]
-        moving = (st == SLIDING) | (st == ROLLING)
-        self.t_check[b, i] = np.where(moving, t + self.horizon, np.inf)
-        end = np.minimum(self.t_trans[b, i], self.t_check[b, i])
+        moving = _MOVING[st]
+        t_check = np.where(moving, t + self.horizon, np.inf)
+        self.t_check[b, i] = t_check
+        end = np.minimum(self.t_trans[b, i], t_check)
         self.t_cush[b, i] = np.inf
         self.t_pair[b, i, :] = np.inf
         self.t_pair[b, :, i] = np.inf
-        m = np.nonzero(st != POCKETED)[0]
-        if m.size == 0:
-            return
-        b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
-        p, v, _ = self._eval(b, i, t, spin=False)
-        a = self.acc[b, i]
+        live = st != POCKETED
+        if not live.all():
+            m = np.flatnonzero(live)
+            if m.size == 0:
+                return
+            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+        # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
+        M = b.size
+        rows = np.arange(M)
+        tc = t[:, None]
+        P, V, _ = self._eval(b[:, None], self._balls, tc, spin=False)
+        A = self.acc[b]
+        p, v, a = P[rows, i], V[rows, i], A[rows, i]
         # Pairs: every other ball on the table, where at least one of the two moves.
         stk = self.state[b]
-        moving_k = (stk == SLIDING) | (stk == ROLLING)
-        valid = (stk != POCKETED) & (np.arange(N)[None] != i[:, None])
-        valid &= moving[:, None] | moving_k
-        mi, kk = np.nonzero(valid)
-        bb = b[mi]
-        pk, vk, _ = self._eval(bb, kk, t[mi], spin=False)
-        end_k = np.minimum(self.t_trans[bb, kk], self.t_check[bb, kk])
-        rel_p = [pk - p[mi]]
-        rel_v = [vk - v[mi]]
-        rel_a = [self.acc[bb, kk] - a[mi]]
-        dist = [self.radius[bb, kk] + self.radius[b, i][mi]]
-        horizon = [np.minimum(end[mi], end_k) - t[mi]]
+        valid = _LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
+        mi = np.nonzero(valid)[0]
+        R = self.radius[b]
+        end_k = np.minimum(self.t_trans[b], self.t_check[b])
+        rel_p = [(P - p[:, None])[valid]]
+        rel_v = [(V - v[:, None])[valid]]
+        rel_a = [(A - a[:, None])[valid]]
+        dist = [(R + R[rows, i][:, None])[valid]]
+        horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses within their window (a ball in open felt costs nothing here); tips and holes
         # are the same quartic as a pair.
@@ -267,7 +274,7 @@ class Engine(SlowContacts):
         tab = self.table
         x, y = p[:, 0], p[:, 1]
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        mv = np.nonzero(moving & near)[0]
+        mv = np.flatnonzero(moving & near)
         nc = len(self._circles)
         if mv.size and nc:
             rc = self.rc[b[mv], i[mv]]
@@ -277,16 +284,21 @@ class Engine(SlowContacts):
             holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))
             dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1), holes],
                                        axis=1).ravel())
-            horizon.append(np.repeat(end[mv] - t[mv], nc))
-        tc = first_contact(np.concatenate(rel_p), np.concatenate(rel_v), np.concatenate(rel_a),
-                           np.concatenate(dist), np.concatenate(horizon))
+            horizon.append(np.repeat(T[mv], nc))
+            found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
+                                  np.concatenate(rel_a), np.concatenate(dist),
+                                  np.concatenate(horizon))
+        else:
+            found = first_contact(rel_p[0], rel_v[0], rel_a[0], dist[0], horizon[0])
         npair = mi.size
-        tp = t[mi] + tc[:npair]
-        self.t_pair[bb, i[mi], kk] = tp
-        self.t_pair[bb, kk, i[mi]] = tp
+        if npair:
+            tp = t[mi] + found[:npair]
+            bb, ii, kk = b[mi], i[mi], np.nonzero(valid)[1]
+            self.t_pair[bb, ii, kk] = tp
+            self.t_pair[bb, kk, ii] = tp
         if mv.size:
-            tcirc = tc[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            tline = self._lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], end[mv] - t[mv])
+            tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
+            tline = self._lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv])
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
