@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from termpool.physics.engine import Engine
+from termpool.physics import motion
+from termpool.physics.engine import FEW, Engine
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.state import EPS_U, POCKETED
 from termpool.physics.table import Table
@@ -75,3 +76,41 @@ def test_starting_one_ball_in_floats_matches_the_array_path_bit_for_bit(physics,
     assert set(np.unique(many.state).tolist()) == {0, 1, 2, 3, 4}
     t = _inputs(seed)[0]
     assert (many.t0[0] > t).any() == (physics.mu_slide > 0)
+
+
+@pytest.mark.parametrize("seed", [4, 5])
+def test_evaluating_one_ball_in_floats_matches_the_array_path_bit_for_bit(seed):
+    with np.errstate(all="ignore"):
+        eng = _started(Physics(), seed, "many")
+    rng = np.random.default_rng(seed)
+    b, i = np.zeros(K, dtype=np.int64), np.arange(K)
+    # Before a ball's clock (a completed tiny slide), inside its motion and beyond its end.
+    t = eng.t0[0] + rng.choice([-1e-4, 0.0, 0.3, 7.0], K)
+    p, v, w = eng._eval(b, i, t)
+    for n, row in enumerate(eng._motion[0].tolist()):
+        assert motion.at(row, float(t[n])) == (p[n].tolist(), v[n].tolist(), w[n].tolist())
+
+
+@pytest.mark.parametrize("physics", [Physics(), Physics(mu_slide=0.0)],
+                         ids=["default", "frictionless"])
+@pytest.mark.parametrize("seed", [6, 7])
+def test_transitions_in_floats_match_the_array_path_bit_for_bit(physics, seed):
+    engines = []
+    for path in ("few", "many"):
+        with np.errstate(all="ignore"):
+            eng = _started(physics, seed, "many")
+            b, i = np.nonzero(np.isfinite(eng.t_trans))
+            eng.tb[:] = 0.0
+            for n in range(i.size):  # each ball at its own transition time
+                eng.tb[0] = eng.t_trans[0, i[n]]
+                one = slice(n, n + 1)
+                if path == "few":
+                    eng._transition_few(b[one], i[one])
+                else:
+                    eng._transition(np.repeat(b[one], FEW + 1), np.repeat(i[one], FEW + 1))
+        engines.append(eng)
+    few, many = engines
+    assert i.size > K // 4  # transitions of every kind were run
+    assert np.array_equal(few.state, many.state)
+    assert np.array_equal(few.t_trans, many.t_trans)
+    assert np.array_equal(few._motion, many._motion, equal_nan=True)

@@ -206,10 +206,13 @@ class Engine(SlowContacts):
         """_set one ball at a time in plain floats (motion.start): bit-identical, and faster
         than numpy calls on arrays of one or two balls."""
         ph = self.physics
-        out = [motion.start(ph, *args) for args in zip(
+        self._write_few(b, i, [motion.start(ph, *args) for args in zip(
             t.tolist(), p.tolist(), v.tolist(), w.tolist(), self.radius[b, i].tolist(),
             self.spin_rate[b, i].tolist(), (self.state[b, i] == POCKETED).tolist(),
-            strict=True)]
+            strict=True)])
+
+    def _write_few(self, b, i, out: list) -> None:
+        """Store motion.start's results for balls (b, i)."""
         state, t_trans, rows = zip(*out, strict=True)
         self.state[b, i] = state
         self.t_trans[b, i] = t_trans
@@ -472,6 +475,9 @@ class Engine(SlowContacts):
             clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every))
 
     def _transition(self, b, i) -> None:
+        if b.size <= FEW:
+            self._transition_few(b, i)
+            return
         t = self.tb[b]
         st = self.state[b, i]
         p, v, w = self._eval(b, i, t)
@@ -483,6 +489,24 @@ class Engine(SlowContacts):
         w[:, :2] = np.where(rl, 0.0, w[:, :2])
         w[:, 2] = np.where(st == SPINNING, 0.0, w[:, 2])
         self._set(b, i, t, p, v, w)
+
+    def _transition_few(self, b, i) -> None:
+        """_transition in plain floats, ball by ball (bit-identical)."""
+        ph = self.physics
+        out = []
+        for t, row, st, R in zip(self.tb[b].tolist(), self._motion[b, i].tolist(),
+                                 self.state[b, i].tolist(), self.radius[b, i].tolist(),
+                                 strict=True):
+            p, v, w = motion.at(row, t)
+            if st == SLIDING:
+                w[0], w[1] = (v[1] * -1.0) / R, (v[0] * 1.0) / R
+            elif st == ROLLING:
+                v = [0.0, 0.0]
+                w[0] = w[1] = 0.0
+            elif st == SPINNING:
+                w[2] = 0.0
+            out.append(motion.start(ph, t, p, v, w, R, row[12], st == POCKETED))
+        self._write_few(b, i, out)
 
     def _cushion(self, b, i) -> None:
         tab, ph = self.table, self.physics

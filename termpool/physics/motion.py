@@ -106,3 +106,16 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
     state = (POCKETED if pocketed else SLIDING if sliding else ROLLING if rolling
              else SPINNING if spinning else STATIONARY)
     return state, t + dt, [t, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly]
+
+
+def at(row: list, t: float) -> tuple[list, list, list]:
+    """Position, velocity and spin at time t of a ball whose packed motion is `row` (the 13
+    columns of Engine._motion): Engine._eval for one ball."""
+    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row
+    d = t - t0
+    p = [px + (vx + 0.5 * ax * d) * d, py + (vy + 0.5 * ay * d) * d]
+    v = [vx + ax * d, vy + ay * d]
+    # Before t0 (a ball whose tiny slide was completed ahead) spin is held.
+    decay = rate * _max0(d)
+    w = [wx + alx * d, wy + aly * d, math.copysign(_max0(abs(wz) - decay), wz)]
+    return p, v, w
