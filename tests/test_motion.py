@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from termpool.physics import motion
+from termpool.physics import contact, motion
 from termpool.physics.engine import FEW, Engine
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.state import EPS_U, POCKETED
@@ -114,3 +114,55 @@ def test_transitions_in_floats_match_the_array_path_bit_for_bit(physics, seed):
     assert np.array_equal(few.state, many.state)
     assert np.array_equal(few.t_trans, many.t_trans)
     assert np.array_equal(few._motion, many._motion, equal_nan=True)
+
+
+def _contacts(seed: int, k: int = 300):
+    """k ball-ball contacts: touching (or sunk a little) and closing, random spins."""
+    rng = np.random.default_rng(seed)
+    ri = rng.uniform(0.02, 0.04, k)
+    rj = rng.uniform(0.02, 0.04, k)
+    ang = rng.uniform(0, 2 * np.pi, k)
+    n = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    pi = rng.uniform(1.0, 9.0, (k, 2))
+    pj = pi + n * (ri + rj - rng.choice([0.0, 1e-7], k))[:, None]
+    vi = rng.normal(0.0, 2.0, (k, 2)) + 2.0 * n
+    vj = rng.normal(0.0, 2.0, (k, 2)) * rng.choice([1.0, 0.0], (k, 1))
+    wi = rng.normal(0.0, 80.0, (k, 3))
+    wj = rng.normal(0.0, 80.0, (k, 3))
+    mi = rng.uniform(0.1, 0.2, k)
+    mj = rng.uniform(0.1, 0.2, k)
+    return pi, pj, vi, vj, wi, wj, ri, rj, mi, mj
+
+
+@pytest.mark.parametrize("frictional", [True, False])
+@pytest.mark.parametrize("seed", [8, 9])
+def test_one_collision_in_floats_matches_the_array_path_bit_for_bit(frictional, seed):
+    args = _contacts(seed)
+    many = contact.ball_ball(*args, 0.95, 0.005, frictional)
+    for n in range(len(args[0])):
+        one = contact.ball_ball_one(*(x[n].tolist() for x in args), 0.95, 0.005, frictional)
+        assert one == tuple(x[n].tolist() for x in many)
+
+
+@pytest.mark.parametrize("seed", [10, 11])
+def test_contacts_handled_one_by_one_match_a_batch_bit_for_bit(seed):
+    pi, pj, vi, vj, wi, wj, ri, rj, mi, mj = _contacts(seed)
+    k = len(pi)
+    engines = []
+    for path in ("one by one", "together"):
+        eng = Engine(TABLE, Physics(), np.stack([pi, pj], axis=1), np.stack([vi, vj], axis=1),
+                     np.stack([wi, wj], axis=1), np.stack([ri, rj], axis=1),
+                     np.stack([mi, mj], axis=1))
+        b, i, j = np.arange(k), np.zeros(k, dtype=np.int64), np.ones(k, dtype=np.int64)
+        with np.errstate(all="ignore"):
+            if path == "one by one":
+                for n in range(k):
+                    eng._pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None, [])
+            else:
+                eng._pairs(b, i, j, b, None, [])
+        engines.append(eng)
+    one, together = engines
+    assert np.array_equal(one.state, together.state)
+    assert np.array_equal(one.t_trans, together.t_trans)
+    assert np.array_equal(one._motion, together._motion)
+    assert (one.v0[:, 0] != vi).any(axis=1).mean() > 0.7  # most contacts were fast ones

@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from termpool.physics import contact, motion
+from termpool.physics.motion import max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.roots import first_contact, first_line_contact
 from termpool.physics.slow import SlowContacts
@@ -57,7 +58,7 @@ _TRANSITION_NAMES = {
 }
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
-_NCOL = 13  # columns of Engine._motion
+_NCOL, _RADIUS, _MASS = 15, 13, 14  # columns of Engine._motion; where radius and mass are
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 
@@ -106,7 +107,7 @@ class Engine(SlowContacts):
         # Each ball's motion since its clock t0, packed in one array so that evaluating balls
         # takes one gather (the cost of a pass is the number of numpy calls, not the data):
         # t0, p0 (2), v0 (2), acc (2), w0 (3), alpha (2, the rate of change of wx, wy), and
-        # the ball's side-spin decay rate. The named fields are views into it.
+        # the ball's side-spin decay rate, radius and mass. The named fields are views into it.
         self._motion = np.zeros((B, N, _NCOL))
         self.t0 = self._motion[..., 0]
         self.p0 = self._motion[..., 1:3]
@@ -115,6 +116,8 @@ class Engine(SlowContacts):
         self.w0 = self._motion[..., 7:10]
         self.alpha = self._motion[..., 10:12]
         self._motion[..., 12] = self.spin_rate
+        self._motion[..., _RADIUS] = self.radius
+        self._motion[..., _MASS] = self.mass
         self.state = np.zeros((B, N), dtype=np.int8)
         self.pocket = np.full((B, N), -1, dtype=np.int16)
         self.t_trans = np.full((B, N), np.inf)
@@ -445,6 +448,8 @@ class Engine(SlowContacts):
         """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
         None for none): fast ones collide, slow ones settle alone or go to `clusters`."""
         n = b.size
+        if n == 1 and busy is None and self._pair_one(int(b[0]), int(i[0]), int(j[0])):
+            return
         # Both balls' states, once, for the closing speed and for whichever response.
         tb = self.tb[b]
         p, v, w = self._eval(np.concatenate([b, b]), np.concatenate([i, j]),
@@ -560,6 +565,37 @@ class Engine(SlowContacts):
             else:
                 names.append(tab.hole_names[fi - nseg - npt])
         return names
+
+    def _pair_one(self, b: int, i: int, j: int) -> bool:
+        """One fast ball-ball contact in plain floats (the usual pass), bit-identical to the
+        array path; False, doing nothing, if the contact is slow."""
+        t = float(self.tb[b])
+        rows = self._motion[b, [i, j]].tolist()
+        pi, vi, wi = motion.at(rows[0], t)
+        pj, vj, wj = motion.at(rows[1], t)
+        d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
+        closing = ((vi[0] - vj[0]) * d0 + (vi[1] - vj[1]) * d1) / float(np.hypot(d0, d1))
+        ph = self.physics
+        if closing < ph.v_inelastic:
+            return False
+        ri, rj = rows[0][_RADIUS], rows[1][_RADIUS]
+        mi, mj = rows[0][_MASS], rows[1][_MASS]
+        vi, vj, wi, wj = contact.ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj,
+                                               ph.e_ball, ph.v_inelastic,
+                                               ph.ball_ball == "frictional")
+        # As _part: undo a resting contact's sub-micrometre sink, shared by inverse mass.
+        dist = float(np.hypot(d0, d1))
+        n0, n1 = d0 / dist, d1 / dist
+        depth = max0(ri + rj - dist)
+        share = mj / (mi + mj)
+        ki, kj = depth * share, depth * (1.0 - share)
+        pi = [pi[0] - ki * n0, pi[1] - ki * n1]
+        pj = [pj[0] + kj * n0, pj[1] + kj * n1]
+        pocketed = self.state[b, [i, j]] == POCKETED
+        self._write_few(np.array([b, b]), np.array([i, j]), [
+            motion.start(ph, t, pi, vi, wi, ri, rows[0][12], bool(pocketed[0])),
+            motion.start(ph, t, pj, vj, wj, rj, rows[1][12], bool(pocketed[1]))])
+        return True
 
     def _collide(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
         """Fast contacts (b, i, j), balls i and j now at (pi, vi, wi) and (pj, vj, wj)."""

@@ -39,7 +39,7 @@ def _over(x: float, d: float) -> float:
     return math.copysign(INF, x) * math.copysign(1.0, d)
 
 
-def _max0(x: float) -> float:
+def max0(x: float) -> float:
     """np.maximum(x, 0.0) for one float (nan and -0.0 kept as numpy keeps them)."""
     return 0.0 if x < 0.0 else x
 
@@ -62,7 +62,7 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
         k = 0.5 * mu_s * g * ts
         px = px + (vx - k * uhx) * ts
         py = py + (vy - k * uhy) * ts
-        wz = math.copysign(_max0(abs(wz) - rate * ts), wz)
+        wz = math.copysign(max0(abs(wz) - rate * ts), wz)
         vx = vx - ux / 3.5
         vy = vy - uy / 3.5
         wx = (vy * -1.0) / R
@@ -109,13 +109,13 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
 
 
 def at(row: list, t: float) -> tuple[list, list, list]:
-    """Position, velocity and spin at time t of a ball whose packed motion is `row` (the 13
-    columns of Engine._motion): Engine._eval for one ball."""
-    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row
+    """Position, velocity and spin at time t of a ball whose packed motion is `row` (a row of
+    Engine._motion): Engine._eval for one ball."""
+    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row[:13]
     d = t - t0
     p = [px + (vx + 0.5 * ax * d) * d, py + (vy + 0.5 * ay * d) * d]
     v = [vx + ax * d, vy + ay * d]
     # Before t0 (a ball whose tiny slide was completed ahead) spin is held.
-    decay = rate * _max0(d)
-    w = [wx + alx * d, wy + aly * d, math.copysign(_max0(abs(wz) - decay), wz)]
+    decay = rate * max0(d)
+    w = [wx + alx * d, wy + aly * d, math.copysign(max0(abs(wz) - decay), wz)]
     return p, v, w
