@@ -166,3 +166,31 @@ def test_contacts_handled_one_by_one_match_a_batch_bit_for_bit(seed):
     assert np.array_equal(one.t_trans, together.t_trans)
     assert np.array_equal(one._motion, together._motion)
     assert (one.v0[:, 0] != vi).any(axis=1).mean() > 0.7  # most contacts were fast ones
+
+
+@pytest.mark.parametrize("seed", [12, 13])
+def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit(seed):
+    rng = np.random.default_rng(seed)
+    table = Table.preset("9ft")
+    eng = Engine(table, Physics(), [[1.0, 0.6]])
+    k = 600
+    rc = np.full(k, float(eng.rc[0, 0]))
+    # Balls anywhere on the bed, and balls touching a rail (or just off it) exactly.
+    p = np.column_stack([rng.uniform(-0.05, table.length + 0.05, k),
+                         rng.uniform(-0.05, table.width + 0.05, k)])
+    rail = rng.random(k) < 0.3
+    p[rail, 1] = np.where(rng.random(rail.sum()) < 0.5, rc[rail], table.width - rc[rail])
+    p[rail, 1] += rng.choice([0.0, 5e-10, -2e-7, 1e-6], rail.sum())
+    v = rng.normal(0.0, 1.5, (k, 2)) * rng.choice([1.0, 0.01], (k, 1))
+    a = rng.normal(0.0, 2.0, (k, 2)) * rng.choice([1.0, 0.05, 0.0], (k, 1))
+    horizon = rng.uniform(0.01, 2.0, k)
+    reach = np.hypot(v[:, 0], v[:, 1]) * horizon + 0.5 * np.hypot(a[:, 0], a[:, 1]) * horizon ** 2
+    reach += rc
+    with np.errstate(all="ignore"):
+        many = eng._lines(p, v, a, rc, horizon)
+        few = np.concatenate([eng._lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2], rc[n:n + 2],
+                                             horizon[n:n + 2], reach[n:n + 2])
+                              for n in range(0, k, 2)])
+    assert np.array_equal(few, many)
+    assert np.isfinite(many).sum() > k // 4  # many balls do meet a cushion
+    assert (many == 0).any()  # and some are resting against one, closing

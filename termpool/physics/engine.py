@@ -19,7 +19,7 @@ import numpy as np
 from termpool.physics import contact, motion
 from termpool.physics.motion import max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
-from termpool.physics.roots import first_contact, first_line_contact
+from termpool.physics.roots import first_contact, first_line_contact, first_line_contact_one
 from termpool.physics.slow import SlowContacts
 from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
     CLUSTER_GAP,
@@ -140,6 +140,8 @@ class Engine(SlowContacts):
         self._seg_dir = seg_d / self._seg_len[:, None]
         self._seg_off = (table.seg_a * table.seg_n).sum(axis=1)
         self._seg_start = (table.seg_a * self._seg_dir).sum(axis=1)
+        self._segs = list(zip(table.seg_a.tolist(), self._seg_dir.tolist(),
+                              self._seg_len.tolist(), strict=True))  # for _lines_few
         self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
@@ -324,13 +326,14 @@ class Engine(SlowContacts):
             self.t_pair[bb, kk, ii] = tp
         if mv.size:
             tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            tline = self._lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv])
+            lines = self._lines_few if mv.size <= FEW else self._lines
+            tline = lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv], reach[mv])
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
 
-    def _lines(self, p, v, a, rc, horizon) -> np.ndarray:
+    def _lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
         """(M, S) first contact times of M balls with the cushion segments."""
         tab = self.table
         n = tab.seg_n
@@ -349,6 +352,34 @@ class Engine(SlowContacts):
             along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self._seg_dir)
             tl = np.where(fin & (along >= 0) & (along <= self._seg_len[None]), tl, np.inf)
         return tl
+
+    def _lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
+        """_lines for a few balls in plain floats, bit-identical. A ball whose centre is
+        further from a cushion line than its reach (travel in the window plus the nose
+        distance, with a micrometre to spare) cannot meet it and skips it: the array path
+        finds no root there either."""
+        tab = self.table
+        n = tab.seg_n
+        out = np.full((len(p), self._nseg), np.inf)
+        rows = zip((p @ n.T - self._seg_off).tolist(),
+                   (p @ self._seg_dir.T - self._seg_start).tolist(), (v @ n.T).tolist(),
+                   (a @ n.T).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
+                   horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
+        for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
+            for k, (ak, dk, length) in enumerate(self._segs):
+                if s0[k] > far:
+                    continue
+                beside = along0[k] >= 0 and along0[k] <= length
+                tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
+                if tl < math.inf:
+                    # The contact must fall on the segment itself (as in _lines).
+                    tt = tl * tl
+                    qx = (pm[0] + vm[0] * tl + 0.5 * am[0] * tt) - ak[0]
+                    qy = (pm[1] + vm[1] * tl + 0.5 * am[1] * tt) - ak[1]
+                    along = qx * dk[0] + qy * dk[1]
+                    if along >= 0 and along <= length:
+                        out[m, k] = tl
+        return out
 
     def _refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
