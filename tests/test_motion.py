@@ -194,3 +194,53 @@ def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit
     assert np.array_equal(few, many)
     assert np.isfinite(many).sum() > k // 4  # many balls do meet a cushion
     assert (many == 0).any()  # and some are resting against one, closing
+
+
+@pytest.mark.parametrize("seed", [14, 15])
+def test_one_cushion_bounce_in_floats_matches_the_array_path_bit_for_bit(seed):
+    rng = np.random.default_rng(seed)
+    k = 400
+    n = rng.normal(0.0, 1.0, (k, 2))
+    n /= np.hypot(n[:, 0], n[:, 1])[:, None]
+    v = rng.normal(0.0, 2.0, (k, 2)) - rng.uniform(0.0, 3.0, (k, 1)) * n
+    w = rng.normal(0.0, 80.0, (k, 3))
+    r = rng.uniform(0.02, 0.04, k)
+    m = rng.uniform(0.1, 0.2, k)
+    with np.errstate(all="ignore"):
+        V, W = contact.cushion(n, v, w, r, m, 0.85, 0.2, 0.0366, 0.005)
+    for x in range(k):
+        one = contact.cushion_one(n[x].tolist(), v[x].tolist(), w[x].tolist(), float(r[x]),
+                                  float(m[x]), 0.85, 0.2, 0.0366, 0.005)
+        assert one == (V[x].tolist(), W[x].tolist())
+
+
+@pytest.mark.parametrize("seed", [16, 17])
+def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed):
+    rng = np.random.default_rng(seed)
+    table = Table.preset("9ft")
+    k = 1500
+    # One ball per table, sent at the cushions from anywhere, some of them slowly.
+    pos = np.column_stack([rng.uniform(0.1, table.length - 0.1, k),
+                           rng.uniform(0.1, table.width - 0.1, k)])[:, None]
+    vel = rng.normal(0.0, 2.0, (k, 1, 2)) * rng.choice([1.0, 0.002], (k, 1, 1))
+    w = rng.normal(0.0, 60.0, (k, 1, 3))
+    engines = []
+    for path in ("one by one", "together"):
+        eng = Engine(table, Physics(), pos, vel, w)
+        b = np.flatnonzero(np.isfinite(eng.t_cush[:, 0]))
+        b = b[eng.f_cush[b, 0] < eng._nseg + eng._npt]  # bounces (not pockets)
+        eng.tb[b] = eng.t_cush[b, 0]
+        i = np.zeros(b.size, dtype=np.int64)
+        with np.errstate(all="ignore"):
+            if path == "one by one":
+                for n in range(b.size):
+                    eng._cushion(b[n:n + 1], i[n:n + 1])
+            else:
+                eng._cushion(b, i)
+        engines.append(eng)
+    one, together = engines
+    assert b.size > k // 5
+    assert (one.f_cush[b, 0] >= one._nseg).any()  # jaw tips too
+    assert np.array_equal(one.state, together.state)
+    assert np.array_equal(one.t_trans, together.t_trans)
+    assert np.array_equal(one._motion, together._motion)

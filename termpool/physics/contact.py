@@ -136,3 +136,33 @@ def ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, e, v_inelastic, fricti
     wi = [wi[k] + ti[k] / ii for k in range(3)]
     wj = [wj[k] + tj[k] / ij for k in range(3)]
     return vi, vj, wi, wj
+
+
+def cushion_one(n, v, w, r, m, e, mu, height, v_inelastic):
+    """`cushion` for one ball in plain floats (lists in, lists out), bit-identical to the
+    array version (same operations in the same order; see ball_ball_one)."""
+    n0, n1 = n
+    sin_t = min(max((height - r) / r, -0.95), 0.95)
+    cos_t = math.sqrt(1.0 - sin_t * sin_t)
+    approach = -(v[0] * n0 + v[1] * n1)
+    ee = e if approach > v_inelastic else 0.0
+    p_h = (1.0 + ee) * m * (approach if not approach < 0.0 else 0.0)
+    k = p_h / m
+    v = [v[0] + k * n0, v[1] + k * n1]
+    c = -cos_t
+    arm = [r * (c * n0 + sin_t * 0.0), r * (c * n1 + sin_t * 0.0), r * (c * 0.0 + sin_t * 1.0)]
+    normal = [-x / r for x in arm]
+    cw = _cross1(w, arm)
+    slip = [v[0] + cw[0], v[1] + cw[1], 0.0 + cw[2]]
+    sn = (slip[0] * normal[0] + slip[2] * normal[2]) + slip[1] * normal[1]
+    st = [slip[x] - sn * normal[x] for x in range(3)]
+    speed = math.sqrt((st[0] * st[0] + st[1] * st[1]) + st[2] * st[2])
+    a, b = mu * p_h / cos_t, speed * m / 3.5
+    jt = a if (a <= b or a != a) else b  # np.minimum, nan included
+    dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
+    imp = [-jt * x for x in dirn]
+    v = [v[0] + imp[0] / m, v[1] + imp[1] / m]
+    torque = _cross1(arm, imp)
+    inertia = 0.4 * m * r * r
+    w = [w[x] + torque[x] / inertia for x in range(3)]
+    return v, w

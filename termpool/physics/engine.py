@@ -547,6 +547,9 @@ class Engine(SlowContacts):
     def _cushion(self, b, i) -> None:
         tab, ph = self.table, self.physics
         nseg, npt = self._nseg, self._npt
+        if b.size == 1 and self.f_cush[b[0], i[0]] < nseg + npt:
+            self._cushion_one(int(b[0]), int(i[0]))
+            return
         t = self.tb[b]
         f = self.f_cush[b, i]
         p, v, w = self._eval(b, i, t)
@@ -583,6 +586,31 @@ class Engine(SlowContacts):
             self.state[bh, ih] = POCKETED
             self.pocket[bh, ih] = k
             self._set(bh, ih, t[hl], tab.hole_c[k], np.zeros((hl.size, 2)), np.zeros((hl.size, 3)))
+
+    def _cushion_one(self, b: int, i: int) -> None:
+        """One bounce off a rail, jaw or jaw tip in plain floats, bit-identical to _cushion."""
+        tab, ph = self.table, self.physics
+        t = float(self.tb[b])
+        f = int(self.f_cush[b, i])
+        row = self._motion[b, i].tolist()
+        p, v, w = motion.at(row, t)
+        if f < self._nseg:
+            ref, n = tab.seg_a[f].tolist(), tab.seg_n[f].tolist()
+        else:
+            ref = tab.points[f - self._nseg].tolist()
+            d0, d1 = p[0] - ref[0], p[1] - ref[1]
+            dist = float(np.hypot(d0, d1))
+            n = [d0 / dist, d1 / dist]
+        slow = -(v[0] * n[0] + v[1] * n[1]) < ph.v_inelastic
+        r, m = row[_RADIUS], row[_MASS]
+        v, w = contact.cushion_one(n, v, w, r, m, ph.e_cushion, ph.mu_cushion,
+                                   ph.cushion_height, ph.v_inelastic)
+        # As _cushion: undo a sink, and set a slow ball down HOVER off the cushion.
+        depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
+        lift = max0(depth) + (HOVER if slow else 0.0)
+        p = [p[0] + lift * n[0], p[1] + lift * n[1]]
+        self._write_few(np.array([b]), np.array([i]), [
+            motion.start(ph, t, p, v, w, r, row[12], bool(self.state[b, i] == POCKETED))])
 
     def _features(self, f) -> list[str]:
         """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
