@@ -355,9 +355,9 @@ class Engine(SlowContacts):
 
     def _lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
         """_lines for a few balls in plain floats, bit-identical. A ball whose centre is
-        further from a cushion line than its reach (travel in the window plus the nose
+        further from a cushion segment than its reach (travel in the window plus the nose
         distance, with a micrometre to spare) cannot meet it and skips it: the array path
-        finds no root there either."""
+        finds no contact there either."""
         tab = self.table
         n = tab.seg_n
         out = np.full((len(p), self._nseg), np.inf)
@@ -367,7 +367,8 @@ class Engine(SlowContacts):
                    horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
         for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
             for k, (ak, dk, length) in enumerate(self._segs):
-                if s0[k] > far:
+                # The ball's distance from the segment is at least each of these.
+                if s0[k] > far or -s0[k] > far or -along0[k] > far or along0[k] - length > far:
                     continue
                 beside = along0[k] >= 0 and along0[k] <= length
                 tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
