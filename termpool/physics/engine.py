@@ -120,11 +120,15 @@ class Engine(SlowContacts):
         self._motion[..., _MASS] = self.mass
         self.state = np.zeros((B, N), dtype=np.int8)
         self.pocket = np.full((B, N), -1, dtype=np.int16)
-        self.t_trans = np.full((B, N), np.inf)
-        self.t_check = np.full((B, N), np.inf)
-        self.t_cush = np.full((B, N), np.inf)
+        # Every prediction of a table in one row, in the order of the event codes, so that
+        # finding the next event is one argmin: transitions, horizon checks, cushions, pairs.
+        self._times = np.full((B, 3 * N + N * N), np.inf)
+        self.t_trans = self._times[:, :N]
+        self.t_check = self._times[:, N:2 * N]
+        self.t_cush = self._times[:, 2 * N:3 * N]
         self.f_cush = np.zeros((B, N), dtype=np.int64)
-        self.t_pair = np.full((B, N, N), np.inf)
+        self.t_pair = self._times[:, 3 * N:].reshape(B, N, N)
+        assert np.shares_memory(self.t_pair, self._times)  # a view, not a copy
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self.tb = np.zeros(B)  # each table's own clock inside a step
@@ -384,9 +388,7 @@ class Engine(SlowContacts):
 
     def _refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
-        N = self.N
-        allt = np.concatenate([self.t_trans[tabs], self.t_check[tabs], self.t_cush[tabs],
-                               self.t_pair[tabs].reshape(-1, N * N)], axis=1)
+        allt = self._times[tabs]
         code = allt.argmin(axis=1)
         self.t_next[tabs] = allt[np.arange(len(tabs)), code]
         self.c_next[tabs] = code
