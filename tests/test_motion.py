@@ -244,3 +244,11 @@ def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed):
     assert np.array_equal(one.state, together.state)
     assert np.array_equal(one.t_trans, together.t_trans)
     assert np.array_equal(one._motion, together._motion)
+
+
+@pytest.mark.parametrize("field", ["radius", "mass"])
+@pytest.mark.parametrize("bad", [0.0, -0.02, float("nan"), float("inf")])
+def test_engine_refuses_a_radius_or_mass_that_is_not_positive(field, bad):
+    # The plain-float paths divide by both, so they must be positive (as scenes ensure).
+    with pytest.raises(ValueError, match=f"^{field}: must be positive and finite$"):
+        Engine(TABLE, Physics(), [[1.0, 1.0], [2.0, 1.0]], **{field: [0.03, bad]})

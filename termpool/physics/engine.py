@@ -101,6 +101,9 @@ class Engine(SlowContacts):
         w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
         self.radius = _batch(radius, lead, "radius").reshape(B, N)
         self.mass = _batch(mass, lead, "mass").reshape(B, N)
+        for name, arr in (("radius", self.radius), ("mass", self.mass)):
+            if not (arr > 0).all() or not np.isfinite(arr).all():
+                raise ValueError(f"{name}: must be positive and finite")
         sin_t = np.clip((physics.cushion_height - self.radius) / self.radius, -0.95, 0.95)
         self.rc = self.radius * np.sqrt(1.0 - sin_t * sin_t)  # centre-to-nose distance at contact
         self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
@@ -636,7 +639,10 @@ class Engine(SlowContacts):
         pi, vi, wi = motion.at(rows[0], t)
         pj, vj, wj = motion.at(rows[1], t)
         d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
-        closing = ((vi[0] - vj[0]) * d0 + (vi[1] - vj[1]) * d1) / float(np.hypot(d0, d1))
+        dist = float(np.hypot(d0, d1))
+        if not dist > 0:  # centres together: leave it to the array path's nan handling
+            return False
+        closing = ((vi[0] - vj[0]) * d0 + (vi[1] - vj[1]) * d1) / dist
         ph = self.physics
         if closing < ph.v_inelastic:
             return False
@@ -646,7 +652,6 @@ class Engine(SlowContacts):
                                                ph.e_ball, ph.v_inelastic,
                                                ph.ball_ball == "frictional")
         # As _part: undo a resting contact's sub-micrometre sink, shared by inverse mass.
-        dist = float(np.hypot(d0, d1))
         n0, n1 = d0 / dist, d1 / dist
         depth = max0(ri + rj - dist)
         share = mj / (mi + mj)
