@@ -37,7 +37,7 @@ from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
 from termpool.physics.table import Table
 
-FEW = 4  # balls up to which _set works in plain floats (a pass's usual one or two)
+FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
 MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
 HOVER = 8e-7  # m: gap left under a ball after a slow cushion contact (< CLUSTER_GAP)
@@ -58,7 +58,7 @@ _TRANSITION_NAMES = {
 }
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
-_NCOL, _RADIUS, _MASS = 15, 13, 14  # columns of Engine._motion; where radius and mass are
+_NCOL, _RATE, _RADIUS, _MASS = 15, 12, 13, 14  # Engine._motion: columns, and constants' places
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 
@@ -118,7 +118,7 @@ class Engine(SlowContacts):
         self.acc = self._motion[..., 5:7]
         self.w0 = self._motion[..., 7:10]
         self.alpha = self._motion[..., 10:12]
-        self._motion[..., 12] = self.spin_rate
+        self._motion[..., _RATE] = self.spin_rate
         self._motion[..., _RADIUS] = self.radius
         self._motion[..., _MASS] = self.mass
         self.state = np.zeros((B, N), dtype=np.int8)
@@ -171,7 +171,7 @@ class Engine(SlowContacts):
         w[..., :2] += m[..., 10:12] * d
         wz = w[..., 2]
         # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
-        decay = m[..., 12] * np.maximum(d[..., 0], 0.0)
+        decay = m[..., _RATE] * np.maximum(d[..., 0], 0.0)
         w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
         return p, v, w
 
@@ -228,7 +228,7 @@ class Engine(SlowContacts):
         state, t_trans, rows = zip(*out, strict=True)
         self.state[b, i] = state
         self.t_trans[b, i] = t_trans
-        self._motion[b, i, :12] = rows
+        self._motion[b, i, :_RATE] = rows
 
     def _set_many(self, b, i, t, p, v, w) -> None:
         ph = self.physics
@@ -262,7 +262,7 @@ class Engine(SlowContacts):
         state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
                                                      np.where(spinning, SPINNING, STATIONARY)))
         self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self._motion[b, i, :12] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
+        self._motion[b, i, :_RATE] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
         self.t_trans[b, i] = t + dt
 
     # ----------------------------------------------------------------- predictions
@@ -547,7 +547,7 @@ class Engine(SlowContacts):
                 w[0] = w[1] = 0.0
             elif st == SPINNING:
                 w[2] = 0.0
-            out.append(motion.start(ph, t, p, v, w, R, row[12], st == POCKETED))
+            out.append(motion.start(ph, t, p, v, w, R, row[_RATE], st == POCKETED))
         self._write_few(b, i, out)
 
     def _cushion(self, b, i) -> None:
@@ -616,7 +616,7 @@ class Engine(SlowContacts):
         lift = max0(depth) + (HOVER if slow else 0.0)
         p = [p[0] + lift * n[0], p[1] + lift * n[1]]
         self._write_few(np.array([b]), np.array([i]), [
-            motion.start(ph, t, p, v, w, r, row[12], bool(self.state[b, i] == POCKETED))])
+            motion.start(ph, t, p, v, w, r, row[_RATE], bool(self.state[b, i] == POCKETED))])
 
     def _features(self, f) -> list[str]:
         """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
@@ -660,8 +660,8 @@ class Engine(SlowContacts):
         pj = [pj[0] + kj * n0, pj[1] + kj * n1]
         pocketed = self.state[b, [i, j]] == POCKETED
         self._write_few(np.array([b, b]), np.array([i, j]), [
-            motion.start(ph, t, pi, vi, wi, ri, rows[0][12], bool(pocketed[0])),
-            motion.start(ph, t, pj, vj, wj, rj, rows[1][12], bool(pocketed[1]))])
+            motion.start(ph, t, pi, vi, wi, ri, rows[0][_RATE], bool(pocketed[0])),
+            motion.start(ph, t, pj, vj, wj, rj, rows[1][_RATE], bool(pocketed[1]))])
         return True
 
     def _collide(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
