@@ -7,6 +7,8 @@ energy. Friction never exceeds the impulse that stops the slip, so no contact ad
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -84,4 +86,83 @@ def cushion(
     imp = -jt[:, None] * dirn
     v = v + imp[:, :2] / m[:, None]
     w = w + _cross(arm, imp) / (0.4 * m * r * r)[:, None]
+    return v, w
+
+
+def _cross1(a: list, b: list) -> list:
+    ax, ay, az = a
+    bx, by, bz = b
+    return [ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx]
+
+
+def ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, e, v_inelastic, frictional):
+    """`ball_ball` for one contact in plain floats (lists in, lists out), operation for
+    operation as the array version does it, so the results are bit-identical (numpy's row
+    sums and norms of 2 and 3 components add in the order written here; exp goes through
+    numpy, whose last bit can differ from the C library's)."""
+    d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
+    nrm = math.sqrt(d0 * d0 + d1 * d1)
+    n0, n1 = d0 / nrm, d1 / nrm
+    closing = (vi[0] - vj[0]) * n0 + (vi[1] - vj[1]) * n1
+    ee = e if closing > v_inelastic else 0.0
+    inv = 1.0 / mi + 1.0 / mj
+    jn = (1.0 + ee) * (closing if not closing < 0.0 else 0.0) / inv
+    ki, kj = jn / mi, jn / mj
+    vi = [vi[0] - ki * n0, vi[1] - ki * n1]
+    vj = [vj[0] + kj * n0, vj[1] + kj * n1]
+    if not frictional:
+        return vi, vj, list(wi), list(wj)
+    arm_i = [ri * n0, ri * n1, ri * 0.0]
+    arm_j = [-rj * n0, -rj * n1, -rj * 0.0]
+    ci, cj = _cross1(wi, arm_i), _cross1(wj, arm_j)
+    slip = [(vi[0] + ci[0]) - (vj[0] + cj[0]), (vi[1] + ci[1]) - (vj[1] + cj[1]),
+            (0.0 + ci[2]) - (0.0 + cj[2])]
+    sn = (slip[0] * n0 + slip[2] * 0.0) + slip[1] * n1
+    st = [slip[0] - sn * n0, slip[1] - sn * n1, slip[2] - sn * 0.0]
+    speed = math.sqrt((st[0] * st[0] + st[1] * st[1]) + st[2] * st[2])
+    # Alciatore's fit: ball-ball friction falls with the sliding speed at the contact.
+    mu = 0.00995 + 0.108 * float(np.exp(-1.088 * speed))
+    k = 3.5 * inv
+    a, b = mu * jn, speed / k
+    jt = a if (a <= b or a != a) else b  # np.minimum, nan included
+    dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
+    imp = [-jt * x for x in dirn]
+    ii = 0.4 * mi * ri * ri
+    ij = 0.4 * mj * rj * rj
+    vi = [vi[0] + imp[0] / mi, vi[1] + imp[1] / mi]
+    vj = [vj[0] - imp[0] / mj, vj[1] - imp[1] / mj]
+    ti = _cross1(arm_i, imp)
+    tj = _cross1(arm_j, [-x for x in imp])
+    wi = [wi[k] + ti[k] / ii for k in range(3)]
+    wj = [wj[k] + tj[k] / ij for k in range(3)]
+    return vi, vj, wi, wj
+
+
+def cushion_one(n, v, w, r, m, e, mu, height, v_inelastic):
+    """`cushion` for one ball in plain floats (lists in, lists out), bit-identical to the
+    array version (same operations in the same order; see ball_ball_one)."""
+    n0, n1 = n
+    sin_t = min(max((height - r) / r, -0.95), 0.95)
+    cos_t = math.sqrt(1.0 - sin_t * sin_t)
+    approach = -(v[0] * n0 + v[1] * n1)
+    ee = e if approach > v_inelastic else 0.0
+    p_h = (1.0 + ee) * m * (approach if not approach < 0.0 else 0.0)
+    k = p_h / m
+    v = [v[0] + k * n0, v[1] + k * n1]
+    c = -cos_t
+    arm = [r * (c * n0 + sin_t * 0.0), r * (c * n1 + sin_t * 0.0), r * (c * 0.0 + sin_t * 1.0)]
+    normal = [-x / r for x in arm]
+    cw = _cross1(w, arm)
+    slip = [v[0] + cw[0], v[1] + cw[1], 0.0 + cw[2]]
+    sn = (slip[0] * normal[0] + slip[2] * normal[2]) + slip[1] * normal[1]
+    st = [slip[x] - sn * normal[x] for x in range(3)]
+    speed = math.sqrt((st[0] * st[0] + st[1] * st[1]) + st[2] * st[2])
+    a, b = mu * p_h / cos_t, speed * m / 3.5
+    jt = a if (a <= b or a != a) else b  # np.minimum, nan included
+    dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
+    imp = [-jt * x for x in dirn]
+    v = [v[0] + imp[0] / m, v[1] + imp[1] / m]
+    torque = _cross1(arm, imp)
+    inertia = 0.4 * m * r * r
+    w = [w[x] + torque[x] / inertia for x in range(3)]
     return v, w

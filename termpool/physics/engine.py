@@ -16,9 +16,10 @@ import math
 
 import numpy as np
 
-from termpool.physics import contact
+from termpool.physics import contact, motion
+from termpool.physics.motion import max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
-from termpool.physics.roots import first_contact, first_line_contact
+from termpool.physics.roots import first_contact, first_line_contact, first_line_contact_one
 from termpool.physics.slow import SlowContacts
 from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
     CLUSTER_GAP,
@@ -36,6 +37,7 @@ from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
 from termpool.physics.table import Table
 
+FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
 MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
 HOVER = 8e-7  # m: gap left under a ball after a slow cushion contact (< CLUSTER_GAP)
@@ -54,6 +56,11 @@ _TRANSITION_NAMES = {
     (ROLLING, STATIONARY): "roll_to_stop",
     (SPINNING, STATIONARY): "spin_to_stop",
 }
+_ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
+_NONE = np.zeros(0, dtype=np.int64)
+_NCOL, _RATE, _RADIUS, _MASS = 15, 12, 13, 14  # Engine._motion: columns, and constants' places
+_MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
+_LIVE = np.array([s != POCKETED for s in range(5)])
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -80,31 +87,51 @@ class Engine(SlowContacts):
         horizon: float = HORIZON,
     ) -> None:
         pos = np.asarray(pos, dtype=float)
+        if pos.ndim not in (2, 3) or pos.shape[-1] != 2:
+            raise ValueError(f"pos: shape {pos.shape} is not (N, 2) or (B, N, 2)")
         self.batched = pos.ndim == 3
         if not self.batched:
             pos = pos[None]
         B, N = pos.shape[:2]
         self.B, self.N = B, N
+        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
         self.table, self.physics, self.record, self.horizon = table, physics, record, horizon
         lead = (B, N) if self.batched else (N,)
-        self.p0 = pos.copy()
-        self.v0 = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
-        self.w0 = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
+        vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
+        w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
         self.radius = _batch(radius, lead, "radius").reshape(B, N)
         self.mass = _batch(mass, lead, "mass").reshape(B, N)
+        for name, arr in (("radius", self.radius), ("mass", self.mass)):
+            if not (arr > 0).all() or not np.isfinite(arr).all():
+                raise ValueError(f"{name}: must be positive and finite")
         sin_t = np.clip((physics.cushion_height - self.radius) / self.radius, -0.95, 0.95)
         self.rc = self.radius * np.sqrt(1.0 - sin_t * sin_t)  # centre-to-nose distance at contact
         self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
-        self.t0 = np.zeros((B, N))
+        # Each ball's motion since its clock t0, packed in one array so that evaluating balls
+        # takes one gather (the cost of a pass is the number of numpy calls, not the data):
+        # t0, p0 (2), v0 (2), acc (2), w0 (3), alpha (2, the rate of change of wx, wy), and
+        # the ball's side-spin decay rate, radius and mass. The named fields are views into it.
+        self._motion = np.zeros((B, N, _NCOL))
+        self.t0 = self._motion[..., 0]
+        self.p0 = self._motion[..., 1:3]
+        self.v0 = self._motion[..., 3:5]
+        self.acc = self._motion[..., 5:7]
+        self.w0 = self._motion[..., 7:10]
+        self.alpha = self._motion[..., 10:12]
+        self._motion[..., _RATE] = self.spin_rate
+        self._motion[..., _RADIUS] = self.radius
+        self._motion[..., _MASS] = self.mass
         self.state = np.zeros((B, N), dtype=np.int8)
         self.pocket = np.full((B, N), -1, dtype=np.int16)
-        self.acc = np.zeros((B, N, 2))
-        self.alpha = np.zeros((B, N, 2))  # rate of change of (wx, wy)
-        self.t_trans = np.full((B, N), np.inf)
-        self.t_check = np.full((B, N), np.inf)
-        self.t_cush = np.full((B, N), np.inf)
+        # Every prediction of a table in one row, in the order of the event codes, so that
+        # finding the next event is one argmin: transitions, horizon checks, cushions, pairs.
+        self._times = np.full((B, 3 * N + N * N), np.inf)
+        self.t_trans = self._times[:, :N]
+        self.t_check = self._times[:, N:2 * N]
+        self.t_cush = self._times[:, 2 * N:3 * N]
         self.f_cush = np.zeros((B, N), dtype=np.int64)
-        self.t_pair = np.full((B, N, N), np.inf)
+        self.t_pair = self._times[:, 3 * N:].reshape(B, N, N)
+        assert np.shares_memory(self.t_pair, self._times)  # a view, not a copy
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self.tb = np.zeros(B)  # each table's own clock inside a step
@@ -120,28 +147,31 @@ class Engine(SlowContacts):
         self._seg_dir = seg_d / self._seg_len[:, None]
         self._seg_off = (table.seg_a * table.seg_n).sum(axis=1)
         self._seg_start = (table.seg_a * self._seg_dir).sum(axis=1)
+        self._segs = list(zip(table.seg_a.tolist(), self._seg_dir.tolist(),
+                              self._seg_len.tolist(), strict=True))  # for _lines_few
         self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
-            self._set(b, i, self.tb[b], self.p0[b, i], self.v0[b, i], self.w0[b, i].copy())
+            self._set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
             self._predict(b, i)
             self._refresh(np.arange(B))
 
     # ----------------------------------------------------------------- motion between events
     def _eval(self, b, i, t, spin: bool = True):
         """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
-        d = (t - self.t0[b, i])[..., None]
-        v0 = self.v0[b, i]
-        acc = self.acc[b, i]
-        p = self.p0[b, i] + (v0 + 0.5 * acc * d) * d
+        m = self._motion[b, i]  # a fancy-indexed copy: its w0 columns may be changed in place
+        d = (t - m[..., 0])[..., None]
+        v0 = m[..., 3:5]
+        acc = m[..., 5:7]
+        p = m[..., 1:3] + (v0 + 0.5 * acc * d) * d
         v = v0 + acc * d
         if not spin:
             return p, v, None
-        w = self.w0[b, i]  # a fancy-indexed copy
-        w[..., :2] += self.alpha[b, i] * d
+        w = m[..., 7:10]
+        w[..., :2] += m[..., 10:12] * d
         wz = w[..., 2]
         # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
-        decay = self.spin_rate[b, i] * np.maximum(d[..., 0], 0.0)
+        decay = m[..., _RATE] * np.maximum(d[..., 0], 0.0)
         w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
         return p, v, w
 
@@ -179,6 +209,28 @@ class Engine(SlowContacts):
     def _set(self, b, i, t, p, v, w) -> None:
         """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
         set accelerations and the time of the next transition."""
+        if b.size <= FEW:
+            self._set_few(b, i, t, p, v, w)
+        else:
+            self._set_many(b, i, t, p, v, w)
+
+    def _set_few(self, b, i, t, p, v, w) -> None:
+        """_set one ball at a time in plain floats (motion.start): bit-identical, and faster
+        than numpy calls on arrays of one or two balls."""
+        ph = self.physics
+        self._write_few(b, i, [motion.start(ph, *args) for args in zip(
+            t.tolist(), p.tolist(), v.tolist(), w.tolist(), self.radius[b, i].tolist(),
+            self.spin_rate[b, i].tolist(), (self.state[b, i] == POCKETED).tolist(),
+            strict=True)])
+
+    def _write_few(self, b, i, out: list) -> None:
+        """Store motion.start's results for balls (b, i)."""
+        state, t_trans, rows = zip(*out, strict=True)
+        self.state[b, i] = state
+        self.t_trans[b, i] = t_trans
+        self._motion[b, i, :_RATE] = rows
+
+    def _set_many(self, b, i, t, p, v, w) -> None:
         ph = self.physics
         g = ph.g
         R = self.radius[b, i]
@@ -210,46 +262,45 @@ class Engine(SlowContacts):
         state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
                                                      np.where(spinning, SPINNING, STATIONARY)))
         self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self.t0[b, i] = t
-        self.p0[b, i] = p
-        self.v0[b, i] = v
-        self.w0[b, i] = w
-        self.acc[b, i] = acc
-        self.alpha[b, i] = alpha
+        self._motion[b, i, :_RATE] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
         self.t_trans[b, i] = t + dt
 
     # ----------------------------------------------------------------- predictions
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
-        N = self.N
         t = self.tb[b]
         st = self.state[b, i]
-        moving = (st == SLIDING) | (st == ROLLING)
-        self.t_check[b, i] = np.where(moving, t + self.horizon, np.inf)
-        end = np.minimum(self.t_trans[b, i], self.t_check[b, i])
+        moving = _MOVING[st]
+        t_check = np.where(moving, t + self.horizon, np.inf)
+        self.t_check[b, i] = t_check
+        end = np.minimum(self.t_trans[b, i], t_check)
         self.t_cush[b, i] = np.inf
         self.t_pair[b, i, :] = np.inf
         self.t_pair[b, :, i] = np.inf
-        m = np.nonzero(st != POCKETED)[0]
-        if m.size == 0:
-            return
-        b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
-        p, v, _ = self._eval(b, i, t, spin=False)
-        a = self.acc[b, i]
+        live = st != POCKETED
+        if not live.all():
+            m = np.flatnonzero(live)
+            if m.size == 0:
+                return
+            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+        # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
+        M = b.size
+        rows = np.arange(M)
+        tc = t[:, None]
+        P, V, _ = self._eval(b[:, None], self._balls, tc, spin=False)
+        A = self.acc[b]
+        p, v, a = P[rows, i], V[rows, i], A[rows, i]
         # Pairs: every other ball on the table, where at least one of the two moves.
         stk = self.state[b]
-        moving_k = (stk == SLIDING) | (stk == ROLLING)
-        valid = (stk != POCKETED) & (np.arange(N)[None] != i[:, None])
-        valid &= moving[:, None] | moving_k
-        mi, kk = np.nonzero(valid)
-        bb = b[mi]
-        pk, vk, _ = self._eval(bb, kk, t[mi], spin=False)
-        end_k = np.minimum(self.t_trans[bb, kk], self.t_check[bb, kk])
-        rel_p = [pk - p[mi]]
-        rel_v = [vk - v[mi]]
-        rel_a = [self.acc[bb, kk] - a[mi]]
-        dist = [self.radius[bb, kk] + self.radius[b, i][mi]]
-        horizon = [np.minimum(end[mi], end_k) - t[mi]]
+        valid = _LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
+        mi = np.nonzero(valid)[0]
+        R = self.radius[b]
+        end_k = np.minimum(self.t_trans[b], self.t_check[b])
+        rel_p = [(P - p[:, None])[valid]]
+        rel_v = [(V - v[:, None])[valid]]
+        rel_a = [(A - a[:, None])[valid]]
+        dist = [(R + R[rows, i][:, None])[valid]]
+        horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses within their window (a ball in open felt costs nothing here); tips and holes
         # are the same quartic as a pair.
@@ -258,7 +309,7 @@ class Engine(SlowContacts):
         tab = self.table
         x, y = p[:, 0], p[:, 1]
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        mv = np.nonzero(moving & near)[0]
+        mv = np.flatnonzero(moving & near)
         nc = len(self._circles)
         if mv.size and nc:
             rc = self.rc[b[mv], i[mv]]
@@ -268,22 +319,28 @@ class Engine(SlowContacts):
             holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))
             dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1), holes],
                                        axis=1).ravel())
-            horizon.append(np.repeat(end[mv] - t[mv], nc))
-        tc = first_contact(np.concatenate(rel_p), np.concatenate(rel_v), np.concatenate(rel_a),
-                           np.concatenate(dist), np.concatenate(horizon))
+            horizon.append(np.repeat(T[mv], nc))
+            found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
+                                  np.concatenate(rel_a), np.concatenate(dist),
+                                  np.concatenate(horizon))
+        else:
+            found = first_contact(rel_p[0], rel_v[0], rel_a[0], dist[0], horizon[0])
         npair = mi.size
-        tp = t[mi] + tc[:npair]
-        self.t_pair[bb, i[mi], kk] = tp
-        self.t_pair[bb, kk, i[mi]] = tp
+        if npair:
+            tp = t[mi] + found[:npair]
+            bb, ii, kk = b[mi], i[mi], np.nonzero(valid)[1]
+            self.t_pair[bb, ii, kk] = tp
+            self.t_pair[bb, kk, ii] = tp
         if mv.size:
-            tcirc = tc[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            tline = self._lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], end[mv] - t[mv])
+            tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
+            lines = self._lines_few if mv.size <= FEW else self._lines
+            tline = lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv], reach[mv])
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
 
-    def _lines(self, p, v, a, rc, horizon) -> np.ndarray:
+    def _lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
         """(M, S) first contact times of M balls with the cushion segments."""
         tab = self.table
         n = tab.seg_n
@@ -303,11 +360,38 @@ class Engine(SlowContacts):
             tl = np.where(fin & (along >= 0) & (along <= self._seg_len[None]), tl, np.inf)
         return tl
 
+    def _lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
+        """_lines for a few balls in plain floats, bit-identical. A ball whose centre is
+        further from a cushion segment than its reach (travel in the window plus the nose
+        distance, with a micrometre to spare) cannot meet it and skips it: the array path
+        finds no contact there either."""
+        tab = self.table
+        n = tab.seg_n
+        out = np.full((len(p), self._nseg), np.inf)
+        rows = zip((p @ n.T - self._seg_off).tolist(),
+                   (p @ self._seg_dir.T - self._seg_start).tolist(), (v @ n.T).tolist(),
+                   (a @ n.T).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
+                   horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
+        for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
+            for k, (ak, dk, length) in enumerate(self._segs):
+                # The ball's distance from the segment is at least each of these.
+                if s0[k] > far or -s0[k] > far or -along0[k] > far or along0[k] - length > far:
+                    continue
+                beside = along0[k] >= 0 and along0[k] <= length
+                tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
+                if tl < math.inf:
+                    # The contact must fall on the segment itself (as in _lines).
+                    tt = tl * tl
+                    qx = (pm[0] + vm[0] * tl + 0.5 * am[0] * tt) - ak[0]
+                    qy = (pm[1] + vm[1] * tl + 0.5 * am[1] * tt) - ak[1]
+                    along = qx * dk[0] + qy * dk[1]
+                    if along >= 0 and along <= length:
+                        out[m, k] = tl
+        return out
+
     def _refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
-        N = self.N
-        allt = np.concatenate([self.t_trans[tabs], self.t_check[tabs], self.t_cush[tabs],
-                               self.t_pair[tabs].reshape(-1, N * N)], axis=1)
+        allt = self._times[tabs]
         code = allt.argmin(axis=1)
         self.t_next[tabs] = allt[np.arange(len(tabs)), code]
         self.c_next[tabs] = code
@@ -335,55 +419,57 @@ class Engine(SlowContacts):
 
     def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
         N = self.N
-        kind = np.minimum(code // N, 3)
-        i = np.where(kind < 3, code % N, (code - 3 * N) // N)
-        j = np.where(kind < 3, -1, (code - 3 * N) % N)
-        old_state = self.state[tabs, i]
-        win = np.floor(self.tb[tabs] / WINDOW).astype(np.int64)
-        fresh = win != self._win[tabs]
+        # code: N transitions, N checks, N cushions, then N * N pairs (i, j).
+        q, r = np.divmod(code, N)
+        kind = np.minimum(q, 3)
+        i = np.where(q < 3, r, q - 3)
+        j = np.where(q < 3, -1, r)
+        old_state = self.state[tabs, i] if self.record else None
+        t = self.tb[tabs]
+        win = np.floor(t / WINDOW).astype(np.int64)
+        count = np.where(win != self._win[tabs], 1, self._count[tabs] + 1)
         self._win[tabs] = win
-        self._count[tabs] = np.where(fresh, 1, self._count[tabs] + 1)
-        busy = self._count[tabs] > BUDGET
+        self._count[tabs] = count
+        busy = count > BUDGET
+        any_busy = busy.any()
+        if tabs.size == 1:  # one table (the usual case): pick its kind without array scans
+            which = _ONE
+            tr = cu = pr = _NONE
+            k0 = int(kind[0])
+            if k0 == 0:
+                tr = which
+            elif k0 == 2:
+                cu = which
+            elif k0 == 3:
+                pr = which
+        else:
+            tr = np.flatnonzero(kind == 0)
+            cu = np.flatnonzero(kind == 2)
+            pr = np.flatnonzero(kind == 3)
         labels: dict = {}
         clusters: list[tuple[int, list[int], bool]] = []
-        tr = np.nonzero(kind == 0)[0]
         if tr.size:
             self._transition(tabs[tr], i[tr])
-        cu = np.nonzero(kind == 2)[0]
         if cu.size:
             # A slow bounce of a ball that touches another ball (pressed into the rail), or
             # any bounce over the work bound, is solved with its cluster.
-            squeeze = busy[cu] | self._squeezed(tabs[cu], i[cu])
-            for n in cu[squeeze].tolist():
-                clusters.append((n, [int(i[n])], bool(busy[n])))
+            squeeze = self._squeezed(tabs[cu], i[cu])
+            if any_busy:
+                squeeze |= busy[cu]
             if self.record:
                 labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
                                   strict=True))
-            cu = cu[~squeeze]
+            if squeeze.any():
+                for n in cu[squeeze].tolist():
+                    clusters.append((n, [int(i[n])], bool(busy[n])))
+                cu = cu[~squeeze]
             if cu.size:
                 self._cushion(tabs[cu], i[cu])
-        pr = np.nonzero(kind == 3)[0]
-        more_b, more_i = [tabs[pr]], [j[pr]]
+        more_b, more_i = [tabs], [i]
         if pr.size:
-            # Both balls' states, once, for the closing speed and for whichever response.
-            bp = tabs[pr]
-            states = self._eval(bp, i[pr], self.tb[bp]) + self._eval(bp, j[pr], self.tb[bp])
-            d = states[3] - states[0]
-            closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
-            slow = (closing < self.physics.v_inelastic) | busy[pr]
-            if (~slow).any():
-                f = pr[~slow]
-                self._collide(tabs[f], i[f], j[f], *(x[~slow] for x in states))
-            quiet = slow & ~busy[pr]
-            sl = pr[quiet]
-            if sl.size:
-                alone = self._alone(tabs[sl], i[sl], j[sl])
-                if alone.any():
-                    a = sl[alone]
-                    self._settle(tabs[a], i[a], j[a], *(x[quiet][alone] for x in states))
-                sl = sl[~alone]
-            for n in sl.tolist() + pr[busy[pr]].tolist():
-                clusters.append((n, [int(i[n]), int(j[n])], bool(busy[n])))
+            more_b.append(tabs[pr])
+            more_i.append(j[pr])
+            self._pairs(tabs[pr], i[pr], j[pr], pr, busy[pr] if any_busy else None, clusters)
         extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
         for n, seeds, every in clusters:
             b = int(tabs[n])
@@ -391,11 +477,49 @@ class Engine(SlowContacts):
             more_b.append(np.full(len(members), b))
             more_i.append(np.array(members, dtype=np.int64))
             extra[n] = [k for k in moved if k not in seeds]
-        self._predict(np.concatenate([tabs] + more_b), np.concatenate([i] + more_i))
+        self._predict(np.concatenate(more_b), np.concatenate(more_i))
         if self.record:
             self._log(tabs, kind, i, j, old_state, labels, extra)
 
+    def _pairs(self, b, i, j, pr, busy, clusters) -> None:
+        """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
+        None for none): fast ones collide, slow ones settle alone or go to `clusters`."""
+        n = b.size
+        if n == 1 and busy is None and self._pair_one(int(b[0]), int(i[0]), int(j[0])):
+            return
+        # Both balls' states, once, for the closing speed and for whichever response.
+        tb = self.tb[b]
+        p, v, w = self._eval(np.concatenate([b, b]), np.concatenate([i, j]),
+                             np.concatenate([tb, tb]))
+        states = (p[:n], v[:n], w[:n], p[n:], v[n:], w[n:])
+        d = states[3] - states[0]
+        closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
+        slow = closing < self.physics.v_inelastic
+        if busy is not None:
+            slow |= busy
+        if not slow.any():
+            self._collide(b, i, j, *states)
+            return
+        fast = ~slow
+        if fast.any():
+            self._collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
+        quiet = slow if busy is None else slow & ~busy
+        sl = np.flatnonzero(quiet)
+        if sl.size:
+            alone = self._alone(b[sl], i[sl], j[sl])
+            if alone.any():
+                a = sl[alone]
+                self._settle(b[a], i[a], j[a], *(x[a] for x in states))
+            sl = sl[~alone]
+        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
+        for k in late:
+            every = busy is not None and bool(busy[k])
+            clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every))
+
     def _transition(self, b, i) -> None:
+        if b.size <= FEW:
+            self._transition_few(b, i)
+            return
         t = self.tb[b]
         st = self.state[b, i]
         p, v, w = self._eval(b, i, t)
@@ -408,9 +532,30 @@ class Engine(SlowContacts):
         w[:, 2] = np.where(st == SPINNING, 0.0, w[:, 2])
         self._set(b, i, t, p, v, w)
 
+    def _transition_few(self, b, i) -> None:
+        """_transition in plain floats, ball by ball (bit-identical)."""
+        ph = self.physics
+        out = []
+        for t, row, st, R in zip(self.tb[b].tolist(), self._motion[b, i].tolist(),
+                                 self.state[b, i].tolist(), self.radius[b, i].tolist(),
+                                 strict=True):
+            p, v, w = motion.at(row, t)
+            if st == SLIDING:
+                w[0], w[1] = (v[1] * -1.0) / R, (v[0] * 1.0) / R
+            elif st == ROLLING:
+                v = [0.0, 0.0]
+                w[0] = w[1] = 0.0
+            elif st == SPINNING:
+                w[2] = 0.0
+            out.append(motion.start(ph, t, p, v, w, R, row[_RATE], st == POCKETED))
+        self._write_few(b, i, out)
+
     def _cushion(self, b, i) -> None:
         tab, ph = self.table, self.physics
         nseg, npt = self._nseg, self._npt
+        if b.size == 1 and self.f_cush[b[0], i[0]] < nseg + npt:
+            self._cushion_one(int(b[0]), int(i[0]))
+            return
         t = self.tb[b]
         f = self.f_cush[b, i]
         p, v, w = self._eval(b, i, t)
@@ -448,6 +593,31 @@ class Engine(SlowContacts):
             self.pocket[bh, ih] = k
             self._set(bh, ih, t[hl], tab.hole_c[k], np.zeros((hl.size, 2)), np.zeros((hl.size, 3)))
 
+    def _cushion_one(self, b: int, i: int) -> None:
+        """One bounce off a rail, jaw or jaw tip in plain floats, bit-identical to _cushion."""
+        tab, ph = self.table, self.physics
+        t = float(self.tb[b])
+        f = int(self.f_cush[b, i])
+        row = self._motion[b, i].tolist()
+        p, v, w = motion.at(row, t)
+        if f < self._nseg:
+            ref, n = tab.seg_a[f].tolist(), tab.seg_n[f].tolist()
+        else:
+            ref = tab.points[f - self._nseg].tolist()
+            d0, d1 = p[0] - ref[0], p[1] - ref[1]
+            dist = float(np.hypot(d0, d1))
+            n = [d0 / dist, d1 / dist]
+        slow = -(v[0] * n[0] + v[1] * n[1]) < ph.v_inelastic
+        r, m = row[_RADIUS], row[_MASS]
+        v, w = contact.cushion_one(n, v, w, r, m, ph.e_cushion, ph.mu_cushion,
+                                   ph.cushion_height, ph.v_inelastic)
+        # As _cushion: undo a sink, and set a slow ball down HOVER off the cushion.
+        depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
+        lift = max0(depth) + (HOVER if slow else 0.0)
+        p = [p[0] + lift * n[0], p[1] + lift * n[1]]
+        self._write_few(np.array([b]), np.array([i]), [
+            motion.start(ph, t, p, v, w, r, row[_RATE], bool(self.state[b, i] == POCKETED))])
+
     def _features(self, f) -> list[str]:
         """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
         tab, nseg, npt = self.table, self._nseg, self._npt
@@ -460,6 +630,39 @@ class Engine(SlowContacts):
             else:
                 names.append(tab.hole_names[fi - nseg - npt])
         return names
+
+    def _pair_one(self, b: int, i: int, j: int) -> bool:
+        """One fast ball-ball contact in plain floats (the usual pass), bit-identical to the
+        array path; False, doing nothing, if the contact is slow."""
+        t = float(self.tb[b])
+        rows = self._motion[b, [i, j]].tolist()
+        pi, vi, wi = motion.at(rows[0], t)
+        pj, vj, wj = motion.at(rows[1], t)
+        d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
+        dist = float(np.hypot(d0, d1))
+        if not dist > 0:  # centres together: leave it to the array path's nan handling
+            return False
+        closing = ((vi[0] - vj[0]) * d0 + (vi[1] - vj[1]) * d1) / dist
+        ph = self.physics
+        if closing < ph.v_inelastic:
+            return False
+        ri, rj = rows[0][_RADIUS], rows[1][_RADIUS]
+        mi, mj = rows[0][_MASS], rows[1][_MASS]
+        vi, vj, wi, wj = contact.ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj,
+                                               ph.e_ball, ph.v_inelastic,
+                                               ph.ball_ball == "frictional")
+        # As _part: undo a resting contact's sub-micrometre sink, shared by inverse mass.
+        n0, n1 = d0 / dist, d1 / dist
+        depth = max0(ri + rj - dist)
+        share = mj / (mi + mj)
+        ki, kj = depth * share, depth * (1.0 - share)
+        pi = [pi[0] - ki * n0, pi[1] - ki * n1]
+        pj = [pj[0] + kj * n0, pj[1] + kj * n1]
+        pocketed = self.state[b, [i, j]] == POCKETED
+        self._write_few(np.array([b, b]), np.array([i, j]), [
+            motion.start(ph, t, pi, vi, wi, ri, rows[0][_RATE], bool(pocketed[0])),
+            motion.start(ph, t, pj, vj, wj, rj, rows[1][_RATE], bool(pocketed[1]))])
+        return True
 
     def _collide(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
         """Fast contacts (b, i, j), balls i and j now at (pi, vi, wi) and (pj, vj, wj)."""

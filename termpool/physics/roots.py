@@ -10,6 +10,8 @@ np.errstate(all="ignore"): infinities stand for "no contact".
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 TOUCH = 1e-9  # gaps below this (m) count as touching
@@ -149,3 +151,36 @@ def first_line_contact(
     best = np.where((A == 0) & (sv < 0) & (C >= 0), -C / sv, best)
     best = np.where((best <= horizon) & front, best, np.inf)
     return np.where(now, 0.0, best)
+
+
+def _over(x: float, d: float) -> float:
+    """x / d as numpy divides (d = 0 gives inf or nan instead of an exception)."""
+    if d != 0.0:
+        return x / d
+    if x != x or x == 0.0:
+        return math.nan
+    return math.copysign(math.inf, x) * math.copysign(1.0, d)
+
+
+def first_line_contact_one(s0: float, sv: float, sa: float, dist: float, horizon: float,
+                           beside: bool) -> float:
+    """`first_line_contact` for one ball and one line in plain floats, operation for
+    operation as the array version, so the result is bit-identical."""
+    gap = s0 - dist
+    touching = gap < TOUCH and beside
+    front = s0 > 0
+    now = touching and (sv < -V_MIN or gap < -SINK) and front
+    C = ((0.0 if gap < 0.0 else gap) + SINK) if touching else gap
+    A = 0.5 * sa
+    disc = sv * sv - 4 * A * C
+    sq = math.sqrt(disc) if disc >= 0.0 else math.nan
+    q = -0.5 * (sv + (sq if sv >= 0 else -sq))
+    best = math.inf
+    for r in (_over(q, A), _over(C, q)):
+        if r >= 0 and 2 * A * r + sv < 0 and r < best:
+            best = r
+    if A == 0 and sv < 0 and C >= 0:
+        best = _over(-C, sv)
+    if not (best <= horizon and front):
+        best = math.inf
+    return 0.0 if now else best
