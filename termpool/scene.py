@@ -247,7 +247,7 @@ def _check_layout(balls: list[dict], table: Table, physics: Physics) -> None:
             raise SceneError(f"{tag}: duplicate id (also balls[{seen[b['id']]}])")
         seen[b["id"]] = i
         # A ball touching a rail has its centre nose_reach (< radius) from the nose line.
-        reach = nose_reach(b["radius"], physics.cushion_height)
+        reach = float(nose_reach(b["radius"], physics.cushion_height))
         if not table.on_bed(b["x"], b["y"], reach):
             raise SceneError(
                 f"{tag}: off the table at ({b['x']:g}, {b['y']:g}); the centre must lie within "

@@ -18,7 +18,7 @@ import numpy as np
 
 from termpool.physics import contact, motion
 from termpool.physics.motion import max0
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.roots import first_contact, first_line_contact, first_line_contact_one
 from termpool.physics.slow import SlowContacts
 from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
@@ -104,8 +104,7 @@ class Engine(SlowContacts):
         for name, arr in (("radius", self.radius), ("mass", self.mass)):
             if not (arr > 0).all() or not np.isfinite(arr).all():
                 raise ValueError(f"{name}: must be positive and finite")
-        sin_t = np.clip((physics.cushion_height - self.radius) / self.radius, -0.95, 0.95)
-        self.rc = self.radius * np.sqrt(1.0 - sin_t * sin_t)  # centre-to-nose distance at contact
+        self.rc = nose_reach(self.radius, physics.cushion_height)  # centre to nose at contact
         self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
         # Each ball's motion since its clock t0, packed in one array so that evaluating balls
         # takes one gather (the cost of a pass is the number of numpy calls, not the data):

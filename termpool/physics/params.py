@@ -4,16 +4,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
+import numpy as np
+
 BALL_RADIUS = 0.028575  # 2.25 in diameter
 BALL_MASS = 0.170
 
 
-def nose_reach(radius: float, cushion_height: float) -> float:
+def nose_reach(radius, cushion_height: float):
     """How close (horizontally) a ball's centre comes to a cushion's nose line when it touches
     the nose: less than the radius, since the nose is above the ball's equator. The engine's
-    contact distance (`Engine.rc`), so a ball resting on a rail sits this far from it."""
-    sin_t = min(0.95, max(-0.95, (cushion_height - radius) / radius))
-    return radius * (1.0 - sin_t * sin_t) ** 0.5
+    contact distance (`Engine.rc`), so a ball resting on a rail sits this far from it.
+    `radius` may be a number or an array."""
+    sin_t = np.clip((cushion_height - radius) / radius, -0.95, 0.95)
+    return radius * np.sqrt(1.0 - sin_t * sin_t)
 
 
 @dataclass(frozen=True)
