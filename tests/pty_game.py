@@ -28,7 +28,7 @@ def set_size(fd: int, cols: int, rows: int) -> None:
 
 class PtyGame:
     def __init__(self, *args: str, cols: int = 100, rows: int = 32, env: dict | None = None,
-                 python_args: bool = False):
+                 python_args: bool = False, kitty: bool = False):
         e = dict(os.environ)
         e.update({"TERM": "xterm-256color", "PYTHONPATH": str(ROOT), "COLORTERM": "truecolor"})
         e.pop("NO_COLOR", None)
@@ -48,6 +48,7 @@ class PtyGame:
         self.stream = pyte.ByteStream(self.screen)
         self.raw = b""
         self.status: int | None = None
+        self.kitty = kitty  # answer the kitty keyboard query as a kitty-protocol terminal would
 
     # -- reading
     def pump(self, seconds: float = 0.05) -> bytes:
@@ -68,6 +69,8 @@ class PtyGame:
             if not data:
                 break
             got += data
+        if self.kitty and b"\x1b[?u" in got:
+            os.write(self.fd, b"\x1b[?0u\x1b[?62;22c")  # flags 0, then the DA1 reply
         self.raw += got
         if got:
             self.stream.feed(got)

@@ -164,3 +164,35 @@ def test_an_exception_inside_the_app_restores_the_terminal(game) -> None:
     assert g.status == 1
     assert restored(g.raw) and cooked(g.fd)
     assert b"RuntimeError: boom" in g.raw
+
+
+def test_kitty_terminal_hold_space_and_release_to_shoot(game) -> None:
+    # A terminal that answers the kitty keyboard query gets the protocol (flags pushed, popped
+    # on exit) and reports releases: Space shoots when it is let go.
+    g = game("play", "--mode", "practice", cols=100, rows=32, kitty=True)
+    assert g.wait_for("You to break"), g.text()
+    g.pump(0.5)
+    assert b"\x1b[>11u" in g.raw  # disambiguate + event types + all keys as escapes
+    g.send("\x1b[13u", pause=0.3)  # Enter (as kitty reports it): place the cue ball
+    assert g.wait_for("hold space, release to shoot"), g.text()
+    g.send("\x1b[32u", pause=0.2)  # Space pressed ...
+    g.send("\x1b[32;1:2u" * 3, pause=0.4)  # ... held (repeats) ...
+    g.send("\x1b[32;1:3u", pause=0.2)  # ... released: the shot goes
+    g.send("\x1b[102u")  # f: fast forward
+    assert g.wait_for("You to shoot", timeout=60), g.text()
+    g.send("\x1b[113u")  # q
+    assert g.wait_for("Quit termpool?")
+    g.send("\x1b[121u")  # y
+    assert g.wait() == 0
+    assert restored(g.raw) and cooked(g.fd)
+    assert g.raw.rindex(b"\x1b[<u") > g.raw.rindex(b"\x1b[>11u")  # flags popped on the way out
+
+
+def test_kitty_terminal_ctrl_c_still_quits_and_restores(game) -> None:
+    # With all keys reported as escapes, Ctrl-C is a key (CSI 99;5u), not a signal.
+    g = game("play", "--mode", "practice", cols=100, rows=32, kitty=True)
+    assert g.wait_for("You to break"), g.text()
+    g.pump(0.5)
+    g.send("\x1b[99;5u")
+    assert g.wait() == 130
+    assert restored(g.raw) and cooked(g.fd) and b"\x1b[<u" in g.raw
