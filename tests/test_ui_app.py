@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -392,3 +393,60 @@ def test_referee_words_get_the_players_names() -> None:
     assert app.names("it is player 0's turn; player 1 loses") == "it is your turn; Computer loses"
     assert app.names("the table is open and player 0 continues") == \
         "the table is open and You continue"
+
+
+# --------------------------------------------------------------------------------- mouse
+
+def test_sgr_mouse_reports_decode_in_order_with_keys() -> None:
+    from termpool.ui.keys import Mouse, decode_input
+
+    got = decode_input("a\x1b[<0;10;5M\x1b[<32;11;5M\x1b[<0;11;5mb\x1b[<35;3;3M\x1b[<65;1;1M")
+    assert got == [Key("a"), Mouse(9, 4, "press", 0), Mouse(10, 4, "drag", 0),
+                   Mouse(10, 4, "release", 0), Key("b"), Mouse(2, 2, "move", 3),
+                   Mouse(0, 0, "wheel_down", 3)]
+
+
+def test_scripts_click_and_legacy_terminals_keep_mouse_releases() -> None:
+    from termpool.ui.keys import Mouse
+
+    ev = parse_script("click 12 7 q")
+    assert ev[:2] == [(0.0, Mouse(12, 7, "press")), (0.025, Mouse(12, 7, "release"))]
+    assert [e for _, e in legacy_events(ev)][:2] == [Mouse(12, 7, "press"),
+                                                     Mouse(12, 7, "release")]
+    with pytest.raises(ValueError, match="script token 1 'click'"):
+        parse_script("click 12")
+
+
+def cell_of(app: App, x: float, y: float, cols=120, rows=40) -> tuple[int, int]:
+    app.cells(cols, rows)
+    lay = app._geom[2]
+    px, py = lay.to_pixels(x, y)
+    return int(px), int(py) // 2
+
+
+def test_click_aims_at_the_point_and_places_the_ball_in_hand() -> None:
+    from termpool.ui.keys import Mouse
+
+    app = app_for(mode="8ball", opponent="human")
+    m = app.match
+    # Ball in hand: a click puts the cursor at the clicked cell.
+    col, row = cell_of(app, 0.4, 0.3)
+    app.mouse(Mouse(col, row, "press"), 0.0)
+    lay = app._geom[2]
+    cell_m = 2.0 / lay.scale  # a cell is two pixels high
+    assert abs(app.cursor[0] - 0.4) <= cell_m and abs(app.cursor[1] - 0.3) <= cell_m
+    app.key(Key("enter"), 0.1)
+    assert app.phase == "aim"
+    # Aiming: a click on a ball turns the stick at it, to within the cell's size.
+    k = m.ids.index("5")
+    col, row = cell_of(app, *m.pos[k])
+    app.mouse(Mouse(col, row, "press"), 0.2)
+    d = m.pos[k] - m.pos[0]
+    want = math.degrees(math.atan2(d[1], d[0])) % 360
+    tol = math.degrees(math.atan2(cell_m, float(np.hypot(*d))))
+    assert abs(app.angle - want) <= tol
+    # A right click or a release does nothing.
+    before = app.angle
+    app.mouse(Mouse(0, 0, "press", 2), 0.3)
+    app.mouse(Mouse(0, 0, "release", 0), 0.4)
+    assert app.angle == before

@@ -196,3 +196,16 @@ def test_kitty_terminal_ctrl_c_still_quits_and_restores(game) -> None:
     g.send("\x1b[99;5u")
     assert g.wait() == 130
     assert restored(g.raw) and cooked(g.fd) and b"\x1b[<u" in g.raw
+
+
+def test_mouse_click_moves_the_ball_in_hand_and_mouse_mode_is_switched_off(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    assert b"\x1b[?1002h" in g.raw and b"\x1b[?1006h" in g.raw
+    before = table_cells(g)
+    g.send("\x1b[<0;30;8M\x1b[<0;30;8m", pause=0.5)  # click at column 30, row 8 (1-based)
+    assert table_cells(g) != before  # the cue ball followed the click
+    g.send("q")
+    g.send("y")
+    assert g.wait() == 0 and restored(g.raw)
+    assert g.raw.rindex(b"\x1b[?1002l") > g.raw.rindex(b"\x1b[?1002h")

@@ -401,6 +401,31 @@ class App:
             getattr(self, "_key_" + self.phase)(key, action, t)
         self.dirty = True
 
+    def mouse(self, ev, t: float) -> None:
+        """A left press or drag on the table aims at that point (or, with ball in hand,
+        moves the cue ball there); the arrows then refine."""
+        self.now = t
+        if (self.overlay is not None or self.match is None or self._geom is None
+                or self.phase not in ("aim", "place") or ev.button != 0
+                or ev.kind not in ("press", "drag")):
+            return
+        lay = self._geom[2]
+        if lay is None:
+            return
+        x = (ev.col + 0.5 - lay.px) / lay.sx  # the cell's centre, in table metres
+        y = lay.width - (2 * ev.row + 1 - lay.py) / lay.sy
+        if self.phase == "place":
+            self.cursor = [min(lay.length, max(0.0, x)), min(lay.width, max(0.0, y))]
+        else:
+            cx, cy = self.match.pos[self.cue_index()]
+            if math.hypot(x - cx, y - cy) < 1e-9:
+                return
+            self.angle = math.degrees(math.atan2(y - cy, x - cx)) % 360.0
+            self._aim_cache = None
+            if self.match.needs_call():
+                self._default_call()
+        self.dirty = True
+
     def _overlay_key(self, key, action) -> None:
         if key.kind != "press":
             return

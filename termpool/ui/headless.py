@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from termpool.ui.keys import Mouse
 from termpool.ui.output import Screen
 
 FPS = 60
@@ -34,7 +35,11 @@ def play(app, events: Sequence[tuple[float, object]], cols: int, rows: int,
     n = 0
     while not app.done:
         while k < len(events) and events[k][0] <= t + 1e-12:
-            app.key(events[k][1], events[k][0])
+            ev = events[k][1]
+            if isinstance(ev, Mouse):
+                app.mouse(ev, events[k][0])
+            else:
+                app.key(ev, events[k][0])
             k += 1
         app.tick(t)
         if app.dirty or cells is None:

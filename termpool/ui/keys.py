@@ -17,10 +17,11 @@ and shift may or may not be set, depending on the terminal).
   A Keystroke is the raw text it was read from, so it goes through `decode`; blessed's own
   name is used only for sequences decode does not know (terminfo-specific ones).
 - `parse_key(spec)`: "shift+left", "q", "?", "ctrl+c" -> Key (config files and scripts).
+- `decode_input(text)`: like `decode`, plus SGR mouse reports as `Mouse` events, in order.
 - `parse_script(text)`: "right*5 wait 0.2 space-hold 1.5 q y" -> [(t, Key), ...] on a virtual
   clock, as a kitty terminal with event reports would deliver them (taps are press+release,
-  holds press, auto-repeats, release). `legacy_events` turns that into what a legacy terminal
-  delivers (presses only).
+  holds press, auto-repeats, release; `click COL ROW` is a left click, as `Mouse` events).
+  `legacy_events` turns that into what a legacy terminal delivers (presses only).
 
 Kitty protocol: key releases reach the program only with "report event types" and "report
 all keys as escape codes" both on (text keys such as space otherwise arrive as plain text, with
@@ -31,6 +32,7 @@ no release). `KITTY_FLAGS` holds the keyword arguments for blessed's
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 
 KINDS = ("press", "repeat", "release")
@@ -366,6 +368,44 @@ def _seconds(text: str, what: str) -> float:
     return val
 
 
+@dataclass(frozen=True)
+class Mouse:
+    """A mouse report (SGR mode): the cell (0-based), what happened and with which button."""
+
+    col: int
+    row: int
+    kind: str = "press"  # "press" | "drag" | "release" | "move" | "wheel_up" | "wheel_down"
+    button: int = 0  # 0 left, 1 middle, 2 right
+
+
+_SGR_MOUSE = re.compile(r"\x1b\[<(\d+);(\d+);(\d+)([Mm])")
+
+
+def _mouse(code: int, col: int, row: int, final: str) -> Mouse:
+    if code & 64:
+        return Mouse(col - 1, row - 1, "wheel_down" if code & 1 else "wheel_up", 3)
+    button = code & 3
+    if final == "m":
+        kind = "release"
+    elif code & 32:
+        kind = "move" if button == 3 else "drag"
+    else:
+        kind = "press"
+    return Mouse(col - 1, row - 1, kind, button)
+
+
+def decode_input(text: str) -> list:
+    """Raw terminal input -> keys and SGR mouse reports (`Mouse`), in the order they came."""
+    out: list = []
+    at = 0
+    for m in _SGR_MOUSE.finditer(text):
+        out += decode(text[at:m.start()])
+        out.append(_mouse(int(m.group(1)), int(m.group(2)), int(m.group(3)), m.group(4)))
+        at = m.end()
+    out += decode(text[at:])
+    return out
+
+
 def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
                  repeat_rate: float = 0.033) -> list[tuple[float, Key]]:
     """A headless key script -> [(time, Key)] on a virtual clock starting at 0.
@@ -386,6 +426,16 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
         tok = tokens[i]
         where = f"script token {i + 1} '{tok}'"
         try:
+            if tok.lower() == "click":  # click COL ROW: a left click on that cell (0-based)
+                if i + 2 >= len(tokens) or not (tokens[i + 1].isdigit()
+                                                 and tokens[i + 2].isdigit()):
+                    raise ValueError("click needs a column and a row (whole numbers) after it")
+                col, row = int(tokens[i + 1]), int(tokens[i + 2])
+                events.append((t, Mouse(col, row, "press")))
+                events.append((t + tap_gap / 2, Mouse(col, row, "release")))
+                t += tap_gap
+                i += 3
+                continue
             if tok.lower() == "wait":
                 if i + 1 >= len(tokens):
                     raise ValueError("wait needs a number of seconds after it")
@@ -427,4 +477,10 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
 
 def legacy_events(events: list[tuple[float, Key]]) -> list[tuple[float, Key]]:
     """What a legacy terminal delivers for these events: no releases, repeats as presses."""
-    return [(t, replace(k, kind="press")) for t, k in events if k.kind != "release"]
+    out = []
+    for t, e in events:
+        if isinstance(e, Mouse):
+            out.append((t, e))  # mouse reports are the same on every terminal
+        elif e.kind != "release":
+            out.append((t, replace(e, kind="press")))
+    return out

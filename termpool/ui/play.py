@@ -34,6 +34,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--input", choices=INPUTS, default="auto",
                    help="how Space charges: kitty (key releases), repeat (hold inferred from "
                         "auto-repeat), classic (press to start the meter, press to strike)")
+    p.add_argument("--no-mouse", action="store_true",
+                   help="leave the mouse to the terminal (by default a click or drag aims)")
     p.add_argument("--keymap", metavar="FILE", help="key bindings (default "
                    "$XDG_CONFIG_HOME/termpool/keys.conf)")
     p.add_argument("--headless", action="store_true",
@@ -106,7 +108,8 @@ def run(args: argparse.Namespace) -> int:
     mode = {"kitty": "release"}.get(args.input, args.input)
     app = App(opts, keymap, "repeat" if mode == "auto" else mode)
     rc = term.run(app, app.depth, kitty=args.input in ("auto", "kitty"),
-                  set_input_mode=app.set_input_mode if mode == "auto" else None)
+                  set_input_mode=app.set_input_mode if mode == "auto" else None,
+                  mouse=not args.no_mouse)
     _write_record(app, args.record)
     return rc
 

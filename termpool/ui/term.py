@@ -28,10 +28,13 @@ import tty
 from collections.abc import Callable
 from typing import Protocol
 
+from termpool.ui.keys import Mouse
 from termpool.ui.output import Screen
 
 ENTER = "\x1b[?1049h\x1b[?25l\x1b[H\x1b[2J"  # alternate screen, hide cursor, clear
 LEAVE = "\x1b[0m\x1b[?2026l\x1b[?25h\x1b[?1049l"  # reset, end sync, show cursor, main screen
+MOUSE_ON = "\x1b[?1002h\x1b[?1006h"  # report presses, drags and releases, in SGR form
+MOUSE_OFF = "\x1b[?1006l\x1b[?1002l"
 KITTY_QUERY = "\x1b[?u\x1b[c"  # kitty flags, then DA1 as the boundary every terminal answers
 _KITTY_REPLY = re.compile(r"\x1b\[\?\d*u")
 _DA1_REPLY = re.compile(r"\x1b\[\?[\d;]*c")
@@ -48,6 +51,7 @@ class App(Protocol):
     dirty: bool  # something changed since the last `cells`
 
     def key(self, key, t: float) -> None: ...
+    def mouse(self, ev, t: float) -> None: ...
     def tick(self, t: float) -> None: ...
     def cells(self, cols: int, rows: int): ...
     def wake_in(self, t: float) -> float | None: ...
@@ -69,8 +73,8 @@ def no_tty_message() -> str:
 class Terminal:
     """The terminal's modes: entered once, left exactly once, re-entered after a suspend."""
 
-    def __init__(self, fd_in: int, out) -> None:
-        self.fd_in, self.out = fd_in, out
+    def __init__(self, fd_in: int, out, mouse: bool = True) -> None:
+        self.fd_in, self.out, self.mouse = fd_in, out, mouse
         self.saved = termios.tcgetattr(fd_in)
         self.kitty = False
         self.active = False
@@ -85,14 +89,16 @@ class Terminal:
 
     def enter(self) -> None:
         tty.setcbreak(self.fd_in, termios.TCSANOW)
-        self.write(self.enter_s + (KITTY_PUSH if self.kitty else ""))
+        self.write(self.enter_s + (KITTY_PUSH if self.kitty else "")
+                   + (MOUSE_ON if self.mouse else ""))
         self.active = True
 
     def leave(self) -> None:
         if not self.active:
             return
         self.active = False
-        self.write((KITTY_POP if self.kitty else "") + self.leave_s)
+        self.write((MOUSE_OFF if self.mouse else "") + (KITTY_POP if self.kitty else "")
+                   + self.leave_s)
         try:
             termios.tcsetattr(self.fd_in, termios.TCSADRAIN, self.saved)
         except termios.error:
@@ -145,7 +151,8 @@ class Input:
         return self.utf8.decode(data)
 
     def keys(self, timeout: float) -> list:
-        from termpool.ui.keys import decode
+        """Keys and mouse reports that arrived within `timeout` seconds."""
+        from termpool.ui.keys import decode_input
 
         text = self.pending + ("" if self.pending else self._read(timeout))
         self.pending = ""
@@ -154,7 +161,7 @@ class Input:
             if not more:
                 break
             text += more
-        return decode(text) if text else []
+        return decode_input(text) if text else []
 
     def ask_kitty(self, term: Terminal, timeout: float) -> bool:
         """Does the terminal speak the kitty keyboard protocol? Keys typed meanwhile are kept."""
@@ -172,10 +179,10 @@ class Input:
 
 
 def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25,
-        set_input_mode: Callable[[str], None] | None = None) -> int:
+        set_input_mode: Callable[[str], None] | None = None, mouse: bool = True) -> int:
     """Run `app` on the process's terminal until it is done. Returns the exit status."""
     out = sys.stdout
-    term = Terminal(sys.stdin.fileno(), out)
+    term = Terminal(sys.stdin.fileno(), out, mouse)
     keys_in = Input(sys.stdin.fileno())
     cols, rows = _size(out)
     screen = Screen(cols, rows, depth, sync=True)
@@ -242,7 +249,9 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
                 timeout = 0.0
             for key in keys_in.keys(timeout):
                 now = time.monotonic()
-                if key.ctrl and key.name == "z":  # kitty mode reports Ctrl-Z as a key
+                if isinstance(key, Mouse):
+                    app.mouse(key, now)
+                elif key.ctrl and key.name == "z":  # kitty mode reports Ctrl-Z as a key
                     if key.kind == "press":
                         suspend()
                 elif key.ctrl and key.name == "c":
