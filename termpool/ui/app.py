@@ -20,10 +20,7 @@ import numpy as np
 
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
-from termpool.ui.canvas import to_cells
-from termpool.ui.frame import message_cells, too_small_lines
 from termpool.ui.output import resolve_depth
-from termpool.ui.panel import PanelInfo, PlayerLine, blank_cells, draw_box, draw_panel
 from termpool.ui.table_view import TableView, layout
 
 DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at any dt)
@@ -584,24 +581,10 @@ class App:
         return self._geom[2], self._geom[3]
 
     def cells(self, cols: int, rows: int):
-        self.dirty = False
-        mono = self.depth == "mono"
-        if self.phase == "menu" or self.match is None:
-            cells = self._menu_cells(cols, rows, mono)
-        else:
-            lay, view = self._geometry(cols, rows)
-            if lay is None:
-                return message_cells(cols, rows, too_small_lines(cols, rows), mono)
-            cells = self._table_cells(lay, view, mono)
-            draw_panel(cells, lay, self._panel_info(), mono)
-            self._question(cells)
-        if self.overlay == "help":
-            draw_box(cells, self.keymap.help_lines(), "keys")
-        elif self.overlay == "pause":
-            draw_box(cells, ["paused", "", "any key to go on"], "pause")
-        elif self.overlay == "quit":
-            draw_box(cells, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
-        return cells
+        """The whole screen as (chars, fg, bg) cells (see ui.app_screen)."""
+        from termpool.ui.app_screen import cells
+
+        return cells(self, cols, rows)
 
     def _positions(self):
         m = self.match
@@ -620,140 +603,6 @@ class App:
             return pos, state
         return m.pos, state
 
-    def _table_cells(self, lay, view, mono: bool):
-        from termpool.ui import overlay as ov
-
-        m = self.match
-        pos, state = self._positions()
-        c = self.cue_index()
-        aiming = self.phase == "aim" or (self.phase == "cpu" and self._cpu_plan not in (None,
-                                                                                      "done"))
-        aim = self.aim() if aiming and m.on_table[c] else None
-        if mono:
-            chars = view.mono(m.ids, pos, state, m.radius)
-            if aim is not None and self.opts.aid:
-                ov.mono_aim(chars, lay, aim, m.pos[c])
-            return chars, None, None
-        cv = view.draw(m.ids, pos, state, m.radius)
-        if aim is not None:
-            if self.opts.aid and not self.shooter_is_cpu():
-                ov.draw_aim(cv, lay, aim, m.pos[c], m.radius[c])
-            pull = self.charge.level(self.now) if self.charge.active else 0.0
-            ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], self.angle, pull)
-        if self.phase == "place":
-            ok = self.match.placement_error(*self.cursor) is None
-            ov.draw_placement(cv, lay, self.cursor, m.radius[c], ok)
-        return to_cells(cv)
-
-    def _question(self, cells) -> None:
-        if self.phase == "option":
-            draw_box(cells, OPTION_TEXT.get(self.match.option, [self.match.option]), "your call")
-        elif self.phase == "over":
-            m = self.match
-            name = m.players[m.winner]
-            why = self.message[0][0] if self.message else ""
-            draw_box(cells, [f"{name} wins!", why, "", "n: new game   m: menu   q: quit"],
-                     "game over", "good")
-
-    def _panel_info(self) -> PanelInfo:
-        from termpool.rules.common import GROUPS
-
-        m = self.match
-        st = m.state
-        players = []
-        for p in range(2):
-            group = "" if st.groups is None else st.groups[p]
-            balls, down = [], []
-            if group:
-                mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
-                balls = [k for k in mine if m.on_table[k]]
-                down = [k for k in mine if not m.on_table[k]]
-            label = group
-            if group and self.opts.theme != "standard":
-                from termpool.rules.themes import group_label
-
-                label = group_label(group, self.opts.theme)
-            fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
-            players.append(PlayerLine(m.players[p], label, balls, down, m.scores[p],
-                                      p == m.shooter and self.phase != "over", fouls))
-        if st.mode == "practice":
-            players = players[:1]
-        status = list(self.message)
-        status += self._status()
-        help_line = self._help_line()
-        widgets = []
-        if self.phase in ("aim", "cpu") and self.depth != "mono":
-            from termpool.ui.overlay import power_meter_cells, spin_face_cells
-
-            widgets.append((spin_face_cells(self.side, self.top), "spin"))
-            if self.charge.active:
-                widgets.append((power_meter_cells(self.charge.level(self.now), 14,
-                                                  "power"), "power"))
-        title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
-        if self.opts.frames > 1:
-            title += f" · race to {self.opts.frames}"
-        return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
-                         widgets=widgets, theme=self.opts.theme)
-
-    def _status(self) -> list[tuple[str, str]]:
-        m = self.match
-        name = m.players[m.shooter]
-        out = []
-        warn = m.warning() if self.phase in ("aim", "place") else None
-        if warn:
-            out.append((warn, "foul"))
-        if self.phase == "aim":
-            what = "break" if m.state.is_break else "shoot"
-            s = f"{name} to {what}"
-            if m.needs_call():
-                ball, pocket = self._called()
-                s += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
-            if self.push_out:
-                s += " · push-out"
-            elif m.state.push_out == "available":
-                s += " · O: push-out"
-            out.append((s, "turn"))
-            power = f"power {round(100 * self.charge.level(self.now))}% · " \
-                if self.charge.active else "power: "
-            out.append((power + self.charge.label, "dim"))
-            if self.side or self.top:
-                out.append((f"tip {self.side:+.1f} side {self.top:+.1f} top", "dim"))
-        elif self.phase == "place":
-            where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
-            what = "break" if m.state.is_break else "shoot"
-            out.append((f"{name} to {what} · ball in hand {where}: arrows move, Enter places",
-                        "turn"))
-        elif self.phase == "run":
-            out.append(("fast ×4 (F)" if self.fast else "F: fast forward", "dim"))
-        elif self.phase == "cpu":
-            out.append(("Computer is thinking…" if self._cpu_plan is None else
-                        "Computer is shooting", "turn"))
-        return out
-
-    def _help_line(self) -> str:
-        if self.phase == "place":
-            return "←↑↓→ move  Enter place  H help  Q quit"
-        return "←→ aim  ↑↓ fine  Space shoot  WASD spin  G aid  H help  P pause  Q quit"
-
-    def _menu_cells(self, cols: int, rows: int, mono: bool):
-        cells = blank_cells(cols, rows, mono)
-        from termpool.ui.canvas import put_text
-        from termpool.ui.panel import DIM_TEXT_C, TEXT_C, TURN_C
-
-        lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
-        for k, (label, _) in enumerate(MENU):
-            sel = k == self.menu_index
-            lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
-                          TURN_C if sel else TEXT_C.rgb))
-        lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
-        top = max(0, (rows - len(lines)) // 2)
-        width = max(len(s) for s, _ in lines)
-        left = max(0, (cols - width) // 2)
-        for k, (s, colour) in enumerate(lines):
-            if s:
-                put_text(cells, top + k, left, s, colour, (0, 0, 0))
-        return cells
-
 
 YOU_GRAMMAR = (("You continues", "You continue"), ("You loses", "You lose"),
                ("You wins", "You win"), ("You has", "You have"), ("You's", "your"),
@@ -761,12 +610,6 @@ YOU_GRAMMAR = (("You continues", "You continue"), ("You loses", "You lose"),
 OPTION_KEYS = {
     "rerack_or_accept": {"r": "rerack", "a": "accept"},
     "shoot_or_pass": {"s": "shoot", "p": "pass"},
-}
-OPTION_TEXT = {
-    "rerack_or_accept": ["The break was illegal.", "", "r: re-rack and break yourself",
-                         "a: accept the table and shoot"],
-    "shoot_or_pass": ["Your opponent pushed out.", "", "s: shoot from here",
-                      "p: pass the shot back"],
 }
 
 

@@ -1,0 +1,176 @@
+"""What the app shows: its state drawn as screen cells (table, aim aids, panel, boxes, menu).
+
+`cells(app, cols, rows)` is all the app needs; everything here reads the app and its match
+and changes nothing but the app's `dirty` flag and its layout cache.
+"""
+
+from __future__ import annotations
+
+from termpool.ui.canvas import to_cells
+from termpool.ui.frame import message_cells, too_small_lines
+from termpool.ui.panel import PanelInfo, PlayerLine, blank_cells, draw_box, draw_panel
+
+OPTION_TEXT = {
+    "rerack_or_accept": ["The break was illegal.", "", "r: re-rack and break yourself",
+                         "a: accept the table and shoot"],
+    "shoot_or_pass": ["Your opponent pushed out.", "", "s: shoot from here",
+                      "p: pass the shot back"],
+}
+
+
+def cells(app, cols: int, rows: int):
+    """The whole screen for the app's state: (chars, fg, bg), fg and bg None in mono."""
+    app.dirty = False
+    mono = app.depth == "mono"
+    if app.phase == "menu" or app.match is None:
+        out = _menu_cells(app, cols, rows, mono)
+    else:
+        lay, view = app._geometry(cols, rows)
+        if lay is None:
+            return message_cells(cols, rows, too_small_lines(cols, rows), mono)
+        out = _table_cells(app, lay, view, mono)
+        draw_panel(out, lay, panel_info(app), mono)
+        _question(app, out)
+    if app.overlay == "help":
+        draw_box(out, app.keymap.help_lines(), "keys")
+    elif app.overlay == "pause":
+        draw_box(out, ["paused", "", "any key to go on"], "pause")
+    elif app.overlay == "quit":
+        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
+    return out
+
+def _table_cells(app, lay, view, mono: bool):
+    from termpool.ui import overlay as ov
+
+    m = app.match
+    pos, state = app._positions()
+    c = app.cue_index()
+    aiming = app.phase == "aim" or (app.phase == "cpu" and app._cpu_plan not in (None,
+                                                                                  "done"))
+    aim = app.aim() if aiming and m.on_table[c] else None
+    if mono:
+        chars = view.mono(m.ids, pos, state, m.radius)
+        if aim is not None and app.opts.aid:
+            ov.mono_aim(chars, lay, aim, m.pos[c])
+        return chars, None, None
+    cv = view.draw(m.ids, pos, state, m.radius)
+    if aim is not None:
+        if app.opts.aid and not app.shooter_is_cpu():
+            ov.draw_aim(cv, lay, aim, m.pos[c], m.radius[c])
+        pull = app.charge.level(app.now) if app.charge.active else 0.0
+        ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], app.angle, pull)
+    if app.phase == "place":
+        ok = app.match.placement_error(*app.cursor) is None
+        ov.draw_placement(cv, lay, app.cursor, m.radius[c], ok)
+    return to_cells(cv)
+
+def _question(app, cells) -> None:
+    if app.phase == "option":
+        draw_box(cells, OPTION_TEXT.get(app.match.option, [app.match.option]), "your call")
+    elif app.phase == "over":
+        m = app.match
+        name = m.players[m.winner]
+        why = app.message[0][0] if app.message else ""
+        draw_box(cells, [f"{name} wins!", why, "", "n: new game   m: menu   q: quit"],
+                 "game over", "good")
+
+def panel_info(app) -> PanelInfo:
+    from termpool.rules.common import GROUPS
+
+    m = app.match
+    st = m.state
+    players = []
+    for p in range(2):
+        group = "" if st.groups is None else st.groups[p]
+        balls, down = [], []
+        if group:
+            mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
+            balls = [k for k in mine if m.on_table[k]]
+            down = [k for k in mine if not m.on_table[k]]
+        label = group
+        if group and app.opts.theme != "standard":
+            from termpool.rules.themes import group_label
+
+            label = group_label(group, app.opts.theme)
+        fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
+        players.append(PlayerLine(m.players[p], label, balls, down, m.scores[p],
+                                  p == m.shooter and app.phase != "over", fouls))
+    if st.mode == "practice":
+        players = players[:1]
+    status = list(app.message)
+    status += _status(app)
+    help_line = _help_line(app)
+    widgets = []
+    if app.phase in ("aim", "cpu") and app.depth != "mono":
+        from termpool.ui.overlay import power_meter_cells, spin_face_cells
+
+        widgets.append((spin_face_cells(app.side, app.top), "spin"))
+        if app.charge.active:
+            widgets.append((power_meter_cells(app.charge.level(app.now), 14,
+                                              "power"), "power"))
+    title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
+    if app.opts.frames > 1:
+        title += f" · race to {app.opts.frames}"
+    return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
+                     widgets=widgets, theme=app.opts.theme)
+
+def _status(app) -> list[tuple[str, str]]:
+    m = app.match
+    name = m.players[m.shooter]
+    out = []
+    warn = m.warning() if app.phase in ("aim", "place") else None
+    if warn:
+        out.append((warn, "foul"))
+    if app.phase == "aim":
+        what = "break" if m.state.is_break else "shoot"
+        s = f"{name} to {what}"
+        if m.needs_call():
+            ball, pocket = app._called()
+            s += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
+        if app.push_out:
+            s += " · push-out"
+        elif m.state.push_out == "available":
+            s += " · O: push-out"
+        out.append((s, "turn"))
+        power = f"power {round(100 * app.charge.level(app.now))}% · " \
+            if app.charge.active else "power: "
+        out.append((power + app.charge.label, "dim"))
+        if app.side or app.top:
+            out.append((f"tip {app.side:+.1f} side {app.top:+.1f} top", "dim"))
+    elif app.phase == "place":
+        where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
+        what = "break" if m.state.is_break else "shoot"
+        out.append((f"{name} to {what} · ball in hand {where}: arrows move, Enter places",
+                    "turn"))
+    elif app.phase == "run":
+        out.append(("fast ×4 (F)" if app.fast else "F: fast forward", "dim"))
+    elif app.phase == "cpu":
+        out.append(("Computer is thinking…" if app._cpu_plan is None else
+                    "Computer is shooting", "turn"))
+    return out
+
+def _help_line(app) -> str:
+    if app.phase == "place":
+        return "←↑↓→ move  Enter place  H help  Q quit"
+    return "←→ aim  ↑↓ fine  Space shoot  WASD spin  G aid  H help  P pause  Q quit"
+
+def _menu_cells(app, cols: int, rows: int, mono: bool):
+    cells = blank_cells(cols, rows, mono)
+    from termpool.ui.canvas import put_text
+    from termpool.ui.panel import DIM_TEXT_C, TEXT_C, TURN_C
+
+    lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
+    from termpool.ui.app import MENU
+
+    for k, (label, _) in enumerate(MENU):
+        sel = k == app.menu_index
+        lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
+                      TURN_C if sel else TEXT_C.rgb))
+    lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
+    top = max(0, (rows - len(lines)) // 2)
+    width = max(len(s) for s, _ in lines)
+    left = max(0, (cols - width) // 2)
+    for k, (s, colour) in enumerate(lines):
+        if s:
+            put_text(cells, top + k, left, s, colour, (0, 0, 0))
+    return cells
