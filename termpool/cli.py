@@ -378,7 +378,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if argv and argv[0] == "bench":
             return _bench(argv[1:])
-        args = _parser().parse_args(argv or ["play"])
+        if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help",
+                                                                      "--version")):
+            argv = ["play", *argv]  # play is the default command: `termpool --colors 16`
+        args = _parser().parse_args(argv)
         if args.command == "sim":
             return _sim(args)
         if args.command == "play":

@@ -392,7 +392,9 @@ def test_referee_words_get_the_players_names() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     assert app.names("it is player 0's turn; player 1 loses") == "it is your turn; Computer loses"
     assert app.names("the table is open and player 0 continues") == \
-        "the table is open and You continue"
+        "the table is open and you continue"
+    assert app.names("player 0 continues; the 3 went into the foot_left pocket") == \
+        "You continue; the 3 went into the foot left pocket"
 
 
 # --------------------------------------------------------------------------------- mouse
@@ -450,3 +452,111 @@ def test_click_aims_at_the_point_and_places_the_ball_in_hand() -> None:
     app.mouse(Mouse(0, 0, "press", 2), 0.3)
     app.mouse(Mouse(0, 0, "release", 0), 0.4)
     assert app.angle == before
+
+
+# ---------------------------------------------------------------- from the QA session
+
+def test_ball_in_hand_taps_move_a_centimetre_and_a_hold_crosses_the_table_but_stays_on_it():
+    app = app_for(mode="practice")
+    x0, y0 = app.cursor
+    run_script(app, "down")
+    assert app.cursor[1] == pytest.approx(y0 - 0.01)  # up/down move as much as left/right
+    run_script(app, "right*3", legacy=True)  # legacy taps 50 ms apart count as a short hold
+    assert app.cursor[0] > x0
+    run_script(app, "left-hold 4")
+    r = float(app.match.radius[0])
+    assert app.cursor[0] == pytest.approx(r)  # clamped at the cushion, still on the cloth
+    run_script(app, "up-hold 4")
+    assert app.cursor[1] == pytest.approx(app.table.width - r)
+    app.key(Key("enter"), 100.0)  # the corner is a pocket's mouth: refused, in words
+    assert app.phase == "place" and "Can't place" in app.message[0][0]
+    run_script(app, "right-hold 1.5")
+    app.key(Key("enter"), 200.0)
+    assert app.phase == "aim"
+
+
+def test_kitchen_keeps_the_ball_in_hand_behind_the_head_string():
+    app = app_for(mode="8ball", opponent="human")
+    assert app.match.ball_in_hand == "kitchen"
+    run_script(app, "right-hold 3")
+    assert app.cursor[0] == pytest.approx(app.table.length / 4)
+    app.key(Key("enter"), 100.0)
+    assert app.phase == "aim"
+
+
+def test_mono_shows_the_ball_in_hand_at_the_cursor():
+    app = app_for(mode="practice")
+    col, row = cell_of(app, *app.cursor, cols=100, rows=32)
+    chars = app.cells(100, 32)[0]
+    assert chars[row, col] == "○"
+
+
+def test_mono_at_80x24_shows_the_power_while_charging():
+    app = app_for(mode="8ball", opponent="human", input_mode="classic")
+    app.key(Key("enter"), 0.0)
+    app.message = [("a verdict long enough to wrap onto a second line of the narrow bottom "
+                    "panel at eighty columns, as real ones do", "plain")]
+    app.key(Key("space"), 1.0)
+    app.tick(1.6)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "power 50%" in text
+
+
+def test_a_finished_match_is_kept_for_the_record_after_n():
+    app = app_for(mode="8ball", opponent="human")
+    run_script(app, "enter space-hold 1.0 wait 20")
+    first = app.match
+    app.match.winner = 0
+    app._turn_start()
+    app.key(Key("enter"), 300.0)  # Enter is not "new game" on the game-over box
+    assert app.match is first
+    app.key(Key("n"), 301.0)
+    assert app.match is not first and app.record() is first
+
+
+def test_fast_forward_lasts_one_shot():
+    app = app_for()
+    run_script(app, "enter space-hold 1.0 f wait 20")
+    assert len(shots(app)) == 1
+    app.key(Key("space"), 100.0)
+    app.key(Key("space", kind="release"), 100.5)
+    assert app.phase == "run" and not app.fast
+
+
+def test_frame_result_stays_in_view_while_the_computer_thinks():
+    app = app_for(mode="8ball", opponent="cpu", frames=2)
+    app.message = [("You win the frame (1-0); Computer breaks", "good")]
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1)
+    app.phase, app._cpu_plan, app._cpu_t0 = "cpu", None, None
+    app.tick(0.0)
+    app.tick(0.1)  # the computer decides
+    assert any("wins the frame" in m or "win the frame" in m for m, _ in app.message)
+    text = screen_text(app.cells(120, 40)[0])
+    assert "frames 0/2" in text
+
+
+def test_help_box_fits_80x24_and_says_how_to_close_it():
+    app = app_for()
+    app.key(Key("h"), 0.0)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "any key closes this" in text and "rerack" in text and "mouse" in text
+
+
+def test_quit_question_shows_even_when_the_window_is_too_small():
+    app = app_for()
+    app.key(Key("q"), 0.0)
+    assert "Quit termpool?" in screen_text(app.cells(30, 10)[0])
+
+
+def test_a_click_as_the_first_script_token_works():
+    app = app_for(mode="practice")
+    before = list(app.cursor)
+    run_script(app, "click 30 8")
+    assert app.cursor != before
+
+
+def test_play_only_options_and_play_as_the_default_command():
+    p = cli("play", "--size", "10")
+    assert p.returncode == 2 and "--size: only with --headless" in p.stderr
+    p = cli("--colors", "mono")  # `play` is implied; without a terminal it says so
+    assert p.returncode == 2 and "needs a terminal" in p.stderr

@@ -691,3 +691,15 @@ def test_scripts_drive_power_in_both_terminal_kinds():
     assert run_power(PowerCharge("release", full_time=1.2), ev) == [(1.9, pytest.approx(0.75))]
     shots = run_power(PowerCharge("repeat", full_time=1.2), legacy_events(ev))
     assert len(shots) == 1 and abs(shots[0][1] - 0.75) <= 0.033 / 1.2 + 1e-9
+
+
+def test_repeat_mode_quick_tap_tap_strikes_at_the_second_tap() -> None:
+    # A terminal without key repeat (tmux send-keys, a slow typist): press, press 0.4 s later,
+    # then nothing. No auto-repeat stream stops after one repeat, so this is a double tap.
+    pc = PowerCharge("repeat")
+    assert pc.key(Key("space"), 10.0) is None
+    assert pc.key(Key("space"), 10.4) is None
+    assert pc.poll(10.5) is None  # still within the gap
+    fired = pc.poll(10.6)
+    assert fired == pytest.approx(0.4 / pc.full_time)
+    assert not pc.active

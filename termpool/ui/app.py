@@ -28,6 +28,8 @@ MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on 
 MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once
 MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
 FAST = 4.0  # fast-forward factor
+PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
+PLACE_GAP = 0.12  # s: the same arrow again within this is a hold (terminals without releases)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 SPIN_MAX = 0.5  # beyond this the cue strike is a miscue
 CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
@@ -83,7 +85,9 @@ class App:
         self.bells = 0  # bells to ring (the driver writes BEL and resets this)
         self.overlay: str | None = None  # "help", "pause", "quit"
         self.menu_index = 0
+        self._place_key, self._place_last, self._place_start = None, 0.0, 0.0
         self.match = None
+        self.played: list = []  # earlier matches of this session, with their shots
         self.run = None
         self.now = 0.0
         self._last = None  # clock at the last tick while a shot runs
@@ -109,6 +113,8 @@ class App:
     def new_match(self, mode: str, opponent: str) -> None:
         from termpool.game import Match
 
+        if self.match is not None and self.match.history:
+            self.played.append(self.match)  # kept for --record
         self.opts.mode, self.opts.opponent = mode, opponent
         names = ("You", "Computer") if opponent == "cpu" else ("Player 1", "Player 2")
         if mode == "practice":
@@ -168,7 +174,8 @@ class App:
         text = re.sub(r"\bplayer ([01])\b", lambda g: names[int(g.group(1))], text)
         for a, b in YOU_GRAMMAR:
             text = text.replace(a, b)
-        return text
+        text = re.sub(r"(?<=[a-z0-9,;:] )You\b", "you", text)  # "... and you continue"
+        return re.sub(r"\b(head|side|foot)_(left|right)\b", r"\1 \2", text)  # pocket names
 
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
@@ -219,6 +226,7 @@ class App:
         self.run = self.match.begin(shot)
         self.frames = self._simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
+        self.fast = False  # fast-forward is for one shot
         self.phase = "run"
         self._last = None
         self._acc = 0.0
@@ -368,7 +376,8 @@ class App:
         aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
         if not m.state.is_break:
             plan = ai.with_error(plan, aim_sd, speed_sd, seed)
-        self.message = [(f"Computer: {plan.note}", "dim")] if plan.note else []
+        note = [(self.names(f"Computer: {plan.note}"), "dim")] if plan.note else []
+        self.message = self.message[:2] + note  # the last verdict stays in view
         return plan
 
     # ------------------------------------------------------------------------------ keys
@@ -412,7 +421,7 @@ class App:
         x = (ev.col + 0.5 - lay.px) / lay.sx  # the cell's centre, in table metres
         y = lay.width - (2 * ev.row + 1 - lay.py) / lay.sy
         if self.phase == "place":
-            self.cursor = [min(lay.length, max(0.0, x)), min(lay.width, max(0.0, y))]
+            self.cursor = self._clamp_cursor(x, y)
         else:
             cx, cy = self.match.pos[self.cue_index()]
             if math.hypot(x - cx, y - cy) < 1e-9:
@@ -491,6 +500,7 @@ class App:
             self.charge.cancel()
         elif action == "aim_aid":
             self.opts.aid = not self.opts.aid
+            self.message = [("aim line on" if self.opts.aid else "aim line off (G)", "dim")]
         elif action == "call_pocket" and self.match.needs_call():
             self.called_k = (self.called_k + 1) % len(POCKET_NAMES)
         elif action == "push_out" and self.match.state.push_out == "available":
@@ -500,22 +510,24 @@ class App:
         elif action == "fast_forward":
             self.fast = not self.fast
         elif action == "undo" and self.match.state.mode == "practice":
-            if self.match.history:
+            try:
                 self.match.take_back()
                 self.message = [("took the last shot back", "dim")]
+            except ValueError:
+                self.message = [("nothing to take back", "dim")]
             self._turn_start()
         elif action == "rerack" and self.match.state.mode == "practice":
             self.match.rerack()
+            self.message = [("re-racked", "dim")]
             self._turn_start()
 
     def _key_place(self, key, action, t) -> None:
-        if action in ("aim_ccw", "aim_cw", "aim_fine_ccw", "aim_fine_cw"):
-            step = abs(self.aimctl.step(key, t)) * 0.01  # degrees -> about a centimetre a tap
+        if key.name in ("left", "right", "up", "down") and key.kind != "release":
+            step = self._place_step(key, t)
             dx = {"left": -1, "right": 1}.get(key.name, 0)
             dy = {"up": 1, "down": -1}.get(key.name, 0)
-            L, W = self.table.length, self.table.width
-            self.cursor[0] = min(L, max(0.0, self.cursor[0] + dx * step))
-            self.cursor[1] = min(W, max(0.0, self.cursor[1] + dy * step))
+            self.cursor = self._clamp_cursor(self.cursor[0] + dx * step,
+                                             self.cursor[1] + dy * step)
         elif action in ("confirm", "place", "shoot") and key.kind == "press":
             why = self.match.placement_error(*self.cursor)
             if why:
@@ -526,6 +538,26 @@ class App:
                 self.phase = "aim"
                 self._aim_at_nearest()
                 self._aim_cache = None
+
+    def _place_step(self, key, t: float) -> float:
+        """Metres to move the ball in hand: a tap moves it a centimetre (shift: 2 mm); held,
+        it speeds up from 0.25 to 1 m/s over a second, whatever the terminal's repeat rate."""
+        held = (key.name == self._place_key and (key.kind == "repeat"
+                                                 or 0.0 <= t - self._place_last <= PLACE_GAP))
+        if not held:
+            self._place_key, self._place_last, self._place_start = key.name, t, t
+            return PLACE_FINE if key.shift else PLACE_TAP
+        dt = min(max(t - self._place_last, 0.0), 0.05)
+        self._place_last = t
+        ramp = min(1.0, (t - self._place_start) / 1.0)
+        return (0.25 + 0.75 * ramp) * dt
+
+    def _clamp_cursor(self, x: float, y: float) -> list[float]:
+        """Keep the ball in hand on the cloth (and behind the head string when it must be)."""
+        r = float(self.match.radius[self.cue_index()])
+        L, W = self.table.length, self.table.width
+        right = L / 4 if self.match.ball_in_hand == "kitchen" else L - r
+        return [min(right, max(r, x)), min(W - r, max(r, y))]
 
     def _key_run(self, key, action, t) -> None:
         if action == "fast_forward" and key.kind == "press":
@@ -540,10 +572,12 @@ class App:
             pick = OPTION_KEYS.get(self.match.option, {}).get(key.name)
             if pick is None:
                 return False
+            who = self.match.players[self.match.shooter]
             self.match.choose(pick)
+            self.message = [(f"{who} chose to {OPTION_WORDS[pick]}", "dim")]
             self._turn_start()
             return True
-        if key.name == "n" or key.name == "enter":
+        if key.name == "n":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
             self.phase = "menu"
@@ -596,17 +630,26 @@ class App:
             pos[rows] = p
             state[rows] = st
             return pos, state
-        if self.phase == "place":
+        if self.phase == "place":  # the ball in hand is drawn where the cursor is
             pos = m.pos.copy()
-            state = state.copy()
-            state[self.cue_index()] = POCKETED  # the cursor shows the ball in hand
+            c = self.cue_index()
+            pos[c] = self.cursor
+            state[c] = 0
             return pos, state
         return m.pos, state
+
+    def record(self):
+        """The match to save (--record): this one if it has shots, else the last that had."""
+        if self.match is not None and self.match.history:
+            return self.match
+        return self.played[-1] if self.played else self.match
 
 
 YOU_GRAMMAR = (("You continues", "You continue"), ("You loses", "You lose"),
                ("You wins", "You win"), ("You has", "You have"), ("You's", "your"),
                ("You is", "You are"))
+OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",
+                "shoot": "shoot", "pass": "pass the shot back"}
 OPTION_KEYS = {
     "rerack_or_accept": {"r": "rerack", "a": "accept"},
     "shoot_or_pass": {"s": "shoot", "p": "pass"},

@@ -27,17 +27,32 @@ def cells(app, cols: int, rows: int):
     else:
         lay, view = app._geometry(cols, rows)
         if lay is None:
-            return message_cells(cols, rows, too_small_lines(cols, rows), mono)
-        out = _table_cells(app, lay, view, mono)
-        draw_panel(out, lay, panel_info(app), mono)
-        _question(app, out)
+            out = message_cells(cols, rows, too_small_lines(cols, rows), mono)
+        else:
+            out = _table_cells(app, lay, view, mono)
+            draw_panel(out, lay, panel_info(app), mono)
+            _question(app, out)
     if app.overlay == "help":
-        draw_box(out, app.keymap.help_lines(), "keys")
+        draw_box(out, help_box_lines(app.keymap.help_lines(), rows, cols), "keys", wrap=False)
     elif app.overlay == "pause":
         draw_box(out, ["paused", "", "any key to go on"], "pause")
-    elif app.overlay == "quit":
+    elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
         draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
     return out
+
+
+def help_box_lines(keys: list[str], rows: int, cols: int) -> list[str]:
+    """The help box's lines: the key bindings (in two columns, each cut to half the screen,
+    when one column does not fit the screen's height), the mouse, and how to close it."""
+    lines = [*keys, "mouse              click or drag on the table: aim there"]
+    if len(lines) + 4 > rows:
+        half = -(-len(lines) // 2)
+        width = max(8, (cols - 10) // 2)
+        left = [s if len(s) <= width else s[:width - 1] + "…" for s in lines[:half]]
+        right = lines[half:] + [""] * (2 * half - len(lines))
+        lines = [f"{a:<{width}}  {b}".rstrip() for a, b in zip(left, right, strict=True)]
+    return [*lines, "", "any key closes this"]
+
 
 def _table_cells(app, lay, view, mono: bool):
     from termpool.ui import overlay as ov
@@ -64,6 +79,7 @@ def _table_cells(app, lay, view, mono: bool):
         ov.draw_placement(cv, lay, app.cursor, m.radius[c], ok)
     return to_cells(cv)
 
+
 def _question(app, cells) -> None:
     if app.phase == "option":
         draw_box(cells, OPTION_TEXT.get(app.match.option, [app.match.option]), "your call")
@@ -73,6 +89,7 @@ def _question(app, cells) -> None:
         why = app.message[0][0] if app.message else ""
         draw_box(cells, [f"{name} wins!", why, "", "n: new game   m: menu   q: quit"],
                  "game over", "good")
+
 
 def panel_info(app) -> PanelInfo:
     from termpool.rules.common import GROUPS
@@ -93,13 +110,15 @@ def panel_info(app) -> PanelInfo:
 
             label = group_label(group, app.opts.theme)
         fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
-        players.append(PlayerLine(m.players[p], label, balls, down, m.scores[p],
+        score = f"{m.scores[p]}/{app.opts.frames}" if app.opts.frames > 1 else None
+        players.append(PlayerLine(m.players[p], label, balls, down, score,
                                   p == m.shooter and app.phase != "over", fouls))
     if st.mode == "practice":
         players = players[:1]
-    status = list(app.message)
-    status += _status(app)
-    help_line = _help_line(app)
+    status = list(app.message) + _status(app)
+    if app.charge.active:  # while charging, the power reading comes before the last verdict
+        status = _status(app) + list(app.message)
+    help_line, help_short = HELP_LINES.get(app.phase, HELP_LINES["run"])
     widgets = []
     if app.phase in ("aim", "cpu") and app.depth != "mono":
         from termpool.ui.overlay import power_meter_cells, spin_face_cells
@@ -112,7 +131,8 @@ def panel_info(app) -> PanelInfo:
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
     return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
-                     widgets=widgets, theme=app.opts.theme)
+                     widgets=widgets, theme=app.opts.theme, help_short=help_short)
+
 
 def _status(app) -> list[tuple[str, str]]:
     m = app.match
@@ -131,10 +151,13 @@ def _status(app) -> list[tuple[str, str]]:
             s += " · push-out"
         elif m.state.push_out == "available":
             s += " · O: push-out"
-        out.append((s, "turn"))
-        power = f"power {round(100 * app.charge.level(app.now))}% · " \
-            if app.charge.active else "power: "
-        out.append((power + app.charge.label, "dim"))
+        if app.charge.active:  # while charging the power reading comes first
+            level = round(100 * app.charge.level(app.now))
+            out.insert(0, (f"power {level}% · {app.charge.label}", "turn"))
+            out.append((s, "dim"))
+        else:
+            out.append((s, "turn"))
+            out.append(("power: " + app.charge.label, "dim"))
         if app.side or app.top:
             out.append((f"tip {app.side:+.1f} side {app.top:+.1f} top", "dim"))
     elif app.phase == "place":
@@ -149,10 +172,16 @@ def _status(app) -> list[tuple[str, str]]:
                     "Computer is shooting", "turn"))
     return out
 
-def _help_line(app) -> str:
-    if app.phase == "place":
-        return "←↑↓→ move  Enter place  H help  Q quit"
-    return "←→ aim  ↑↓ fine  Space shoot  WASD spin  G aid  H help  P pause  Q quit"
+
+HELP_LINES = {  # per phase: the full line, then a short one for narrow panels
+    "place": ("←↑↓→ move (Shift: fine)  Enter place  mouse: click  H help  Q quit",
+              "arrows move  Enter place  H help  Q quit"),
+    "aim": ("←→ aim  ↑↓ fine  Space shoot  WASD spin  G aid  H help  P pause  Q quit",
+            "←→ aim  Space shoot  WASD spin  H help  Q quit"),
+    "run": ("F fast forward  P pause  H help  Q quit", "F fast  P pause  Q quit"),
+    "over": ("N new game  M menu  Q quit", "N new  M menu  Q quit"),
+}
+
 
 def _menu_cells(app, cols: int, rows: int, mono: bool):
     cells = blank_cells(cols, rows, mono)

@@ -267,7 +267,9 @@ class PowerCharge:
     GAP_MIN..GAP_MAX s; GAP_MAX until an interval is known) and placed one interval after the
     last repeat, so the power does not depend on when `poll` is called. A press with no repeat
     within INITIAL_DELAY_MAX s was a tap (or the terminal does not repeat): that shot falls
-    back to the classic meter (press again to strike), and `label` says so.
+    back to the classic meter (press again to strike), and `label` says so. A press, one more
+    press and then DOUBLE_TAP_GAP s of silence was a quick tap, tap: it strikes at the level
+    of the second tap.
     """
 
     MIN_POWER = 0.02
@@ -277,6 +279,7 @@ class PowerCharge:
     GAP_INTERVALS = 4.0
     DEFAULT_INTERVAL = 0.033
     INTERVAL_SAMPLES = 16
+    DOUBLE_TAP_GAP = 0.15  # s of silence after a single repeat that makes it a second tap
 
     def __init__(self, mode: str, full_time: float = 1.2, key_label: str = "space") -> None:
         if mode not in POWER_MODES:
@@ -369,6 +372,10 @@ class PowerCharge:
             if t - self._t0 > self.INITIAL_DELAY_MAX:
                 self._phase, self.fallback = "meter", True
             return None
+        if self._repeats == 1 and t - self._last > self.DOUBLE_TAP_GAP:
+            # One more press and then silence: no auto-repeat stream stops after one repeat,
+            # so it was a second tap (the meter's "tap, tap"): strike at that tap's level.
+            return self._fire(self._last)
         if t - self._last > self._release_gap():
             return self._fire(self._last + self._interval())
         return None

@@ -31,7 +31,9 @@ def play(app, events: Sequence[tuple[float, object]], cols: int, rows: int,
     t, k = 0.0, 0
     frame = 1.0 / FPS
     last_key = events[-1][0] if events else 0.0
-    cells = None
+    cells = app.cells(cols, rows)  # the first frame: a layout exists before the first click
+    if screen is not None:
+        frames_out.append(screen.render(*cells))
     n = 0
     while not app.done:
         while k < len(events) and events[k][0] <= t + 1e-12:
@@ -42,7 +44,7 @@ def play(app, events: Sequence[tuple[float, object]], cols: int, rows: int,
                 app.key(ev, events[k][0])
             k += 1
         app.tick(t)
-        if app.dirty or cells is None:
+        if app.dirty:
             cells = app.cells(cols, rows)
             if screen is not None:
                 frames_out.append(screen.render(*cells))

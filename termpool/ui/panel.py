@@ -30,7 +30,7 @@ class PlayerLine:
     group: str = ""  # "solids", "reds", "" while open
     balls: list[int] = field(default_factory=list)  # indices of the balls still to pot
     down: list[int] = field(default_factory=list)  # indices of the group's balls pocketed
-    score: int = 0
+    score: str | None = None  # frames won of those needed ("1/3"), in a race of several
     turn: bool = False
     fouls: int = 0
 
@@ -42,10 +42,9 @@ class PanelInfo:
     status: list[tuple[str, str]]  # (text, tone) lines, most important first
     help: str  # one line of key help
     ids: Sequence[str] = ()
-    spin: tuple[float, float] | None = None  # (side, top) in units of R, shown on a cue-ball face
-    power: tuple[float, str] | None = None  # (level 0..1, label) while charging
-    widgets: list = field(default_factory=list)  # (cells, where) blocks drawn by the app
+    widgets: list = field(default_factory=list)  # (cells, name) blocks: spin face, power meter
     theme: str = "standard"
+    help_short: str = ""  # the key help for narrow panels
 
 
 def _tone(t: str):
@@ -83,7 +82,7 @@ def _player(cells, r: int, c0: int, width: int, p: PlayerLine, ids, mono: bool) 
     extra = []
     if p.group:
         extra.append(p.group)
-    if p.score:
+    if p.score is not None:
         extra.append(f"frames {p.score}")
     if p.fouls:
         extra.append(f"fouls {p.fouls}")
@@ -148,7 +147,7 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     for s, tone in lines[:max(0, room)]:
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
-    put_text(cells, r0 + nrows - 1, c0, info.help[:w], DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+    put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
 def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
@@ -174,11 +173,17 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
         if r + block[0].shape[0] < end - 1:
             _paste(cells, block, r, c0)
             r += block[0].shape[0] + 1
-    for s in _wrap(info.help, width)[::-1]:
+    for s in _wrap(_fit_help(info, width), width)[::-1]:
         end -= 1
         if end <= r:
             break
         put_text(cells, end, c0, s, DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+
+
+def _fit_help(info: PanelInfo, width: int) -> str:
+    if len(info.help) <= width or not info.help_short:
+        return info.help[:width]
+    return info.help_short[:width]
 
 
 def _paste(cells, block, r: int, c: int) -> None:
@@ -195,14 +200,20 @@ def _paste(cells, block, r: int, c: int) -> None:
         bg[r:r + h, c:c + w] = bb[:h, :w]
 
 
-def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain") -> None:
-    """A framed box of text in the middle of the screen (help, pause, questions)."""
+def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
+             wrap: bool = True) -> None:
+    """A framed box of text in the middle of the screen (help, pause, questions). Lines too
+    long for the screen are wrapped, or (wrap=False, for columns) cut with an ellipsis."""
     chars, fg, bg = cells
     rows, cols = chars.shape
     width = min(cols - 2, max([len(s) for s in lines] + [len(title) + 4]) + 4)
+    room = width - 4
     body = []
     for s in lines:
-        body += _wrap(s, width - 4) if len(s) > width - 4 else [s]
+        if len(s) <= room:
+            body.append(s)
+        else:
+            body += _wrap(s, room) if wrap else [s[:room - 1] + "…"]
     height = min(rows, len(body) + 2)
     top, left = max(0, (rows - height) // 2), max(0, (cols - width) // 2)
     chars[top:top + height, left:left + width] = " "

@@ -40,7 +40,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "$XDG_CONFIG_HOME/termpool/keys.conf)")
     p.add_argument("--headless", action="store_true",
                    help="no terminal: play --keys on a virtual screen, print the final screen")
-    p.add_argument("--size", default="100x32", help="headless screen size (default 100x32)")
+    p.add_argument("--size", help="headless screen size (default 100x32)")
     p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
                    "'right*5 wait 0.2 space-hold 1.5'")
     p.add_argument("--record", metavar="FILE",
@@ -81,9 +81,10 @@ def _keymap(path: str | None):
 
 
 def _write_record(app, path: str | None) -> None:
-    if not path or app.match is None:
+    match = app.record()
+    if not path or match is None:
         return
-    text = json.dumps(app.match.to_json(), indent=1) + "\n"
+    text = json.dumps(match.to_json(), indent=1) + "\n"
     if path == "-":
         sys.stdout.write(text)
     else:
@@ -94,6 +95,11 @@ def _write_record(app, path: str | None) -> None:
 def run(args: argparse.Namespace) -> int:
     """Play; returns the exit status. Raises PlayError for bad options (one line, status 2)."""
     opts = _options(args)
+    if not args.headless:
+        for flag, val in (("--size", args.size), ("--keys", args.keys)):
+            if val is not None:
+                raise PlayError(f"{flag}: only with --headless (a terminal has its own size "
+                                "and keys)")
     if args.headless:
         return _headless(args, opts, _keymap(args.keymap))
     if not (os.isatty(sys.stdin.fileno()) and os.isatty(sys.stdout.fileno())):
@@ -119,7 +125,7 @@ def _headless(args: argparse.Namespace, opts, keymap) -> int:
     from termpool.ui.headless import play
     from termpool.ui.keys import legacy_events, parse_script
 
-    cols, rows = _size(args.size)
+    cols, rows = _size(args.size or "100x32")
     if not args.keys:
         raise PlayError("--headless needs --keys FILE (a key script; '-' reads stdin)")
     try:
