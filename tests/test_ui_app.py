@@ -560,3 +560,14 @@ def test_play_only_options_and_play_as_the_default_command():
     assert p.returncode == 2 and "--size: only with --headless" in p.stderr
     p = cli("--colors", "mono")  # `play` is implied; without a terminal it says so
     assert p.returncode == 2 and "needs a terminal" in p.stderr
+
+
+def test_keys_that_do_not_apply_say_why():
+    app = app_for(mode="8ball", opponent="human")
+    run_script(app, "enter o")
+    assert "push-out is only" in app.message[0][0]
+    run_script(app, "c")
+    assert "no call needed" in app.message[0][0]
+    app = app_for(mode="practice")
+    run_script(app, "enter u")
+    assert app.message[0][0] == "nothing to take back"

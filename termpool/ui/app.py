@@ -501,10 +501,17 @@ class App:
         elif action == "aim_aid":
             self.opts.aid = not self.opts.aid
             self.message = [("aim line on" if self.opts.aid else "aim line off (G)", "dim")]
-        elif action == "call_pocket" and self.match.needs_call():
-            self.called_k = (self.called_k + 1) % len(POCKET_NAMES)
-        elif action == "push_out" and self.match.state.push_out == "available":
-            self.push_out = not self.push_out
+        elif action == "call_pocket":
+            if self.match.needs_call():
+                self.called_k = (self.called_k + 1) % len(POCKET_NAMES)
+            else:
+                self.message = [("no call needed: only the 8 is called, once your group is "
+                                 "down", "dim")]
+        elif action == "push_out":
+            if self.match.state.push_out == "available":
+                self.push_out = not self.push_out
+            else:
+                self.message = [("a push-out is only for the shot after a 9-ball break", "dim")]
         elif action == "place" and self.match.ball_in_hand:
             self.phase = "place"
         elif action == "fast_forward":
