@@ -331,7 +331,12 @@ def _replay(args: argparse.Namespace) -> int:
                    else f"player {s['player']}")
             head = f"shot {s['n']} (frame {s['frame']}, {who}): "
             if s["ok"]:
-                sys.stdout.write(f"{head}identical, {s['events']} events; {s['reason']}\n")
+                reason = s["reason"]
+                if players:  # the referee's "player 0" in the players' names
+                    from termpool.rules.words import in_names
+
+                    reason = in_names(reason, players)
+                sys.stdout.write(f"{head}identical, {s['events']} events; {reason}\n")
             else:
                 sys.stdout.write(f"{head}DIFFERS: {'; '.join(s['differences'])}\n")
         n = len(shots)

@@ -259,4 +259,6 @@ def test_summary_names_the_players(saved, capsys, tmp_path) -> None:
     rc, out, _ = run_cli(capsys, write(tmp_path, saved))
     first = out.splitlines()[0]
     assert rc == 0 and first.startswith("shot 1 (frame 1, Ann): identical, ")
-    assert first.endswith(saved["shots"][0]["outcome"]["reason"])
+    reason = saved["shots"][0]["outcome"]["reason"]
+    assert "player 1" in reason  # the referee's words ...
+    assert first.endswith(reason.replace("player 1", "Bob"))  # ... with the players' names

@@ -13,7 +13,6 @@ Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls m
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -168,14 +167,10 @@ class App:
         self.angle = math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0
 
     def names(self, text: str) -> str:
-        """The referee's words with "player 0" / "player 1" replaced by the players' names."""
-        names = self.match.players
-        # The referee says "player 0"; the default names are "Player 1" and "Player 2".
-        text = re.sub(r"\bplayer ([01])\b", lambda g: names[int(g.group(1))], text)
-        for a, b in YOU_GRAMMAR:
-            text = text.replace(a, b)
-        text = re.sub(r"(?<=[a-z0-9,;:] )You\b", "you", text)  # "... and you continue"
-        return re.sub(r"\b(head|side|foot)_(left|right)\b", r"\1 \2", text)  # pocket names
+        """The referee's words with the players' names (see rules.words)."""
+        from termpool.rules.words import in_names
+
+        return in_names(text, self.match.players)
 
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
@@ -652,9 +647,6 @@ class App:
         return self.played[-1] if self.played else self.match
 
 
-YOU_GRAMMAR = (("You continues", "You continue"), ("You loses", "You lose"),
-               ("You wins", "You win"), ("You has", "You have"), ("You's", "your"),
-               ("You is", "You are"))
 OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",
                 "shoot": "shoot", "pass": "pass the shot back"}
 OPTION_KEYS = {
