@@ -147,11 +147,23 @@ def test_quit_asks_first() -> None:
 
 
 def test_help_lists_the_key_bindings() -> None:
+    from termpool.ui.controls import ACTIONS, KeyMap, parse_keymap
+
     app = app_for()
     app.key(Key("h"), 0.0)
     text = screen_text(app.cells(120, 40)[0])
-    for line in app.keymap.help_lines()[:5]:
-        assert line.strip()[:20] in text
+    for desc in ACTIONS.values():
+        assert desc in text
+    assert "Space  shoot (hold to charge)" in text and "↑, ⇧←  fine aim" in text
+    # Rebound keys show as bound, in the box and in the panel's key help and power label.
+    app = App(Options(mode="practice", colors="mono"),
+              keymap=parse_keymap("shoot = z\n"), input_mode="repeat")
+    assert isinstance(app.keymap, KeyMap)
+    app.key(Key("enter"), 0.0)
+    text = screen_text(app.cells(120, 40)[0])
+    assert "Z shoot" in text and "hold z, release to shoot" in text
+    app.key(Key("h"), 1.0)
+    assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
 
 
 def test_menu_picks_a_game() -> None:
@@ -571,3 +583,109 @@ def test_keys_that_do_not_apply_say_why():
     app = app_for(mode="practice")
     run_script(app, "enter u")
     assert app.message[0][0] == "nothing to take back"
+
+
+# ------------------------------------------------------------- from QA round 2
+
+def eight_on_the_8(app: App):
+    """Player 1 has cleared the solids: the 8 is next and must be called."""
+    from dataclasses import replace
+
+    m = app.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    for b in "1234567":
+        m.on_table[m.index(b)] = False
+    L, W = m.table.length, m.table.width
+    m.pos[m.index("8")] = (L - 0.4, W - 0.3)
+    m.pos[0] = (L - 0.9, W - 0.8)  # cue, 8 and the foot_left corner in line
+    app.phase, app.angle, app._aim_cache = "aim", 45.0, None
+    assert m.needs_call()
+
+
+def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)
+    assert app._called() == ("8", "foot_left")
+    assert "calling the 8 in foot left" in screen_text(app.cells(120, 40)[0])
+    app.key(Key("c"), 1.0)  # the player picks another pocket
+    assert app._called()[1] != "foot_left"
+    app.key(Key("left"), 2.0)
+    app.key(Key("left", kind="release"), 2.01)
+    app.key(Key("right"), 2.1)
+    app.key(Key("right", kind="release"), 2.11)
+    assert app._called() == ("8", "foot_left")  # a new aim: the call follows it again
+    app.key(Key("space"), 3.0)
+    app.key(Key("space", kind="release"), 3.3)
+    assert app.run.shot.called == ("8", "foot_left")
+
+
+def test_holding_space_to_place_the_ball_does_not_also_shoot():
+    for legacy in (True, False):
+        app = app_for(mode="practice", input_mode="repeat" if legacy else "release")
+        run_script(app, "space-hold 0.8 wait 1", legacy=legacy)
+        assert app.phase == "aim" and not app.match.history and not app.charge.active
+        run_script(app, "space-hold 0.8 wait 1", legacy=legacy)  # a new press shoots
+        assert len(app.match.history) == 1
+
+
+def test_ball_in_hand_taps_with_releases_are_taps_and_shift_is_fine_when_held():
+    app = app_for(mode="practice")
+    x0, y0 = app.cursor
+    run_script(app, "left*10")
+    assert app.cursor[0] == pytest.approx(x0 - 0.10)
+    run_script(app, "shift+up*2")
+    assert app.cursor[1] == pytest.approx(y0 + 0.004)
+    x1 = app.cursor[0]
+    run_script(app, "shift+right-hold 1")
+    assert 0 < app.cursor[0] - x1 < 0.1  # a second of fine steps: centimetres, not metres
+
+
+def test_refusals_name_pockets_in_words_and_clicks_off_the_table_are_ignored():
+    from termpool.ui.keys import Mouse
+
+    app = app_for(mode="practice")
+    app.cursor = [0.03, 0.03]  # the head right corner's mouth
+    app.key(Key("enter"), 0.0)
+    assert "head right pocket" in app.message[0][0]
+    app.cells(100, 32)
+    before = list(app.cursor)
+    app.mouse(Mouse(50, 31, "press"), 1.0)  # the panel's last row
+    assert app.cursor == before
+
+
+def test_nine_ball_says_which_ball_is_on():
+    app = app_for(mode="9ball", opponent="human")
+    run_script(app, "enter space-hold 1.2 wait 20")
+    if app.phase == "place":
+        app.key(Key("enter"), 100.0)
+    m = app.match
+    low = min((b for b in m.ids[1:] if m.on_table[m.index(b)]), key=int)
+    assert f"the {low} is on" in screen_text(app.cells(120, 40)[0])
+
+
+def test_key_help_follows_the_phase():
+    app = app_for(mode="practice")
+    assert "Enter place" in screen_text(app.cells(120, 40)[0])
+    app.key(Key("enter"), 0.0)
+    app.key(Key("space"), 1.0)
+    text = screen_text(app.cells(120, 40)[0])
+    assert "release space to shoot  Esc cancel" in text
+
+
+def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch):
+    from termpool import ai
+
+    def plan(*a, **k):
+        return ai.Plan(2.0, 10.0, 0.0, 0.0, None, 1.0,
+                       "the 9 went into the head_right pocket on a legal shot: player 1 wins")
+
+    monkeypatch.setattr(ai, "choose_shot", plan)
+    app = app_for(mode="9ball", opponent="cpu")
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1)
+    app.match.ball_in_hand = None
+    app.phase, app._cpu_plan, app._cpu_t0 = "cpu", None, None
+    app.tick(0.0)
+    app.tick(0.1)
+    assert not any("wins" in m for m, _ in app.message)

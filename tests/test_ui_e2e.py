@@ -209,3 +209,40 @@ def test_mouse_click_moves_the_ball_in_hand_and_mouse_mode_is_switched_off(game)
     g.send("y")
     assert g.wait() == 0 and restored(g.raw)
     assert g.raw.rindex(b"\x1b[?1002l") > g.raw.rindex(b"\x1b[?1002h")
+
+
+def test_a_key_right_after_a_frame_is_drawn_without_waiting_for_the_idle_timeout(game) -> None:
+    # The app animates until a key stops it (as Q does to a shot): the key lands between two
+    # frames, and its change must be drawn at the next frame, not at the end of the idle
+    # wait (60 s here, so a late frame would never come in time).
+    code = (
+        "from termpool.ui import term\n"
+        "from termpool.ui.panel import blank_cells\n"
+        "from termpool.ui.canvas import put_text\n"
+        "class Keys:\n"
+        "    done = False\n"
+        "    dirty = True\n"
+        "    n = 0\n"
+        "    moving = True  # frames back to back, like a shot, until the first key\n"
+        "    def key(self, k, t):\n"
+        "        self.n += 1\n"
+        "        self.moving = False\n"
+        "        self.dirty = True\n"
+        "        self.done = k.name == 'x'\n"
+        "    def mouse(self, ev, t): pass\n"
+        "    def wake_in(self, t): return 0.0 if self.moving else None\n"
+        "    def tick(self, t): self.dirty = self.dirty or self.moving\n"
+        "    def cells(self, c, r):\n"
+        "        self.dirty = False\n"
+        "        cells = blank_cells(c, r, False)\n"
+        "        put_text(cells, 0, 0, f'keys seen {self.n}', (200, 200, 200), (0, 0, 0))\n"
+        "        return cells\n"
+        "term.run(Keys(), 'truecolor', kitty=False, idle=60.0)\n"
+    )
+    g = game("-c", code, cols=40, rows=10, python_args=True)
+    assert g.wait_for("keys seen 0", timeout=10), g.text()
+    for k in range(1, 4):
+        g.send("a", pause=0.0)
+        assert g.wait_for(f"keys seen {k}", timeout=10), g.text()
+    g.send("x")
+    assert g.wait(timeout=10) == 0

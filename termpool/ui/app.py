@@ -13,6 +13,7 @@ Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls m
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -84,6 +85,7 @@ class App:
         self.bells = 0  # bells to ring (the driver writes BEL and resets this)
         self.overlay: str | None = None  # "help", "pause", "quit"
         self.menu_index = 0
+        self._swallow = None  # (key, time, repeating): the key that placed the ball, held
         self._place_key, self._place_last, self._place_start = None, 0.0, 0.0
         self.match = None
         self.played: list = []  # earlier matches of this session, with their shots
@@ -106,7 +108,8 @@ class App:
         from termpool.ui.controls import PowerCharge
 
         self.input_mode = mode
-        self.charge = PowerCharge(mode)
+        shoot = self.keymap.keys_for("shoot")
+        self.charge = PowerCharge(mode, key_label=shoot[0] if shoot else "space")
         self.dirty = True
 
     def new_match(self, mode: str, opponent: str) -> None:
@@ -128,6 +131,7 @@ class App:
         self.angle = 0.0
         self.side = self.top = 0.0
         self.called_k = 0
+        self.call_picked = False  # the player chose the called pocket with C
         self.push_out = False
         self._turn_start()
 
@@ -170,7 +174,13 @@ class App:
         """The referee's words with the players' names (see rules.words)."""
         from termpool.rules.words import in_names
 
-        return in_names(text, self.match.players)
+        text = in_names(text, self.match.players)
+        if self.opts.theme != "standard":  # the referee says solids and stripes
+            from termpool.rules.themes import group_label
+
+            for g in ("solids", "stripes"):
+                text = re.sub(rf"\b{g}\b", group_label(g, self.opts.theme), text)
+        return text
 
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
@@ -182,6 +192,7 @@ class App:
         self.charge.cancel()
         self.side = self.top = 0.0
         self.push_out = False
+        self.call_picked = False
         self._aim_cache = None
         if m.frame_over and m.winner is None:
             won = m.players[m.frame_winner]
@@ -236,22 +247,28 @@ class App:
                     self.push_out)
 
     def _called(self) -> tuple[str, str]:
+        """The call for this shot: the pocket the aim sends the object ball to, unless the
+        player picked one with C."""
         aim = self.aim()
         ball = "8"
         if aim is not None and aim.ball is not None:
             ball = self.match.ids[aim.ball]
-        return ball, POCKET_NAMES[self.called_k % len(POCKET_NAMES)]
+        k = self.called_k if self.call_picked else self._aimed_pocket()
+        return ball, POCKET_NAMES[k % len(POCKET_NAMES)]
 
-    def _default_call(self) -> None:
-        """Call the pocket the object ball is heading for (the player can cycle with C)."""
+    def _aimed_pocket(self) -> int:
+        """Index of the pocket the object ball heads for along the aim (0 with no ball hit)."""
         aim = self.aim()
         if aim is None or aim.ball is None or aim.object_dir is None:
-            return
+            return 0
         p = self.match.pos[aim.ball]
         d = self.table.hole_c.reshape(-1, 2) - p
         u = np.asarray(aim.object_dir)
         score = (d @ u) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-9)
-        self.called_k = int(np.argmax(score))
+        return int(np.argmax(score))
+
+    def _default_call(self) -> None:
+        self.call_picked = False  # a new aim: the call follows it again
 
     def _finish_shot(self) -> None:
         m = self.match
@@ -371,7 +388,9 @@ class App:
         aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
         if not m.state.is_break:
             plan = ai.with_error(plan, aim_sd, speed_sd, seed)
-        note = [(self.names(f"Computer: {plan.note}"), "dim")] if plan.note else []
+        foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
+        note = [(self.names(f"Computer: {plan.note}"), "dim")] if plan.note and not foresees \
+            else []  # a plan ("3 in the foot left pocket"), not the result it simulated
         self.message = self.message[:2] + note  # the last verdict stays in view
         return plan
 
@@ -381,6 +400,10 @@ class App:
         action = self.keymap.action(key)
         if key.kind == "release" and action != "shoot":
             self.aimctl.step(key, t)  # a release ends an aim hold: the next press is a tap
+            if key.name == self._place_key:
+                self._place_key = None  # ... and a ball-in-hand hold
+            if self._swallow is not None and key.name == self._swallow[0]:
+                self._swallow = None
             return
         if self.overlay is not None:
             self._overlay_key(key, action)
@@ -413,6 +436,9 @@ class App:
         lay = self._geom[2]
         if lay is None:
             return
+        ox, oy, ow, oh = lay.outer
+        if not (ox <= ev.col < ox + ow and oy <= 2 * ev.row + 1 < oy + oh):
+            return  # the panel, or beside the table
         x = (ev.col + 0.5 - lay.px) / lay.sx  # the cell's centre, in table metres
         y = lay.width - (2 * ev.row + 1 - lay.py) / lay.sy
         if self.phase == "place":
@@ -469,6 +495,16 @@ class App:
             self.new_match(*what)
 
     def _key_aim(self, key, action, t) -> None:
+        if self._swallow is not None and key.name == self._swallow[0]:
+            name, last, repeating = self._swallow
+            # Auto-repeat starts up to 0.75 s after the press, then comes every 20-100 ms.
+            if key.kind == "repeat" or (key.kind == "press"
+                                        and t - last <= (0.15 if repeating else 0.75)):
+                self._swallow = (name, t, True)
+                return
+            self._swallow = None
+            if key.kind == "release":
+                return
         if action == "shoot":
             level = self.charge.key(key, t)
             if level is not None:
@@ -498,10 +534,14 @@ class App:
             self.message = [("aim line on" if self.opts.aid else "aim line off (G)", "dim")]
         elif action == "call_pocket":
             if self.match.needs_call():
-                self.called_k = (self.called_k + 1) % len(POCKET_NAMES)
-            else:
+                start = self.called_k if self.call_picked else self._aimed_pocket()
+                self.called_k = (start + 1) % len(POCKET_NAMES)
+                self.call_picked = True
+            elif self.match.state.mode == "8ball":
                 self.message = [("no call needed: only the 8 is called, once your group is "
                                  "down", "dim")]
+            else:
+                self.message = [("no calls in this game", "dim")]
         elif action == "push_out":
             if self.match.state.push_out == "available":
                 self.push_out = not self.push_out
@@ -511,6 +551,8 @@ class App:
             self.phase = "place"
         elif action == "fast_forward":
             self.fast = not self.fast
+        elif action in ("undo", "rerack") and self.match.state.mode != "practice":
+            self.message = [("take back and re-rack are for practice", "dim")]
         elif action == "undo" and self.match.state.mode == "practice":
             try:
                 self.match.take_back()
@@ -533,22 +575,27 @@ class App:
         elif action in ("confirm", "place", "shoot") and key.kind == "press":
             why = self.match.placement_error(*self.cursor)
             if why:
-                self.message = [(f"Can't place the cue ball there: {why}", "foul")]
+                self.message = [(self.names(f"Can't place the cue ball there: {why}"), "foul")]
             else:
                 self.match.place_cue(*self.cursor)
                 self.message = []
                 self.phase = "aim"
+                # Held, the key that put the ball down keeps coming (repeats; on terminals
+                # without releases, as presses): none of it may start a shot.
+                self._swallow = (key.name, t, False) if action == "shoot" else None
                 self._aim_at_nearest()
                 self._aim_cache = None
 
     def _place_step(self, key, t: float) -> float:
         """Metres to move the ball in hand: a tap moves it a centimetre (shift: 2 mm); held,
         it speeds up from 0.25 to 1 m/s over a second, whatever the terminal's repeat rate."""
+        if key.shift:
+            return PLACE_FINE  # fine stays fine, held or not
         held = (key.name == self._place_key and (key.kind == "repeat"
                                                  or 0.0 <= t - self._place_last <= PLACE_GAP))
         if not held:
             self._place_key, self._place_last, self._place_start = key.name, t, t
-            return PLACE_FINE if key.shift else PLACE_TAP
+            return PLACE_TAP
         dt = min(max(t - self._place_last, 0.0), 0.05)
         self._place_last = t
         ramp = min(1.0, (t - self._place_start) / 1.0)

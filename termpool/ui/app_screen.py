@@ -33,7 +33,7 @@ def cells(app, cols: int, rows: int):
             draw_panel(out, lay, panel_info(app), mono)
             _question(app, out)
     if app.overlay == "help":
-        draw_box(out, help_box_lines(app.keymap.help_lines(), rows, cols), "keys", wrap=False)
+        draw_box(out, help_box_lines(app.keymap, rows, cols), "keys", wrap=False)
     elif app.overlay == "pause":
         draw_box(out, ["paused", "", "any key to go on"], "pause")
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
@@ -41,10 +41,28 @@ def cells(app, cols: int, rows: int):
     return out
 
 
-def help_box_lines(keys: list[str], rows: int, cols: int) -> list[str]:
-    """The help box's lines: the key bindings (in two columns, each cut to half the screen,
-    when one column does not fit the screen's height), the mouse, and how to close it."""
-    lines = [*keys, "mouse              click or drag on the table: aim there"]
+ARROWS = {"left": "←", "right": "→", "up": "↑", "down": "↓"}
+
+
+def pretty(spec: str) -> str:
+    """A key spec as the screen shows it: "left" -> "←", "shift+up" -> "⇧↑", "space" ->
+    "Space", "w" -> "W"."""
+    *mods, name = spec.split("+") if spec != "+" else ["+"]
+    base = ARROWS.get(name) or (name.capitalize() if len(name) > 1 else name.upper())
+    return "".join({"shift": "⇧", "ctrl": "^", "alt": "M-"}.get(m, m) for m in mods) + base
+
+
+def help_box_lines(keymap, rows: int, cols: int) -> list[str]:
+    """The help box's lines: every bound action with its keys (in two columns, each cut to
+    half the screen, when one column does not fit the screen's height), the mouse, and how to
+    close it."""
+    from termpool.ui.controls import ACTIONS
+
+    rows_ = [(", ".join(pretty(k) for k in keymap.keys_for(a)), desc)
+             for a, desc in ACTIONS.items() if keymap.keys_for(a)]
+    rows_.append(("mouse", "click or drag on the table: aim there"))
+    kw = max(len(k) for k, _ in rows_)
+    lines = [f"{k:<{kw}}  {d}" for k, d in rows_]
     if len(lines) + 4 > rows:
         half = -(-len(lines) // 2)
         width = max(8, (cols - 10) // 2)
@@ -118,7 +136,7 @@ def panel_info(app) -> PanelInfo:
     status = list(app.message) + _status(app)
     if app.charge.active:  # while charging, the power reading comes before the last verdict
         status = _status(app) + list(app.message)
-    help_line, help_short = HELP_LINES.get(app.phase, HELP_LINES["run"])
+    help_line, help_short = hint_lines(app)
     widgets = []
     if app.phase in ("aim", "cpu") and app.depth != "mono":
         from termpool.ui.overlay import power_meter_cells, spin_face_cells
@@ -147,6 +165,10 @@ def _status(app) -> list[tuple[str, str]]:
         if m.needs_call():
             ball, pocket = app._called()
             s += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
+        if m.state.mode == "9ball" and not m.state.is_break:
+            on = [b for b in m.ids[1:] if m.on_table[m.ids.index(b)]]
+            if on:
+                s += f" · the {min(on, key=int)} is on"
         if app.push_out:
             s += " · push-out"
         elif m.state.push_out == "available":
@@ -173,14 +195,35 @@ def _status(app) -> list[tuple[str, str]]:
     return out
 
 
-HELP_LINES = {  # per phase: the full line, then a short one for narrow panels
-    "place": ("←↑↓→ move (Shift: fine)  Enter place  mouse: click  H help  Q quit",
-              "arrows move  Enter place  H help  Q quit"),
-    "aim": ("←→ aim  ↑↓ fine  Space shoot  WASD spin  G aid  H help  P pause  Q quit",
-            "←→ aim  Space shoot  WASD spin  H help  Q quit"),
-    "run": ("F fast forward  P pause  H help  Q quit", "F fast  P pause  Q quit"),
-    "over": ("N new game  M menu  Q quit", "N new  M menu  Q quit"),
-}
+def hint_lines(app) -> tuple[str, str]:
+    """The panel's one line of key help for this phase (full, and short for narrow panels),
+    with the keys the key map really binds."""
+    def k(action: str) -> str:
+        keys = app.keymap.keys_for(action)
+        return pretty(keys[0]) if keys else "?"
+
+    quit_, help_ = f"{k('quit')} quit", f"{k('help')} help"
+    if app.phase == "place":
+        return (f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move "
+                f"(⇧ fine)  {k('confirm')} place  mouse: click  {help_}  {quit_}",
+                f"arrows move  {k('confirm')} place  {help_}  {quit_}")
+    if app.phase == "aim" and app.charge.active:
+        return (f"{app.charge.label}  {k('cancel')} cancel", f"{k('cancel')} cancel")
+    if app.phase == "aim":
+        spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
+        return (f"{k('aim_ccw')}{k('aim_cw')} aim  {k('aim_fine_ccw')}{k('aim_fine_cw')} fine  "
+                f"{k('shoot')} shoot  {spin} spin  {k('aim_aid')} aid  {help_}  "
+                f"{k('pause')} pause  {quit_}",
+                f"{k('aim_ccw')}{k('aim_cw')} aim  {k('shoot')} shoot  {spin} spin  {help_}  "
+                f"{quit_}")
+    if app.phase == "option":
+        return (f"answer with a letter in the box  {help_}  {quit_}", f"a letter  {quit_}")
+    if app.phase == "over":
+        return f"N new game  M menu  {quit_}", f"N new  M menu  {quit_}"
+    return (f"{k('fast_forward')} fast forward  {k('pause')} pause  {help_}  {quit_}",
+            f"{k('fast_forward')} fast  {k('pause')} pause  {quit_}")
+
+
 
 
 def _menu_cells(app, cols: int, rows: int, mono: bool):

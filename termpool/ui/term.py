@@ -179,8 +179,10 @@ class Input:
 
 
 def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25,
-        set_input_mode: Callable[[str], None] | None = None, mouse: bool = True) -> int:
-    """Run `app` on the process's terminal until it is done. Returns the exit status."""
+        set_input_mode: Callable[[str], None] | None = None, mouse: bool = True,
+        idle: float = 0.5) -> int:
+    """Run `app` on the process's terminal until it is done. Returns the exit status.
+    `idle`: the longest wait for input when nothing moves (signals are checked after it)."""
     out = sys.stdout
     term = Terminal(sys.stdin.fileno(), out, mouse)
     keys_in = Input(sys.stdin.fileno())
@@ -244,7 +246,9 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
                 suspend()
             now = time.monotonic()
             wake = app.wake_in(now)
-            timeout = 0.5 if wake is None else max(0.0, min(wake, next_frame - now, 0.5))
+            if app.dirty:  # a change not drawn yet (a key came just after a frame)
+                wake = 0.0
+            timeout = idle if wake is None else max(0.0, min(wake, next_frame - now, idle))
             if flags["resized"]:
                 timeout = 0.0
             for key in keys_in.keys(timeout):
