@@ -36,7 +36,7 @@ from termpool.physics.cue import strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
-from termpool.rules.common import AREAS, GROUPS, State, group_of
+from termpool.rules.common import AREAS, State, legal_targets
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
 
@@ -147,21 +147,6 @@ def _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed
     keep = np.nonzero(on)[0]
     sub = [ids[k] for k in keep]
     return _Table(sub, p[keep], r[keep], m[keep], sub.index("cue"))
-
-
-def legal_targets(state: State, present: Sequence[str]) -> list[str]:
-    """Balls the shooter may hit first, among the ids `present` on the table."""
-    here = set(present)
-    objects = [b for b in present if b != "cue"]
-    if state.mode == "9ball":
-        nine = [b for b in objects if b.isdigit()]
-        return [min(nine, key=int)] if nine else []
-    if state.mode == "practice":
-        return objects
-    if state.groups is None:
-        return [b for b in objects if group_of(b) is not None]
-    own = [b for b in GROUPS[state.groups[state.shooter]] if b in here]
-    return own or (["8"] if "8" in here else [])
 
 
 # --------------------------------------------------------------------------- candidates

@@ -7,6 +7,7 @@ Everything here is plain data: the judges are pure functions ``judge(state, summ
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 SOLIDS = tuple(str(n) for n in range(1, 8))
@@ -131,6 +132,23 @@ class Outcome:
         }
 
 
+def legal_targets(state: State, present: Sequence[str]) -> list[str]:
+    """The balls the shooter may hit first, among the ids `present` on the table (the cue ball
+    and ids of no group are skipped): 9-ball the lowest; practice any; 8-ball on an open table
+    any solid or stripe, else the shooter's group, and the 8 once the group is down."""
+    here = set(present)
+    objects = [b for b in present if b != "cue"]
+    if state.mode == "9ball":
+        nine = [b for b in objects if b.isdigit()]
+        return [min(nine, key=int)] if nine else []
+    if state.mode == "practice":
+        return objects
+    if state.groups is None:
+        return [b for b in objects if group_of(b) is not None]
+    own = [b for b in GROUPS[state.groups[state.shooter]] if b in here]
+    return own or (["8"] if "8" in here else [])
+
+
 def groups_to_json(groups: dict[int, str] | None) -> dict[str, str] | None:
     return None if groups is None else {str(p): g for p, g in sorted(groups.items())}
 
@@ -168,6 +186,7 @@ __all__ = [
     "count_fouls",
     "group_of",
     "groups_to_json",
+    "legal_targets",
     "order_fouls",
     "other_group",
 ]

@@ -33,12 +33,12 @@ Choices made where the rules leave one to a player, or where they are simplified
 from __future__ import annotations
 
 from termpool.rules.common import (
-    GROUPS,
     Outcome,
     State,
     after,
     count_fouls,
     group_of,
+    legal_targets,
     order_fouls,
     other_group,
 )
@@ -174,11 +174,8 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
 
 
 def _targets(state: State) -> list[str]:
-    on = state.on_table()
-    if state.groups is None:
-        return [b for b in on if group_of(b) is not None]
-    own = [b for b in on if b in GROUPS[state.groups[state.shooter]]]
-    return own or ["8"]
+    # Once the group is down the target is the 8, even in a scene that left it off the table.
+    return legal_targets(state, state.on_table()) or ([] if state.groups is None else ["8"])
 
 
 def _shot(state: State, s: ShotSummary) -> tuple[Outcome, State]:

@@ -144,21 +144,16 @@ class App:
         return self.match.ids.index("cue")
 
     def _targets(self) -> list[int]:
-        """Indices of the balls the shooter may legally hit first (for the initial aim)."""
-        m = self.match
-        ids, on = m.ids, m.on_table
-        st = m.state
-        balls = [k for k, b in enumerate(ids) if b != "cue" and on[k]]
-        if st.mode == "9ball":
-            return sorted(balls, key=lambda k: int(ids[k]))[:1]
-        if st.mode == "8ball" and not st.is_break:
-            if st.groups is None:
-                return [k for k in balls if ids[k] != "8"] or balls
-            from termpool.rules.common import GROUPS
+        """Indices of the balls the shooter may legally hit first (for the initial aim); any
+        ball on an 8-ball break, or when the rules name none."""
+        from termpool.rules.common import legal_targets
 
-            mine = [k for k in balls if ids[k] in GROUPS[st.groups[st.shooter]]]
-            return mine or [k for k in balls if ids[k] == "8"]
-        return balls
+        m = self.match
+        on = [b for b, here in zip(m.ids, m.on_table, strict=True) if here]
+        objects = [b for b in on if b != "cue"]
+        st = m.state
+        legal = objects if st.is_break and st.mode == "8ball" else legal_targets(st, on)
+        return [m.ids.index(b) for b in legal or objects]
 
     def _aim_at_nearest(self) -> None:
         m = self.match

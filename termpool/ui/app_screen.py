@@ -6,6 +6,7 @@ and changes nothing but the app's `dirty` flag and its layout cache.
 
 from __future__ import annotations
 
+from termpool.rules.common import legal_targets
 from termpool.ui.canvas import to_cells
 from termpool.ui.frame import message_cells, too_small_lines
 from termpool.ui.panel import PanelInfo, PlayerLine, blank_cells, draw_box, draw_panel
@@ -166,9 +167,9 @@ def _status(app) -> list[tuple[str, str]]:
             ball, pocket = app._called()
             s += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
         if m.state.mode == "9ball" and not m.state.is_break:
-            on = [b for b in m.ids[1:] if m.on_table[m.ids.index(b)]]
+            on = legal_targets(m.state, m.balls_on_table())
             if on:
-                s += f" · the {min(on, key=int)} is on"
+                s += f" · the {on[0]} is on"
         if app.push_out:
             s += " · push-out"
         elif m.state.push_out == "available":
