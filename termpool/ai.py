@@ -598,11 +598,7 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
         best, score = _verify(ev, state, table, physics)
     plan = _plan(ev, best, score)
     if ev.lv.noise:
-        rng = np.random.default_rng(seed)
-        angle = plan.angle + float(rng.normal(0.0, ev.lv.sigma))
-        speed = float(np.clip(plan.speed * (1 + rng.normal(0.0, EASY_SPEED_ERROR)), 0.1,
-                              BREAK_SPEEDS[-1]))
-        plan = plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)
+        plan = with_error(plan, ev.lv.sigma, EASY_SPEED_ERROR, seed)
     return plan
 
 
