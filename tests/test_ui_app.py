@@ -385,14 +385,12 @@ def test_three_foul_warning_shows_before_the_shot() -> None:
     assert "Player 1 is on two fouls" in text
 
 
-def test_free_spot_is_legal_even_with_the_head_spot_taken() -> None:
-    from termpool.ui.app import _free_spot
-
+def test_waiting_spot_is_legal_even_with_the_head_spot_taken() -> None:
     app = app_for(mode="8ball", opponent="human")
     m = app.match
     k = m.ids.index("1")
     m.pos[k] = m.table.head_spot  # a ball sits on the head spot
-    x, y = _free_spot(m)
+    x, y = m.waiting_spot()  # the computer's fallback for ball in hand
     assert m.placement_error(x, y) is None
 
 

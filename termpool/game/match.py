@@ -278,8 +278,7 @@ class Match:
             self._respot(b)
         c = self.index("cue")
         if not self.on_table[c]:
-            self.pos[c] = layout.cue_return_point(self.table, float(self.radius[c]),
-                                                  *self._others_arrays())
+            self.pos[c] = self.waiting_spot()
             self.on_table[c] = True
         self.state = new_state
         self.last_outcome = outcome
@@ -294,6 +293,12 @@ class Match:
         self._undo.append(snap)
         self._run = None
         return outcome
+
+    def waiting_spot(self) -> tuple[float, float]:
+        """Where the cue ball waits for a ball in hand: the head spot, or the nearest free point
+        behind it on the long string (then in front of it)."""
+        c = self.index("cue")
+        return layout.cue_return_point(self.table, float(self.radius[c]), *self._others_arrays())
 
     def _others_arrays(self, skip: str = "cue") -> tuple[np.ndarray, np.ndarray]:
         keep = self.on_table.copy()

@@ -376,8 +376,8 @@ class App:
         seed = self.opts.seed * 1000 + len(m.history)
         if m.ball_in_hand:
             x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
-            if m.placement_error(x, y):  # never expected; the head spot area is the fallback
-                x, y = _free_spot(m)
+            if m.placement_error(x, y):  # never expected; where a scratched cue ball waits
+                x, y = m.waiting_spot()
             m.place_cue(x, y)
         plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
         aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
@@ -695,18 +695,6 @@ OPTION_KEYS = {
     "rerack_or_accept": {"r": "rerack", "a": "accept"},
     "shoot_or_pass": {"s": "shoot", "p": "pass"},
 }
-
-
-def _free_spot(m) -> tuple[float, float]:
-    """A legal spot for the cue ball, searched outward from the head spot."""
-    hx, hy = m.table.head_spot
-    r = float(m.radius[m.ids.index("cue")])
-    for k in range(1, 400):
-        for dx, dy in ((0, 1), (0, -1), (-1, 0), (1, 0)):
-            x, y = hx + dx * k * r / 2, hy + dy * k * r / 2
-            if m.placement_error(x, y) is None:
-                return x, y
-    return hx, hy
 
 
 def _cpu_option(option: str) -> str:
