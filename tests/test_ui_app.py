@@ -687,3 +687,13 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
     app.tick(0.0)
     app.tick(0.1)
     assert not any("wins" in m for m, _ in app.message)
+
+
+def test_referee_words_take_the_theme_s_group_names():
+    from termpool.rules.words import in_names
+
+    assert in_names("player 0 takes the stripes", ["Ann", "Bob"], "classic") == \
+        "Ann takes the yellows"
+    assert in_names("player 1 takes the solids", ["Ann", "Bob"]) == "Bob takes the solids"
+    app = app_for(mode="8ball", opponent="human", theme="classic")
+    assert app.names("not one of the solids") == "not one of the reds"

@@ -169,13 +169,7 @@ class App:
         """The referee's words with the players' names (see rules.words)."""
         from termpool.rules.words import in_names
 
-        text = in_names(text, self.match.players)
-        if self.opts.theme != "standard":  # the referee says solids and stripes
-            from termpool.rules.themes import group_label
-
-            for g in ("solids", "stripes"):
-                text = re.sub(rf"\b{g}\b", group_label(g, self.opts.theme), text)
-        return text
+        return in_names(text, self.match.players, self.opts.theme)
 
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
@@ -261,9 +255,6 @@ class App:
         u = np.asarray(aim.object_dir)
         score = (d @ u) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-9)
         return int(np.argmax(score))
-
-    def _default_call(self) -> None:
-        self.call_picked = False  # a new aim: the call follows it again
 
     def _finish_shot(self) -> None:
         m = self.match
@@ -444,8 +435,7 @@ class App:
                 return
             self.angle = math.degrees(math.atan2(y - cy, x - cx)) % 360.0
             self._aim_cache = None
-            if self.match.needs_call():
-                self._default_call()
+            self.call_picked = False  # a new aim: the 8's call follows it again
         self.dirty = True
 
     def _overlay_key(self, key, action) -> None:
@@ -510,8 +500,7 @@ class App:
         if action in ("aim_ccw", "aim_cw", "aim_fine_ccw", "aim_fine_cw"):
             self.angle = (self.angle + self.aimctl.step(key, t)) % 360.0
             self._aim_cache = None
-            if self.match.needs_call():
-                self._default_call()
+            self.call_picked = False  # a new aim: the 8's call follows it again
         elif action in ("spin_up", "spin_down", "spin_left", "spin_right"):
             dx = {"spin_left": -1, "spin_right": 1}.get(action, 0)
             dy = {"spin_down": -1, "spin_up": 1}.get(action, 0)

@@ -7,9 +7,17 @@ and changes nothing but the app's `dirty` flag and its layout cache.
 from __future__ import annotations
 
 from termpool.rules.common import legal_targets
-from termpool.ui.canvas import to_cells
+from termpool.ui.canvas import put_text, to_cells
 from termpool.ui.frame import message_cells, too_small_lines
-from termpool.ui.panel import PanelInfo, PlayerLine, blank_cells, draw_box, draw_panel
+from termpool.ui.palette import DIM_TEXT_C, TEXT_C
+from termpool.ui.panel import (
+    TURN_C,
+    PanelInfo,
+    PlayerLine,
+    blank_cells,
+    draw_box,
+    draw_panel,
+)
 
 OPTION_TEXT = {
     "rerack_or_accept": ["The break was illegal.", "", "r: re-rack and break yourself",
@@ -134,9 +142,9 @@ def panel_info(app) -> PanelInfo:
                                   p == m.shooter and app.phase != "over", fouls))
     if st.mode == "practice":
         players = players[:1]
-    status = list(app.message) + _status(app)
-    if app.charge.active:  # while charging, the power reading comes before the last verdict
-        status = _status(app) + list(app.message)
+    now = _status(app)
+    # While charging, the power reading comes before the last verdict.
+    status = now + app.message if app.charge.active else app.message + now
     help_line, help_short = hint_lines(app)
     widgets = []
     if app.phase in ("aim", "cpu") and app.depth != "mono":
@@ -225,16 +233,11 @@ def hint_lines(app) -> tuple[str, str]:
             f"{k('fast_forward')} fast  {k('pause')} pause  {quit_}")
 
 
-
-
 def _menu_cells(app, cols: int, rows: int, mono: bool):
-    cells = blank_cells(cols, rows, mono)
-    from termpool.ui.canvas import put_text
-    from termpool.ui.panel import DIM_TEXT_C, TEXT_C, TURN_C
-
-    lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
     from termpool.ui.app import MENU
 
+    cells = blank_cells(cols, rows, mono)
+    lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
     for k, (label, _) in enumerate(MENU):
         sel = k == app.menu_index
         lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
