@@ -29,7 +29,6 @@ MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at o
 MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
-PLACE_GAP = 0.12  # s: the same arrow again within this is a hold (terminals without releases)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 SPIN_MAX = 0.5  # beyond this the cue strike is a miscue
 CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
@@ -73,7 +72,7 @@ def power_to_speed(level: float) -> float:
 class App:
     def __init__(self, opts: Options | None = None, keymap=None, input_mode: str = "release",
                  env=None) -> None:
-        from termpool.ui.controls import AimControl, KeyMap
+        from termpool.ui.controls import AimControl, HoldRamp, KeyMap
 
         self.opts = opts or Options()
         self.keymap = keymap if keymap is not None else KeyMap()
@@ -86,7 +85,8 @@ class App:
         self.overlay: str | None = None  # "help", "pause", "quit"
         self.menu_index = 0
         self._swallow = None  # (key, time, repeating): the key that placed the ball, held
-        self._place_key, self._place_last, self._place_start = None, 0.0, 0.0
+        # Ball in hand: 1 cm a tap; held, from 0.25 to 1 m/s over a second from the press.
+        self.place_ramp = HoldRamp(PLACE_TAP, 0.25, 1.0, 1.0, from_press=True)
         self.match = None
         self.played: list = []  # earlier matches of this session, with their shots
         self.run = None
@@ -386,8 +386,7 @@ class App:
         action = self.keymap.action(key)
         if key.kind == "release" and action != "shoot":
             self.aimctl.step(key, t)  # a release ends an aim hold: the next press is a tap
-            if key.name == self._place_key:
-                self._place_key = None  # ... and a ball-in-hand hold
+            self.place_ramp.release(key.name)  # ... and a ball-in-hand hold
             if self._swallow is not None and key.name == self._swallow[0]:
                 self._swallow = None
             return
@@ -571,19 +570,10 @@ class App:
                 self._aim_cache = None
 
     def _place_step(self, key, t: float) -> float:
-        """Metres to move the ball in hand: a tap moves it a centimetre (shift: 2 mm); held,
-        it speeds up from 0.25 to 1 m/s over a second, whatever the terminal's repeat rate."""
+        """Metres to move the ball in hand for this arrow event (Shift: 2 mm, held or not)."""
         if key.shift:
-            return PLACE_FINE  # fine stays fine, held or not
-        held = (key.name == self._place_key and (key.kind == "repeat"
-                                                 or 0.0 <= t - self._place_last <= PLACE_GAP))
-        if not held:
-            self._place_key, self._place_last, self._place_start = key.name, t, t
-            return PLACE_TAP
-        dt = min(max(t - self._place_last, 0.0), 0.05)
-        self._place_last = t
-        ramp = min(1.0, (t - self._place_start) / 1.0)
-        return (0.25 + 0.75 * ramp) * dt
+            return PLACE_FINE
+        return self.place_ramp.step(key.name, key.kind, t)
 
     def _clamp_cursor(self, x: float, y: float) -> list[float]:
         """Keep the ball in hand on the cloth (and behind the head string when it must be)."""

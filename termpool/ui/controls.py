@@ -198,15 +198,57 @@ _AIM = {"aim_ccw": (1.0, False), "aim_cw": (-1.0, False),
         "aim_fine_ccw": (1.0, True), "aim_fine_cw": (-1.0, True)}
 
 
-class AimControl:
-    """Aim steps that speed up while an aim key is held.
+class HoldRamp:
+    """How far one event of a held key moves something (an aim, a ball in hand).
 
-    A tap (or the first event of a hold) turns TAP degrees; fine keys always turn FINE. While
-    held, each auto-repeat turns speed * dt, dt being the time since the previous event (at
-    most DT_MAX), and the speed ramps from SPEED0 to SPEED_MAX deg/s over RAMP seconds of
-    holding: the turn rate depends on how long the key is held, not on the terminal's repeat
-    rate. A repeat is a "repeat" event (kitty) or, on legacy terminals where every event is a
-    press, the same key again within HOLD_GAP seconds.
+    A tap (or the first event of a hold) moves `tap`. While held, each event moves speed * dt,
+    dt being the time since the previous event (at most DT_MAX), and the speed ramps from
+    `speed0` to `speed_max` over `ramp` seconds of holding (counted from the first repeat, or
+    with `from_press` from the press): the rate depends on how long the key is held, not on the
+    terminal's repeat rate. A repeat is a "repeat" event (kitty) or, on legacy terminals where
+    every event is a press, the same key again within HOLD_GAP seconds.
+    """
+
+    HOLD_GAP = 0.12
+    DT_MAX = 0.05
+
+    def __init__(self, tap: float, speed0: float, speed_max: float, ramp: float,
+                 from_press: bool = False) -> None:
+        self.tap, self.speed0, self.speed_max, self.ramp = tap, speed0, speed_max, ramp
+        self.from_press = from_press
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget the current hold."""
+        self._what: str | None = None
+        self._last = 0.0
+        self._start: float | None = None
+
+    def release(self, what: str) -> None:
+        """`what` was let go: its next press is a tap."""
+        if what == self._what:
+            self.reset()
+
+    def step(self, what: str, kind: str, t: float) -> float:
+        """The distance for one press or repeat of `what` at time t."""
+        held = what == self._what and (kind == "repeat" or 0.0 <= t - self._last <= self.HOLD_GAP)
+        if not held:
+            self._what, self._last = what, t
+            self._start = t if self.from_press else None
+            return self.tap
+        if self._start is None:
+            self._start = t
+        dt = min(max(t - self._last, 0.0), self.DT_MAX)
+        ramp = min(1.0, (t - self._start) / self.ramp)
+        self._last = t
+        return (self.speed0 + (self.speed_max - self.speed0) * ramp) * dt
+
+
+class AimControl:
+    """Aim steps that speed up while an aim key is held (a `HoldRamp` in degrees).
+
+    A tap turns TAP degrees and, held, the turn speeds up from SPEED0 to SPEED_MAX deg/s over
+    RAMP seconds; fine keys always turn FINE.
     """
 
     TAP = 0.5
@@ -214,18 +256,16 @@ class AimControl:
     SPEED0 = 15.0
     SPEED_MAX = 120.0
     RAMP = 1.2
-    HOLD_GAP = 0.12
-    DT_MAX = 0.05
+    HOLD_GAP = HoldRamp.HOLD_GAP
+    DT_MAX = HoldRamp.DT_MAX
 
     def __init__(self, keymap: KeyMap | None = None) -> None:
         self.keymap = keymap if keymap is not None else KeyMap()
-        self.reset()
+        self._ramp = HoldRamp(self.TAP, self.SPEED0, self.SPEED_MAX, self.RAMP)
 
     def reset(self) -> None:
         """Forget the current hold (e.g. after a shot)."""
-        self._action: str | None = None
-        self._last = 0.0
-        self._hold_start: float | None = None
+        self._ramp.reset()
 
     def step(self, key: Key, t: float) -> float:
         """Degrees to turn the aim for this event (0 for non-aim keys and releases)."""
@@ -233,21 +273,13 @@ class AimControl:
         if action not in _AIM:
             return 0.0
         if key.kind == "release":
-            if action == self._action:
-                self.reset()
+            self._ramp.release(action)
             return 0.0
         sign, fine = _AIM[action]
-        held = (action == self._action and not fine
-                and (key.kind == "repeat" or 0.0 <= t - self._last <= self.HOLD_GAP))
-        if not held:
-            self._action, self._last, self._hold_start = action, t, None
-            return sign * (self.FINE if fine else self.TAP)
-        if self._hold_start is None:
-            self._hold_start = t
-        dt = min(max(t - self._last, 0.0), self.DT_MAX)
-        ramp = min(1.0, (t - self._hold_start) / self.RAMP)
-        self._last = t
-        return sign * (self.SPEED0 + (self.SPEED_MAX - self.SPEED0) * ramp) * dt
+        if fine:  # never held: a fine key ends any hold and turns FINE
+            self._ramp.reset()
+            return sign * self.FINE
+        return sign * self._ramp.step(action, key.kind, t)
 
 
 # ----------------------------------------------------------------------------- power
