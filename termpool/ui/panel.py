@@ -72,9 +72,9 @@ def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
         fg[row:row + nrows, col:col + ncols] = TEXT_C.rgb
 
 
-def _player(cells, r: int, c0: int, width: int, p: PlayerLine, ids, mono: bool) -> int:
-    """One player's line: marker, name, group, score; then the balls still to pot. Returns the
-    column after the text on the last row written and that row."""
+def _player(cells, r: int, c0: int, width: int, p: PlayerLine) -> int:
+    """One player's line: marker, name, and group, frames and fouls. Returns the column after
+    the text, where the balls to pot go."""
     mark = "▶ " if p.turn else "  "
     text = f"{mark}{p.name}"
     put_text(cells, r, c0, text[:width], TURN_C if p.turn else TEXT_C.rgb, BACKDROP_C.rgb)
@@ -132,12 +132,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         c, half = c0, c0 + w // 2
         for k, p in enumerate(info.players[:2]):
             start = c0 if k == 0 else max(c + 1, half)
-            c = _player(cells, r, start, w - (start - c0), p, info.ids, mono)
+            c = _player(cells, r, start, w - (start - c0), p)
             _tokens(cells, r, c, (half - 1) if k == 0 else c0 + w, p, info, mono)
         r += 1
     else:
         for p in info.players[:2]:
-            c = _player(cells, r, c0, w, p, info.ids, mono)
+            c = _player(cells, r, c0, w, p)
             _tokens(cells, r, c, c0 + w, p, info, mono)
             r += 1
     lines = []
@@ -156,7 +156,7 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
     put_text(cells, r, c0, info.title[:width], TEXT_C.rgb, BACKDROP_C.rgb)
     r += 2
     for p in info.players:
-        _player(cells, r, c0, width, p, info.ids, mono)
+        _player(cells, r, c0, width, p)
         r += 1
         if p.balls or p.down:
             _tokens(cells, r, c0 + 2, c0 + width, p, info, mono)
