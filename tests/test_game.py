@@ -17,7 +17,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from termpool.game import Match, Shot
+from termpool.game import Match, Shot, replay
 from termpool.game import layout as lay
 from termpool.physics.params import BALL_RADIUS as R
 from termpool.physics.params import Physics
@@ -613,3 +613,19 @@ def test_a_respot_never_overlaps(others: list) -> None:
     if x > FOOT[0]:
         for z in np.linspace(FOOT[0], x, 50)[:-1]:
             assert len(pts) and (np.hypot(pts[:, 0] - z, pts[:, 1] - y) < 2 * R - 1e-9).any()
+
+
+def test_eight_on_the_break_re_racks_for_the_same_breaker_in_that_variant() -> None:
+    m = Match("8ball", eight_break="rerack")
+    setup(m, {"cue": BEHIND, "8": NEAR_POCKET, "4": FOOT, "1": (0.4, 1.0)}, is_break=True)
+    out = m.begin(POT).finish()
+    assert m.history[0]["outcome"]["respot"] == ["8"]  # the referee's verdict is recorded
+    assert out.respot == () and "re-racked" in out.reason and out.next_shooter == 0
+    assert m.on_table.all() and m.state.is_break and m.shooter == 0
+    assert m.ball_in_hand == "kitchen"
+    assert at(m, "8") != NEAR_POCKET
+    back = Match.from_json(json.loads(json.dumps(m.to_json())))
+    assert back.eight_break == "rerack"
+    assert replay(m.to_json())[0]["ok"]
+    with pytest.raises(ValueError, match="eight_break"):
+        Match("8ball", eight_break="maybe")

@@ -697,3 +697,10 @@ def test_referee_words_take_the_theme_s_group_names():
     assert in_names("player 1 takes the solids", ["Ann", "Bob"]) == "Bob takes the solids"
     app = app_for(mode="8ball", opponent="human", theme="classic")
     assert app.names("not one of the solids") == "not one of the reds"
+
+
+def test_the_eight_on_the_break_variant_reaches_the_match():
+    assert app_for(mode="8ball", eight_break="rerack").match.eight_break == "rerack"
+    assert app_for(mode="8ball").match.eight_break == "respot"
+    p = cli("play", "--headless", "--keys", "-", "--eight-break", "sometimes", stdin="q y")
+    assert p.returncode == 2 and "--eight-break" in p.stderr

@@ -24,6 +24,7 @@ from termpool.scene import table_to_dict
 from . import layout, record
 from .turn import DT, Shot, ShotRun, game_block, state_to_json
 
+EIGHT_BREAKS = ("respot", "rerack")  # what the 8 pocketed on a legal break means
 OPTIONS = {"rerack_or_accept": ("rerack", "accept"), "shoot_or_pass": ("shoot", "pass")}
 FORMAT = "termpool-replay"
 VERSION = 1
@@ -35,7 +36,7 @@ class Match:
     def __init__(self, mode: str = "8ball", *, table: str | Table = "9ft", frames: int = 1,
                  players: tuple[str, str] = ("Player 1", "Player 2"), seed: int = 0,
                  physics: Physics | None = None, three_foul: bool = False,
-                 theme: str = "standard", dt: float = DT) -> None:
+                 theme: str = "standard", dt: float = DT, eight_break: str = "respot") -> None:
         if mode not in MODES:
             raise ValueError(f"mode: must be one of {', '.join(MODES)}, not {mode!r}")
         if isinstance(table, str):
@@ -58,6 +59,9 @@ class Match:
                                  "never stop)")
         if three_foul and mode != "9ball":
             raise ValueError("three_foul: only for mode '9ball'")
+        if eight_break not in EIGHT_BREAKS:
+            raise ValueError(f"eight_break: must be one of {', '.join(EIGHT_BREAKS)}, "
+                             f"not {eight_break!r}")
         if theme not in THEMES:
             raise ValueError(f"theme: must be one of {', '.join(THEMES)}, not {theme!r}")
         if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
@@ -65,6 +69,7 @@ class Match:
         self.mode, self.table, self.physics = mode, table, physics
         self.frames, self.players, self.seed = frames, tuple(players), seed
         self.three_foul, self.theme, self.dt = bool(three_foul), theme, dt
+        self.eight_break = eight_break
         self.rng = np.random.default_rng(seed)
         self.ids: list[str] = ["cue", *MODE_BALLS[mode]]
         n = len(self.ids)
@@ -291,6 +296,17 @@ class Match:
                 self.winner = outcome.winner
         self.history.append(rec)
         self._undo.append(snap)
+        if (self.eight_break == "rerack" and run.state.mode == "8ball" and run.state.is_break
+                and "8" in outcome.respot and outcome.winner is None):
+            # The variant where the 8 on the break means a fresh rack, broken by the same
+            # player (the record keeps the referee's verdict; replays judge it the same way).
+            breaker = run.state.shooter
+            self._rack(breaker)
+            outcome = replace(outcome, respot=(), ball_in_hand=True,
+                              ball_in_hand_area="kitchen", next_shooter=breaker,
+                              reason=f"{outcome.reason}; the 8 on the break: re-racked, "
+                                     f"player {breaker} breaks again")
+            self.last_outcome = outcome
         self._run = None
         return outcome
 
@@ -339,7 +355,8 @@ class Match:
             "match": {"mode": self.mode, "table": table_to_dict(self.table),
                       "physics": self.physics.to_dict(), "frames": self.frames,
                       "players": list(self.players), "seed": self.seed,
-                      "three_foul": self.three_foul, "theme": self.theme, "dt": self.dt},
+                      "three_foul": self.three_foul, "theme": self.theme, "dt": self.dt,
+                      "eight_break": self.eight_break},
             "current": {
                 "frame": self.frame, "breaker": self.breaker, "scores": list(self.scores),
                 "winner": self.winner, "frame_winner": self.frame_winner,

@@ -72,7 +72,8 @@ def load_match(cls: type, data: Any):
         seed=_get(m, "seed", "match", int, "a whole number"), physics=physics,
         three_foul=_get(m, "three_foul", "match", bool, "true or false"),
         theme=_get(m, "theme", "match", str, "a string"),
-        dt=float(_get(m, "dt", "match", (int, float), "a number")))
+        dt=float(_get(m, "dt", "match", (int, float), "a number")),
+        eight_break=m.get("eight_break", "respot"))  # files from before the variant re-spot
     cur = _get(data, "current", "match file", dict, "an object")
     balls = _get(cur, "balls", "current", list, "a list")
     ids = [b.get("id") if isinstance(b, dict) else None for b in balls]

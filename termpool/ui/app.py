@@ -60,6 +60,7 @@ class Options:
     bell: bool = False
     theme: str = "standard"
     three_foul: bool = False  # 9-ball: three fouls in a row lose the frame
+    eight_break: str = "respot"  # 8-ball: the 8 pocketed on the break is re-spotted or re-racked
 
 
 def power_to_speed(level: float) -> float:
@@ -124,7 +125,8 @@ class App:
         self.cpu = (False, opponent == "cpu" and mode != "practice")
         self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
                            seed=self.opts.seed, theme=self.opts.theme,
-                           three_foul=self.opts.three_foul and mode == "9ball")
+                           three_foul=self.opts.three_foul and mode == "9ball",
+                           eight_break=self.opts.eight_break)
         self._geom = None
         self.run = None
         self.message = []

@@ -29,6 +29,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="ball colours: numbered solids and stripes, or reds and yellows")
     p.add_argument("--three-foul", action="store_true",
                    help="9-ball: three fouls in a row lose the frame")
+    p.add_argument("--eight-break", choices=("respot", "rerack"), default="respot",
+                   help="8-ball: the 8 pocketed on the break is re-spotted (default) or the "
+                        "balls are re-racked for the same breaker")
     p.add_argument("--no-aid", action="store_true", help="start with the aim line off (G)")
     p.add_argument("--bell", action="store_true", help="ring the bell on a foul (N toggles)")
     p.add_argument("--input", choices=INPUTS, default="auto",
@@ -68,7 +71,8 @@ def _options(args: argparse.Namespace):
         raise PlayError("--frames: must be at least 1")
     return Options(mode=args.mode, opponent=args.opponent, table=args.table, colors=args.colors,
                    frames=args.frames, seed=args.seed, level=args.level, aid=not args.no_aid,
-                   bell=args.bell, theme=args.theme, three_foul=args.three_foul)
+                   bell=args.bell, theme=args.theme, three_foul=args.three_foul,
+                   eight_break=args.eight_break)
 
 
 def _keymap(path: str | None):
