@@ -6,8 +6,18 @@ examples every run. Set HYPOTHESIS_PROFILE=explore to search new random examples
 
 import os
 
+import pytest
+from contact_check import checked_handle
 from hypothesis import settings
+
+from termpool.physics.engine import Engine
 
 settings.register_profile("repeatable", derandomize=True)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "repeatable"))
+
+
+@pytest.fixture(autouse=True)
+def _contacts_are_checked(monkeypatch):
+    """Every contact the engine applies in any test must be between touching bodies."""
+    monkeypatch.setattr(Engine, "_handle", checked_handle(Engine._handle))

@@ -118,8 +118,73 @@ def first_contact(
     f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
     df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
     t = np.minimum(np.maximum(t - np.where(hit & (df < 0), f / df, 0.0), 0.0), T)
+    # Accept only a clear crossing: the pair touches at t (the gap within TOUCH), closes
+    # faster than V_MIN, and would go on to overlap by more than TOUCH (the local parabola's
+    # minimum, f - f'^2 / 2f'', is below -4 tg TOUCH). A tangent path (a double root, where
+    # the Newton step divides one rounding-level value by another, or lands just short of the
+    # tangent point) or a root the eigenvalues placed badly fails this and is decided by
+    # `_first_crossing`, which is exact but slow, and rarely needed.
+    f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+    df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
+    d2 = (12 * c4 * t + 6 * c3) * t + 2 * c2
+    band = 2 * tg * TOUCH  # f is about 2 tg times the gap
+    clear = (np.abs(f) <= band) & (df < -2 * tg * V_MIN) & ((d2 <= 0) | (df * df > 8 * d2 * band))
+    for k in np.flatnonzero(hit & ~clear).tolist():
+        t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
+                               float(c0[k]), float(T[k]), float(tg[k]))
     out[idx] = np.where(hit, t, np.inf)
     return out
+
+
+def _poly(c: tuple, t: float) -> float:
+    """The quartic c = (c4, c3, c2, c1, c0) at t (Horner)."""
+    c4, c3, c2, c1, c0 = c
+    return (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+
+
+def _first_crossing(c4: float, c3: float, c2: float, c1: float, c0: float, T: float,
+                    tg: float) -> float:
+    """First t in [0, T] at which the quartic f (the squared distance minus tg^2, f(0) > 0)
+    falls to zero and goes on to a real overlap; inf if it never does.
+
+    The window is cut at the critical points of f into pieces on which f is monotone; the
+    first piece that ends deeper than a TOUCH overlap holds the crossing, found by bisection
+    kept honest by Newton steps. A path that only grazes (its deepest point within TOUCH of
+    touching, an exact tangency above all) is no contact.
+    """
+    c = (c4, c3, c2, c1, c0)
+    # Every root's real part is a breakpoint: one too many costs nothing, one missed (a
+    # real root reported with a rounding-level imaginary part) could hide a dip.
+    crit = [float(r.real) for r in np.roots([4 * c4, 3 * c3, 2 * c2, c1]) if 0.0 < r.real < T]
+    # Polished against f', so that a tangency's minimum is found exactly.
+    dc = (0.0, 4 * c4, 3 * c3, 2 * c2, c1)
+    for n, r in enumerate(crit):
+        for _ in range(3):
+            d2 = (12 * c4 * r + 6 * c3) * r + 2 * c2
+            if d2 == 0:
+                break
+            r = min(max(r - _poly(dc, r) / d2, 0.0), T)
+        crit[n] = r
+    deep = -2 * tg * TOUCH
+    lo = 0.0
+    for hi in sorted(crit) + [T]:
+        if _poly(c, hi) >= deep:
+            lo = hi
+            continue
+        if _poly(c, lo) <= 0.0:
+            return lo
+        for _ in range(200):  # f(lo) > 0 >= f(hi); f is monotone between them
+            f_lo = _poly(c, lo)
+            step = lo - f_lo / _poly(dc, lo) if _poly(dc, lo) < 0 else math.nan
+            mid = step if lo < step < hi else 0.5 * (lo + hi)
+            if not lo < mid < hi:
+                break
+            if _poly(c, mid) > 0.0:
+                lo = mid
+            else:
+                hi = mid
+        return hi
+    return math.inf
 
 
 def first_line_contact(
