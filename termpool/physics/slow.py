@@ -19,18 +19,31 @@ from termpool.physics.state import perp as _perp
 
 class SlowContacts:
     def _squeezed(self, b, i) -> np.ndarray:
-        """True for balls (b, i) about to bounce slowly off a cushion while touching a ball."""
+        """True for balls (b, i) about to bounce slowly off a cushion while touching a ball.
+
+        Slowly means what it means for the bounce itself: the speed into the cushion is below
+        v_inelastic (the ball may run fast along the rail). Such a bounce lifts the ball off
+        the cushion, which would push it into the ball it touches; the cluster solve moves
+        both instead.
+        """
         t = self.tb[b]
         f = self.f_cush[b, i]
-        out = f < self._nseg + self._npt  # a pocket is never a squeeze
+        nseg = self._nseg
+        out = f < nseg + self._npt  # a pocket is never a squeeze
         k = np.arange(self.N)[None, :]
         p, v, _ = self._eval(b[:, None], k, t[:, None], spin=False)
-        own = p[np.arange(len(b)), i]
+        rows = np.arange(len(b))
+        own, vel = p[rows, i], v[rows, i]
         gap = _norm(p - own[:, None]) - self.radius[b] - self.radius[b, i][:, None]
         other = (self.state[b] != POCKETED) & (k != i[:, None])
         out &= (other & (gap < CLUSTER_GAP)).any(axis=1)
-        speed = _norm(v[np.arange(len(b)), i])
-        return out & (speed < self.physics.v_inelastic)
+        tab = self.table
+        n = tab.seg_n[np.minimum(f, nseg - 1)]
+        tip = (f >= nseg) & out
+        if tip.any():
+            d = own[tip] - tab.points[f[tip] - nseg]
+            n[tip] = d / _norm(d)[:, None]
+        return out & (-(vel * n).sum(axis=1) < self.physics.v_inelastic)
 
     def _cushion_gaps(self, p, rc):
         """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
