@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import statistics
 import time
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -37,7 +38,7 @@ from termpool.bench_accuracy import (
     fmt_mm,
     make_sim,
 )
-from termpool.scene import load_scene
+from termpool.scene import Scene, load_scene
 
 SEED_SCHEMES = ("naive", "substep")  # they step the seed game's model
 
@@ -56,7 +57,7 @@ def _log(sim) -> list[dict]:
     return sorted(log, key=lambda e: e["t"])
 
 
-def match_events(expected: list[dict], got: list[dict], types) -> dict:
+def match_events(expected: list[dict], got: list[dict], types: set[str]) -> dict:
     """Pair each expected event with the run's event of the same type and ball ids, in order
     of occurrence: matched and expected counts, extra events of those types, and the largest
     time error of the matched ones."""
@@ -82,7 +83,7 @@ def match_events(expected: list[dict], got: list[dict], types) -> dict:
 
 
 def errors(answer: closed_form.Answer, times: np.ndarray, pos: np.ndarray, final: np.ndarray,
-           events: list[dict], types) -> dict:
+           events: list[dict], types: set[str]) -> dict:
     """A run's errors against one closed-form answer; positions pos (M, N, 2) at times."""
     path = 0.0
     if len(times):
@@ -101,7 +102,7 @@ def within(case: closed_cases.Case, e: dict) -> bool:
             and (e["event_ms"] or 0.0) <= case.tol_ms)
 
 
-def reference(case: closed_cases.Case, scene, timed: bool = True) -> dict:
+def reference(case: closed_cases.Case, scene: Scene, timed: bool = True) -> dict:
     """The engine's event-to-event run: its errors and the case's facts measured on it; with
     `timed`, the wall time of a second run without sampling (the first warms up)."""
     n = len(scene.ids)
@@ -128,7 +129,7 @@ def reference(case: closed_cases.Case, scene, timed: bool = True) -> dict:
             "events": len(events), **err, "within": within(case, err), "facts": facts}
 
 
-def run_scheme(case: closed_cases.Case, scene, scheme: str, dt: float) -> dict:
+def run_scheme(case: closed_cases.Case, scene: Scene, scheme: str, dt: float) -> dict:
     n = len(scene.ids)
     stride = max(1, int(np.ceil(1.0 / (COMPARE_HZ * dt) - 1e-9)))
     t0 = time.perf_counter()
@@ -167,7 +168,7 @@ def run_scheme(case: closed_cases.Case, scene, scheme: str, dt: float) -> dict:
     return row
 
 
-def run_case(case: closed_cases.Case, dts, schemes) -> dict:
+def run_case(case: closed_cases.Case, dts: Sequence[float], schemes: Sequence[str]) -> dict:
     scene = load_scene(case.scene)
     ref = reference(case, scene)
     finest = min(dts)
@@ -211,7 +212,8 @@ def summarize(cases: list[dict]) -> list[dict]:
     return out
 
 
-def closed_figures(names: list[str] | None, dts, schemes) -> dict:
+def closed_figures(names: list[str] | None, dts: Sequence[float],
+                   schemes: Sequence[str]) -> dict:
     cases = [run_case(c, dts, schemes) for c in pick(names)]
     return {"cases": cases, "summary": summarize(cases)}
 

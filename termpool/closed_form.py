@@ -21,12 +21,14 @@ with its top spin). The scenes built from them are in closed_cases.py.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from termpool.physics.params import BALL_RADIUS, Physics
 
+Vec = Sequence[float] | np.ndarray  # a horizontal vector (x, y), or a spin's (wx, wy)
 R = BALL_RADIUS
 ROUNDING = 1e-12  # m/s: a slip or speed this small is the rounding of an exact zero
 X_HAT = np.array([1.0, 0.0])
@@ -37,7 +39,7 @@ _TRANSITIONS = {("slide", "roll"): "slide_to_roll", ("slide", "rest"): "slide_to
                 ("roll", "rest"): "roll_to_stop"}
 
 
-def _vec(x) -> np.ndarray:
+def _vec(x: Vec) -> np.ndarray:
     return np.array(x, dtype=float)
 
 
@@ -85,14 +87,15 @@ class Track:
     pieces: list[Piece] = field(default_factory=list)
     events: list[tuple[float, str]] = field(default_factory=list)
 
-    def add(self, kind: str, t0: float, p, v, a, w, alpha, contact: bool = False) -> None:
+    def add(self, kind: str, t0: float, p: Vec, v: Vec, a: Vec, w: Vec, alpha: Vec,
+            contact: bool = False) -> None:
         """Start a piece at t0. The change of state is a transition event unless a contact
         caused it (`contact`): the engine logs that as the contact."""
         if self.pieces and not contact and self.pieces[-1].kind != kind:
             self.events.append((t0, _TRANSITIONS[(self.pieces[-1].kind, kind)]))
         self.pieces.append(Piece(kind, t0, _vec(p), _vec(v), _vec(a), _vec(w), _vec(alpha)))
 
-    def rest(self, t0: float, p, contact: bool = False) -> None:
+    def rest(self, t0: float, p: Vec, contact: bool = False) -> None:
         z = np.zeros(2)
         self.add("rest", t0, p, z, z, z, z, contact)
 
@@ -114,7 +117,8 @@ class Track:
             out[now] = pc.p0 + (pc.v0 + 0.5 * pc.a * d) * d
         return out
 
-    def roll_out(self, ph: Physics, t: float, p, v, w, contact: bool = False) -> None:
+    def roll_out(self, ph: Physics, t: float, p: Vec, v: Vec, w: Vec,
+                 contact: bool = False) -> None:
         """Nothing left to meet: the ball slides while its contact point slips, then rolls,
         then rests."""
         g, p, v, w = ph.g, _vec(p), _vec(v), _vec(w)
@@ -137,7 +141,7 @@ class Track:
             t, p = t + tr, self.pieces[-1].state(t + tr)[0]
         self.rest(t, p, contact)
 
-    def coast(self, ph: Physics, t: float, p, v, contact: bool = False) -> None:
+    def coast(self, ph: Physics, t: float, p: Vec, v: Vec, contact: bool = False) -> None:
         """The seed game's model: no spin, the speed falls at mu_roll g to rest."""
         p, v = _vec(p), _vec(v)
         vs = float(np.hypot(*v))
@@ -176,7 +180,8 @@ def _first_root(a: float, b: float, c: float, span: float) -> float | None:
     return min(ok) if ok else None
 
 
-def collide(vi: np.ndarray, vj: np.ndarray, n: np.ndarray, e: float):
+def collide(vi: np.ndarray, vj: np.ndarray, n: np.ndarray,
+            e: float) -> tuple[np.ndarray, np.ndarray]:
     """Frictionless contact of equal balls, n from i to j: (1 + e)/2 of the closing speed
     moves along n; spins are untouched."""
     jn = 0.5 * (1.0 + e) * float((vi - vj) @ n)
@@ -223,7 +228,7 @@ class Answer:
         return evs
 
 
-def shot(ph: Physics, start, v, w, target, n, seed: bool) -> Answer:
+def shot(ph: Physics, start: Vec, v: Vec, w: Vec, target: Vec, n: Vec, seed: bool) -> Answer:
     """A ball from `start` moving along +x with velocity v and spin w (wx, wy) meets a ball
     resting at `target`, the line of centres at contact being n: the contact is where the
     mover's centre is at target - 2R n."""
@@ -257,7 +262,8 @@ def group_push(ph: Physics, pushed: int) -> float:
     return ph.g * (ph.mu_slide - kn * ph.mu_roll) / (1.0 + kn)
 
 
-def cradle(ph: Physics, start, v, w, row_x: float, row: int, seed: bool) -> Answer:
+def cradle(ph: Physics, start: Vec, v: Vec, w: Vec, row_x: float, row: int,
+           seed: bool) -> Answer:
     """A ball from `start` along +x into a row of `row` touching balls from x = row_x. The
     wave passes pair by pair (e = 1: each ball stops and the next takes its speed) and the
     last ball leaves; under the engine's model the first ball's top spin then drives it into
@@ -282,12 +288,12 @@ def cradle(ph: Physics, start, v, w, row_x: float, row: int, seed: bool) -> Answ
         contacts.append((tc, [k, k + 1]))
     for k in range(1, row + 1):
         tracks[k].cut(tc)
-    if seed or ph.e_ball != 1.0:
-        if not seed:
-            raise ValueError("the group push is derived for e_ball = 1 only")
+    if seed:
         for k in range(row + 1):
             tracks[k].coast(ph, tc, at[k], vel[k], contact=True)
         return Answer(tracks, contacts)
+    if ph.e_ball != 1.0:
+        raise ValueError("the group push is derived for e_ball = 1 only")
     last = tracks[row]
     last.roll_out(ph, tc, at[row], vel[row], np.zeros(2), contact=True)
     # The others are still; the first ball's slip u = -R wy x_hat (top spin) drives it.
