@@ -1,6 +1,7 @@
 """Accuracy benchmark of the stepping schemes: same as `termpool bench accuracy [options]`.
 
-python benchmarks/accuracy.py [--json] [--scenes DIR] [--dts S ...] [--schemes A,B] [--png PATH]
+python benchmarks/accuracy.py [--json] [--scenes DIR] [--closed NAMES] [--dts S ...]
+                              [--schemes A,B] [--png PATH]
 """
 
 from __future__ import annotations

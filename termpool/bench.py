@@ -1,7 +1,8 @@
 """`termpool bench`: benchmarks of the physics core.
 
     termpool bench speed [--json] [--repeat N] [--batch B] [--dt S]
-    termpool bench accuracy [--json] [--scenes DIR] [--dts S ...] [--schemes A,B] [--png PATH]
+    termpool bench accuracy [--json] [--scenes DIR] [--closed NAMES] [--dts S ...]
+                            [--schemes A,B] [--png PATH]
     termpool bench stability [--json] [--quick] [--case TEXT ...]
 
 `speed` times the standard 8-ball break on a 9-ft table: one table from Engine construction to
@@ -9,7 +10,9 @@ rest, B slightly different breaks batched in one Engine, and the import of the c
 interpreter; it prints a small table with targets and PASS/MISS, or one JSON object with --json.
 
 `accuracy` (in bench_accuracy.py) runs a set of scenes with every stepping scheme at every dt
-against the event-to-event reference and prints errors, wall times and a work-precision chart.
+against the event-to-event reference and prints errors, wall times and a work-precision chart;
+then every scheme against closed-form answers derived from the model's equations
+(bench_closed.py).
 
 `stability` (in bench_stability.py, cases in stability_cases.py) runs the stiff and extreme
 cases of issue 3 twice each and prints PASS/FAIL per case with the figure that decided it.

@@ -1,7 +1,7 @@
 """`termpool bench accuracy`: each stepping scheme against the event-to-event reference.
 
-    termpool bench accuracy [--json] [--scenes DIR|FILE] [--dts S ...] [--schemes A,B]
-                            [--png PATH | --no-png]
+    termpool bench accuracy [--json] [--scenes DIR|FILE] [--closed NAMES] [--dts S ...]
+                            [--schemes A,B] [--png PATH | --no-png]
 
 For every scene (default: the files shipped in `termpool/bench_scenes/`, the same as
 `benchmarks/scenes/`) the reference is `Engine.run_events()`. Each scheme is then run at each dt
@@ -29,6 +29,10 @@ type and ball ids; for the engine every event counts, for the frame schemes only
 (ball-ball, cushion, pocket), since they have no motion transitions; a cushion event must
 also hit the same feature (rail, jaw, tip) and a pocket event the same pocket. When the
 sequences differ the event-time error covers the matched part before the first difference.
+
+The engine cannot err against its own event driver, so a second section (bench_closed.py)
+measures every scheme against references that do not come from the engine: scenes whose
+answer is derived on paper from the model's equations (closed_form.py, closed_cases.py).
 """
 
 from __future__ import annotations
@@ -43,6 +47,7 @@ import time
 
 import numpy as np
 
+from termpool import closed_cases
 from termpool.bench import PROG, _engine, _Parser, _say, _seconds, machine_info, machine_lines
 from termpool.physics.naive import EulerSim, NaiveSim
 from termpool.scene import SceneError, load_scene
@@ -311,7 +316,11 @@ def summarize(scenes: list[dict]) -> list[dict]:
     return out
 
 
-def accuracy_figures(paths: list[str], dts, schemes) -> dict:
+def accuracy_figures(paths: list[str], dts, schemes, closed: list[str] | None = None) -> dict:
+    """Figures for the scene files and for the closed-form cases named in `closed` (all when
+    None, none when empty)."""
+    from termpool.bench_closed import closed_figures  # it imports this module
+
     scenes = [run_scene(p, dts, schemes) for p in paths]
     return {
         "dts": list(dts),
@@ -321,6 +330,7 @@ def accuracy_figures(paths: list[str], dts, schemes) -> dict:
         "substeps": SUBSTEPS,
         "scenes": scenes,
         "summary": summarize(scenes),
+        "closed_form": closed_figures(closed, dts, schemes),
         "machine": machine_info(),
     }
 
@@ -488,6 +498,10 @@ def format_accuracy(r: dict) -> str:
     lines += text_chart(r["summary"]) + [""]
     png = r.get("png")
     lines.append(f"chart: {png}" if png else "chart: no PNG (" + r.get("png_note", "") + ")")
+    if r["closed_form"]["cases"]:
+        from termpool.bench_closed import format_closed
+
+        lines += [""] + format_closed(r["closed_form"]) + [""]
     m = r["machine"]
     lines += [
         *machine_lines(m),
@@ -507,19 +521,38 @@ def _schemes(text: str) -> list[str]:
     return list(dict.fromkeys(names))
 
 
+def _closed(text: str) -> list[str] | None:
+    """Closed-form cases: 'all' (None), 'none' ([]) or comma-separated names."""
+    if text.strip() == "all":
+        return None
+    if text.strip() == "none":
+        return []
+    names = [s.strip() for s in text.split(",") if s.strip()]
+    bad = [s for s in names if s not in closed_cases.NAMES]
+    if bad or not names:
+        raise argparse.ArgumentTypeError(
+            f"unknown closed-form scene '{bad[0] if bad else text}' (use all, none or "
+            f"{','.join(closed_cases.NAMES)})")
+    return list(dict.fromkeys(names))
+
+
 def main(argv: list[str]) -> int:
     p = _Parser(
         prog=f"{PROG} accuracy",
         description=(
             "Run each scene with the event-to-event reference and with every stepping scheme "
             "at every dt; report position, event-time and event-sequence errors, wall time, "
-            "and a work-precision chart."
+            "and a work-precision chart; then every scheme against closed-form answers "
+            "derived from the model's equations."
         ),
     )
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--scenes", metavar="DIR", default=None,
                    help="a directory of scene files, or one scene file (default: the bundled "
                         "termpool/bench_scenes)")
+    p.add_argument("--closed", metavar="NAMES", type=_closed, default=None,
+                   help="closed-form scenes: all (default), none, or a comma-separated subset "
+                        f"of {','.join(closed_cases.NAMES)}")
     p.add_argument("--dts", metavar="S", nargs="+", type=_seconds, default=list(DTS),
                    help="time steps in seconds, fractions like 1/60 work (default: "
                         + " ".join(fmt_dt(d) for d in DTS) + ")")
@@ -534,7 +567,7 @@ def main(argv: list[str]) -> int:
     dts = sorted(dict.fromkeys(args.dts), reverse=True)
     try:
         paths = scene_paths(args.scenes)
-        result = accuracy_figures(paths, dts, args.schemes)
+        result = accuracy_figures(paths, dts, args.schemes, args.closed)
     except (SceneError, ValueError, RuntimeError) as e:
         _say(f"bench accuracy: {e}")
         return 1

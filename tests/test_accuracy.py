@@ -129,7 +129,7 @@ def _finite(x) -> bool:
 
 def test_accuracy_json_one_scene(capsys: pytest.CaptureFixture[str]) -> None:
     rc = bench.main(["accuracy", "--json", "--no-png", "--scenes", str(PACKAGED / "stun.json"),
-                     "--dts", "1/15", "1/150"])
+                     "--dts", "1/15", "1/150", "--closed", "none"])
     out = capsys.readouterr().out
     assert rc == 0
     result = json.loads(out)
@@ -153,13 +153,14 @@ def test_accuracy_json_one_scene(capsys: pytest.CaptureFixture[str]) -> None:
         else:  # no spin or frame-end contacts: a stun shot is visibly off
             assert r["err_mm"] > 1.0
     assert {s["scheme"] for s in result["summary"]} == {"engine", "naive", "substep", "euler"}
+    assert result["closed_form"] == {"cases": [], "summary": []}
     assert result["png"] is None
     assert {"python", "numpy", "cpu", "date"} <= set(result["machine"])
 
 
 def test_accuracy_text_prints_zero_errors_and_a_chart(capsys) -> None:
     rc = bench.main(["accuracy", "--no-png", "--scenes", str(PACKAGED / "jaw.json"),
-                     "--dts", "1/30", "--schemes", "engine,naive"])
+                     "--dts", "1/30", "--schemes", "engine,naive", "--closed", "none"])
     out = capsys.readouterr().out
     assert rc == 0
     engine_row = next(line for line in out.splitlines() if line.strip().startswith("engine"))
@@ -184,8 +185,43 @@ def test_png_when_matplotlib_is_installed(tmp_path: Path) -> None:
     assert path and Path(path).stat().st_size > 0
 
 
-@pytest.mark.parametrize("argv", [["--dts", "0"], ["--schemes", "rk4"], ["--scenes", "/nope"]])
+@pytest.mark.parametrize("argv", [["--dts", "0"], ["--schemes", "rk4"], ["--scenes", "/nope"],
+                                  ["--closed", "spiral"]])
 def test_accuracy_bad_usage(argv: list[str], capsys: pytest.CaptureFixture[str]) -> None:
     assert bench.main(["accuracy", "--no-png", *argv]) in (1, 2)
     err = capsys.readouterr().err
     assert err.startswith("termpool: ") and err.count("\n") == 1
+
+
+# ------------------------------------------------------------------- the closed-form section
+
+
+def test_closed_form_rows_in_json_and_text(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["accuracy", "--no-png", "--scenes", str(PACKAGED / "jaw.json"), "--dts", "1/30",
+            "1/300", "--schemes", "engine,naive,substep", "--closed", "slide_roll,stun"]
+    assert bench.main([*argv, "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    closed = result["closed_form"]
+    assert [c["name"] for c in closed["cases"]] == ["slide_roll", "stun"]
+    for case in closed["cases"]:
+        ref = case["reference"]
+        assert ref["within"] and ref["matched"] == ref["expected"]
+        assert {f["label"] for f in ref["facts"]} and all(_finite(f["error"])
+                                                          for f in ref["facts"])
+        assert case["scene"]["table"]["pockets"] == "none"
+        rows = {(r["scheme"], round(1 / r["dt"])): r for r in case["rows"]}
+        assert set(rows) == {(s, n) for s in ("engine", "naive") for n in (30, 300)} | {
+            ("substep", 30)}
+        for (scheme, _), r in rows.items():
+            assert (r["own"] is not None) == (scheme in ("naive", "substep"))
+            if scheme == "engine":
+                assert r["within"] and r["model"]["err_mm"] <= case["tolerance"]["mm"]
+        # The seed scheme converges on its own model, not on the engine's.
+        own = [rows[("naive", n)]["own"]["err_mm"] for n in (30, 300)]
+        assert own[1] < own[0] / 5
+        assert rows[("naive", 300)]["model"]["err_mm"] > 100 * own[1]
+    assert {(s["scheme"], round(1 / s["dt"])) for s in closed["summary"]} >= {("engine", 30)}
+    out = bench_accuracy.format_accuracy(result)
+    assert "closed-form references: 2 scene(s)" in out
+    assert "NO SLIDING AND NO SPIN" in out  # the seed model is named a different model
+    assert "slide distance (m)" in out and "closed-form summary over 2 scenes" in out
