@@ -6,6 +6,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from termpool.physics.cushion import MODELS as CUSHIONS
+
 BALL_RADIUS = 0.028575  # 2.25 in diameter
 BALL_MASS = 0.170
 
@@ -30,6 +32,7 @@ class Physics:
     cushion_height: float = 0.0366  # nose height above the slate (0.64 ball diameters)
     g: float = 9.81
     ball_ball: str = "frictional"  # or "frictionless"
+    cushion: str = "simple"  # the cushion response model, a name in cushion.MODELS
     # Closing speeds below this are treated as perfectly inelastic: touching balls then settle
     # in a few contacts instead of an endless geometric series of bounces.
     v_inelastic: float = 0.005
@@ -45,6 +48,12 @@ class Physics:
             if key == "ball_ball":
                 if val not in ("frictional", "frictionless"):
                     raise ValueError("physics.ball_ball: must be 'frictional' or 'frictionless'")
+                kw[key] = val
+                continue
+            if key == "cushion":
+                if not isinstance(val, str) or val not in CUSHIONS:
+                    names = ", ".join(f"'{k}'" for k in CUSHIONS)
+                    raise ValueError(f"physics.cushion: must be one of {names}")
                 kw[key] = val
                 continue
             if isinstance(val, bool) or not isinstance(val, (int, float)):
