@@ -17,6 +17,6 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from termpool.physics.cushion import simple
+from termpool.physics.cushion import han, simple
 
-MODELS: dict[str, ModuleType] = {"simple": simple}
+MODELS: dict[str, ModuleType] = {"simple": simple, "han": han}
