@@ -17,6 +17,6 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from termpool.physics.cushion import han, simple
+from termpool.physics.cushion import han, mathavan, simple
 
-MODELS: dict[str, ModuleType] = {"simple": simple, "han": han}
+MODELS: dict[str, ModuleType] = {"simple": simple, "han": han, "mathavan": mathavan}
