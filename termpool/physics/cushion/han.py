@@ -31,6 +31,11 @@ from termpool.physics.cushion.rail import (
     to_rail_one,
 )
 
+# Restitution and nose friction when a scene gives none: nominal values, as pooltool uses
+# them (Han fitted a speed-dependent e on a carom table).
+E_CUSHION = 0.85
+MU_CUSHION = 0.2
+
 
 def bounce(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w)."""

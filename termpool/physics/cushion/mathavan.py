@@ -53,6 +53,11 @@ from termpool.physics.cushion.rail import (
     to_rail_one,
 )
 
+# Restitution and nose friction when a scene gives none: the values Mathavan et al. fitted
+# to their measured rebounds (snooker balls and cushions).
+E_CUSHION = 0.98
+MU_CUSHION = 0.14
+
 STEPS = 8  # impulse steps of a frictionless compression (restitution takes about e * STEPS)
 MAX_STEPS = 8 * STEPS  # per phase; a phase still running then is finished without friction
 FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-call cost

@@ -12,6 +12,11 @@ import numpy as np
 
 from termpool.physics.contact import _cross, _cross1, _to3
 
+# Restitution and nose friction when a scene gives none: the game's cushion from the start
+# (the nominal values pooltool uses too).
+E_CUSHION = 0.85
+MU_CUSHION = 0.2
+
 
 def bounce(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w).
