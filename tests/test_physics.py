@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from termpool.physics.cue import strike
+from termpool.physics.cushion import MODELS
 from termpool.physics.engine import Engine
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.table import Table
@@ -166,8 +167,9 @@ def rail_bounce(side, physics, angle=45.0):
     return ev["balls"][0], np.array(v)
 
 
-def test_cushion_without_friction_reflects_normal_speed_times_e():
-    ph = Physics(mu_cushion=0.0, e_cushion=0.85)
+def test_simple_cushion_without_friction_reflects_normal_speed_times_e():
+    # Each model's own closed forms, straight on the model: tests/test_cushion.py.
+    ph = Physics(cushion="simple", mu_cushion=0.0, e_cushion=0.85)
     after, before_dir = rail_bounce(0.0, ph)
     # The ball slides a little on the way: compare with its velocity just before the rail.
     vx, vy = after["vx"], after["vy"]
@@ -177,8 +179,9 @@ def test_cushion_without_friction_reflects_normal_speed_times_e():
     assert -vy / vx == pytest.approx(0.85 * before_dir[1] / before_dir[0], rel=1e-9)
 
 
-def test_running_english_widens_and_reverse_narrows_the_rebound():
-    ph = Physics()
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_running_english_widens_and_reverse_narrows_the_rebound(model):
+    ph = Physics(cushion=model)
 
     def out_angle(side):
         after, _ = rail_bounce(side, ph)
@@ -190,10 +193,12 @@ def test_running_english_widens_and_reverse_narrows_the_rebound():
     assert right < plain < left
 
 
-def test_cushion_never_adds_energy_whatever_the_spin():
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_cushion_never_adds_energy_whatever_the_spin(model):
     rng = np.random.default_rng(7)
     for _ in range(40):
-        ph = Physics(mu_cushion=float(rng.uniform(0, 1)), e_cushion=float(rng.uniform(0, 1)))
+        ph = Physics(mu_cushion=float(rng.uniform(0, 1)), e_cushion=float(rng.uniform(0, 1)),
+                     cushion=model)
         w = rng.normal(0, 200, 3)
         v = np.array([rng.uniform(-1, 1), rng.uniform(0.1, 3.0)])
         tab = Table(length=4.0, width=1.27, pockets="none")
