@@ -254,6 +254,22 @@ def test_pocketing_rattling_in_and_staying_out():
     assert feats[0] == "tip" and state != 4
 
 
+def test_a_ball_out_of_a_pocket_mouth_meets_the_rail_beside_it():
+    # Found by a 5000 rad/s spin into a rack: a ball just inside the side pocket's mouth, its
+    # centre a little behind the rail line, leaves into the table and its spin curves it back
+    # onto the rail beside the pocket. Being behind the rail's line at the start (off the
+    # rail's end) must not hide that contact, or the ball goes through the rail.
+    tab = Table.preset("9ft")
+    eng = Engine(tab, Physics(), [[1.2344, -0.0024]], [[1.336, 1.053]],
+                 [[4011.0, -4014.0, 4710.0]])
+    eng.run(1 / 60, duration=1.6)
+    hit = first(eng.events[0], "cushion")
+    ball = hit["balls"][0]
+    assert hit["feature"] == "rail" and ball["x"] > 1.3345  # the rail past the far jaw
+    assert ball["y"] == pytest.approx(float(eng.rc[0, 0]), abs=1e-6)  # touching, in front
+    assert ball["vy"] > 0
+
+
 def test_fixed_step_is_exact_whatever_the_step():
     tab = Table.preset("9ft")
     ph = Physics()
