@@ -145,6 +145,26 @@ def test_ball_ball_momentum_kept_and_energy_not_gained_with_friction():
     assert e_after <= e_before * (1 + 1e-12)
 
 
+@pytest.mark.parametrize("e", [0.95, 0.5])
+def test_sliding_ball_contact_throws_by_coulombs_law(e):
+    # While the contact slides, the tangential impulse is mu_b times the normal one (Coulomb,
+    # as Alciatore's throw analysis has it), whatever the restitution: the object ball leaves
+    # at tan(throw) = mu_b(slip) from the line of centres. (A cap of mu_b e times the closing
+    # speed instead would give 2 e mu_b / (1 + e).)
+    ph = Physics(ball_ball="frictional", e_ball=e)
+    cut, speed = 30.0, 2.0
+    eng = two_ball_cut(cut, (speed, 0.0), (0.0, 0.0, 0.0), ph, gap=1e-9)
+    eng.run(1 / 60, duration=0.01)
+    b = first(eng.events[0], "ball_ball")["balls"][1]
+    c = math.radians(cut)
+    n = np.array([math.cos(c), math.sin(c)])
+    vb = np.array([b["vx"], b["vy"]])
+    tangential = vb - (vb @ n) * n
+    slip = speed * math.sin(c)  # no spin yet: the surfaces slide at the tangential speed
+    mu = 0.00995 + 0.108 * math.exp(-1.088 * slip)
+    assert np.linalg.norm(tangential) / (vb @ n) == pytest.approx(mu, rel=1e-6)
+
+
 def test_cut_induced_throw_is_a_few_degrees_and_larger_when_slow():
     def throw(speed):
         ph = Physics(ball_ball="frictional")
