@@ -266,12 +266,13 @@ def test_pocketing_rattling_in_and_staying_out():
         eng = Engine(tab, ph, [[2.0, y]], [v], [w])
         eng.run(1 / 60)
         feats = [ev.get("feature") for ev in eng.events[0] if ev["type"] == "cushion"]
-        return feats, eng.state[0, 0]
+        k = int(eng.pocket[0, 0])
+        return feats, eng.state[0, 0], tab.hole_names[k] if k >= 0 else None
 
-    feats, state = along_rail(0.06)
-    assert feats[0] == "jaw" and state == 4
-    feats, state = along_rail(0.075)
-    assert feats[0] == "tip" and state != 4
+    feats, state, pocket = along_rail(0.06)
+    assert feats[0] == "jaw" and state == 4 and pocket == "foot_right"
+    feats, state, pocket = along_rail(0.075)  # (it may roll into another pocket later)
+    assert feats[0] == "tip" and pocket != "foot_right"
 
 
 def test_a_ball_out_of_a_pocket_mouth_meets_the_rail_beside_it():

@@ -44,7 +44,8 @@ class Physics:
     cushion_height: float = 0.0366  # nose height above the slate (0.64 ball diameters)
     g: float = 9.81
     ball_ball: str = "frictional"  # or "frictionless"
-    cushion: str = "simple"  # the cushion response model, a name in cushion.MODELS
+    cushion: str = "mathavan"  # the cushion response model, a name in cushion.MODELS (why this
+    # one: docs/physics.md, Cushions)
     # Closing speeds below this are treated as perfectly inelastic: touching balls then settle
     # in a few contacts instead of an endless geometric series of bounces.
     v_inelastic: float = 0.005
