@@ -8,9 +8,11 @@ Each model is one module with two functions of the same signature:
                                               r and m (K,), ph a `Physics`
     bounce_one(n, v, w, r, m, ph) -> (v, w)   one ball in plain floats (lists in, lists out)
 
-The two must agree bit for bit (`tests/test_cushion.py` holds them to it), must never add
-energy, and must leave the ball not moving into the cushion. To add a model, write its module
-and list it in MODELS.
+and two numbers, E_CUSHION and MU_CUSHION: the restitution and nose friction a scene gets when
+it gives none (each model means its own thing by them). The two functions must agree bit for
+bit (`tests/test_motion.py` holds them to it), must never add energy, and must leave the ball
+not moving into the cushion (`tests/test_cushion.py`). To add a model, write its module and
+list it in MODELS.
 """
 
 from __future__ import annotations

@@ -17,6 +17,7 @@ of the normal speed away.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -31,13 +32,17 @@ from termpool.physics.cushion.rail import (
     to_rail_one,
 )
 
+if TYPE_CHECKING:
+    from termpool.physics.params import Physics
+
 # Restitution and nose friction when a scene gives none: nominal values, as pooltool uses
 # them (Han fitted a speed-dependent e on a carom table).
 E_CUSHION = 0.85
 MU_CUSHION = 0.2
 
 
-def bounce(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
+def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.ndarray,
+           ph: Physics) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w)."""
     s, c = nose(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail(n, v, w)
@@ -57,7 +62,8 @@ def bounce(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
     return from_rail(n, vx, vy, wx - k * d2, wy - k * s * d1, wz + k * c * d1)
 
 
-def bounce_one(n, v, w, r, m, ph) -> tuple[list, list]:
+def bounce_one(n: list, v: list, w: list, r: float, m: float,
+               ph: Physics) -> tuple[list, list]:
     """`bounce` for one ball in plain floats, bit-identical to it."""
     s, c = nose_one(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail_one(n, v, w)

@@ -23,11 +23,11 @@ Cost and safety:
   so an impact takes about STEPS steps per phase at any speed, and at most MAX_STEPS, after
   which the phase is finished by one frictionless impulse. Compression ends with the step
   whose normal impulse stops the ball; any speed into the cushion that step's friction gives
-  back is taken away without friction. Each step applies the normal
-  impulse, then the nose's friction, then the slate's, each along its contact's slip at that
-  moment. First order: STEPS = 8 keeps the rebound within 1% of the speed in and 0.25
-  degrees of the converged answer for cushions like the game's (mu up to 0.2), within 1.5%
-  and 1 degree for rough ones (mu 0.6).
+  back is taken away without friction. Each step applies the normal impulse, then the nose's
+  friction, then the slate's, each along its contact's slip at that moment. First order:
+  STEPS = 8 keeps the rebound within 1% of the speed in and 0.25 degrees of the converged
+  answer for cushions like the game's (mu up to 0.2), within 1.5% and 1 degree for rough
+  ones (mu 0.6).
 - Each friction impulse is capped where it would stop its contact's slip (the least energy
   along the slip), so a sticking contact holds instead of chattering, and no friction impulse
   adds energy. The normal work is booked exactly as the change of vy^2 / 2, and the last
@@ -40,6 +40,7 @@ Cost and safety:
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -53,6 +54,9 @@ from termpool.physics.cushion.rail import (
     to_rail,
     to_rail_one,
 )
+
+if TYPE_CHECKING:
+    from termpool.physics.params import Physics
 
 # Restitution and nose friction when a scene gives none: the values Mathavan et al. fitted
 # to their measured rebounds (snooker balls and cushions).
@@ -133,7 +137,8 @@ def _gains(s):
     return 2.5 + s * s, 1.0 - 2.5 * s, 2.5 - s
 
 
-def bounce(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
+def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.ndarray,
+           ph: Physics) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w)."""
     if len(n) < FEW:
         rows = zip(n, v, w, r, m, strict=True)
@@ -143,7 +148,8 @@ def bounce(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
     return bounce_many(n, v, w, r, m, ph)
 
 
-def bounce_many(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
+def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
+                m: np.ndarray, ph: Physics) -> tuple[np.ndarray, np.ndarray]:
     """`bounce` on arrays all the way (whatever their size)."""
     s, c = nose(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail(n, v, w)
@@ -194,7 +200,8 @@ def bounce_many(n, v, w, r, m, ph) -> tuple[np.ndarray, np.ndarray]:
     return np.where(hit[:, None], vo, v), np.where(hit[:, None], wo, w)
 
 
-def bounce_one(n, v, w, r, m, ph) -> tuple[list, list]:
+def bounce_one(n: list, v: list, w: list, r: float, m: float,
+               ph: Physics) -> tuple[list, list]:
     """`bounce` for one ball in plain floats, bit-identical to it."""
     s, c = nose_one(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail_one(n, v, w)
