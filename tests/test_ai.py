@@ -243,7 +243,7 @@ def test_kicks_out_of_a_snooker_on_the_eight():
     plan = ai.choose_shot(*lay.args(), state)
     summary, out, _ = play(lay, plan, state)
     assert summary.first_contact == "8"
-    assert out.foul is None and out.winner is None
+    assert out.foul is None and out.winner in (None, 0)  # a legal kick (that may even win)
 
 
 # ------------------------------------------------------------------------------ the 8

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from termpool.physics import contact, motion
+from termpool.physics.cushion import MODELS
 from termpool.physics.engine import FEW, Engine
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.state import EPS_U, POCKETED
@@ -196,26 +197,34 @@ def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit
     assert (many == 0).any()  # and some are resting against one, closing
 
 
+@pytest.mark.parametrize("model", sorted(MODELS))
 @pytest.mark.parametrize("seed", [14, 15])
-def test_one_cushion_bounce_in_floats_matches_the_array_path_bit_for_bit(seed):
+def test_one_cushion_bounce_in_floats_matches_the_array_path_bit_for_bit(seed, model):
     rng = np.random.default_rng(seed)
-    k = 400
+    k = 1500
     n = rng.normal(0.0, 1.0, (k, 2))
     n /= np.hypot(n[:, 0], n[:, 1])[:, None]
     v = rng.normal(0.0, 2.0, (k, 2)) - rng.uniform(0.0, 3.0, (k, 1)) * n
+    v[::7] *= 1e-3  # slow contacts, below v_inelastic
     w = rng.normal(0.0, 80.0, (k, 3))
+    w[::5] *= 1e-9  # nearly still contact points
     r = rng.uniform(0.02, 0.04, k)
     m = rng.uniform(0.1, 0.2, k)
-    with np.errstate(all="ignore"):
-        V, W = contact.cushion(n, v, w, r, m, 0.85, 0.2, 0.0366, 0.005)
-    for x in range(k):
-        one = contact.cushion_one(n[x].tolist(), v[x].tolist(), w[x].tolist(), float(r[x]),
-                                  float(m[x]), 0.85, 0.2, 0.0366, 0.005)
-        assert one == (V[x].tolist(), W[x].tolist())
+    mod = MODELS[model]
+    many = getattr(mod, "bounce_many", mod.bounce)  # the array path, whatever the size
+    for e, mu in ((0.85, 0.2), (0.0, 0.6), (1.0, 0.0)):
+        ph = Physics(e_cushion=e, mu_cushion=mu, cushion=model)
+        with np.errstate(all="ignore"):
+            V, W = many(n, v, w, r, m, ph)
+        for x in range(k):
+            one = mod.bounce_one(n[x].tolist(), v[x].tolist(), w[x].tolist(), float(r[x]),
+                                 float(m[x]), ph)
+            assert one == (V[x].tolist(), W[x].tolist())
 
 
+@pytest.mark.parametrize("model", sorted(MODELS))
 @pytest.mark.parametrize("seed", [16, 17])
-def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed):
+def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed, model):
     rng = np.random.default_rng(seed)
     table = Table.preset("9ft")
     k = 1500
@@ -226,7 +235,7 @@ def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed):
     w = rng.normal(0.0, 60.0, (k, 1, 3))
     engines = []
     for path in ("one by one", "together"):
-        eng = Engine(table, Physics(), pos, vel, w)
+        eng = Engine(table, Physics(cushion=model), pos, vel, w)
         b = np.flatnonzero(np.isfinite(eng.t_cush[:, 0]))
         b = b[eng.f_cush[b, 0] < eng._nseg + eng._npt]  # bounces (not pockets)
         eng.tb[b] = eng.t_cush[b, 0]

@@ -27,6 +27,7 @@ import struct
 from typing import Any
 
 from termpool.physics.engine import Engine
+from termpool.physics.params import as_recorded
 from termpool.scene import Scene, SceneError, load_scene
 
 MAX_SHOT_TIME = 600.0  # simulated seconds: a shot that runs longer is a broken record
@@ -46,7 +47,11 @@ def cue_shot(shot: dict) -> dict:
 
 
 def shot_scene(scene_dict: dict, shot: dict) -> Scene:
-    """The scene of a record with its shot applied, loaded and validated."""
+    """The scene of a record with its shot applied, loaded and validated (with the cushion
+    it was played with, for records from before scenes chose one)."""
+    physics = scene_dict.get("physics", {})
+    if isinstance(physics, dict):
+        scene_dict = {**scene_dict, "physics": as_recorded(physics)}
     return load_scene({**scene_dict, "shot": cue_shot(shot)})
 
 

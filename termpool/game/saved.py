@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from termpool.physics.params import Physics
+from termpool.physics.params import Physics, as_recorded
 from termpool.rules.common import Outcome
 from termpool.scene import SceneError, _table
 
@@ -64,7 +64,7 @@ def load_match(cls: type, data: Any):
         table = _table(_get(m, "table", "match", (dict, str), "an object"))
     except SceneError as e:
         raise ValueError(f"match.{e}") from None
-    physics = Physics.from_dict(_get(m, "physics", "match", dict, "an object"))
+    physics = Physics.from_dict(as_recorded(_get(m, "physics", "match", dict, "an object")))
     match = cls(
         _get(m, "mode", "match", str, "a string"), table=table,
         frames=_get(m, "frames", "match", int, "a whole number"),

@@ -1,4 +1,5 @@
-"""Impulse responses at ball-ball and ball-cushion contacts (vectorized over contacts).
+"""Impulse responses at ball-ball contacts (vectorized over contacts), and the vector
+helpers the cushion models share (`termpool.physics.cushion`).
 
 Impulses act at the contact point of rigid spheres. Vertical components of linear velocity
 that an impulse would give are absorbed by the slate (no jumping), which can only remove
@@ -58,37 +59,6 @@ def ball_ball(
     return vi, vj, wi, wj
 
 
-def cushion(
-    n, v, w, r, m, e, mu, height, v_inelastic
-) -> tuple[np.ndarray, np.ndarray]:
-    """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w).
-
-    The nose touches the ball above its centre (sin t = (h - R) / R), so friction at the
-    nose acts on both side spin (running or reverse english) and top or back spin.
-    The horizontal normal speed is reversed times e; friction is Coulomb, at most stopping
-    the contact point's slip.
-    """
-    sin_t = np.clip((height - r) / r, -0.95, 0.95)
-    cos_t = np.sqrt(1.0 - sin_t * sin_t)
-    approach = -np.einsum("ij,ij->i", v, n)
-    ee = np.where(approach > v_inelastic, e, 0.0)
-    p_h = (1.0 + ee) * m * np.maximum(approach, 0.0)
-    v = v + (p_h / m)[:, None] * n
-    n3 = _to3(n)
-    z = np.array([0.0, 0.0, 1.0])
-    arm = r[:, None] * (-cos_t[:, None] * n3 + sin_t[:, None] * z)
-    normal = -arm / r[:, None]
-    slip = _to3(v) + _cross(w, arm)
-    slip_t = slip - np.einsum("ij,ij->i", slip, normal)[:, None] * normal
-    speed = np.linalg.norm(slip_t, axis=1)
-    jt = np.minimum(mu * p_h / cos_t, speed * m / 3.5)
-    dirn = np.where(speed[:, None] > 0, slip_t / speed[:, None], 0.0)
-    imp = -jt[:, None] * dirn
-    v = v + imp[:, :2] / m[:, None]
-    w = w + _cross(arm, imp) / (0.4 * m * r * r)[:, None]
-    return v, w
-
-
 def _cross1(a: list, b: list) -> list:
     ax, ay, az = a
     bx, by, bz = b
@@ -136,33 +106,3 @@ def ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, e, v_inelastic, fricti
     wi = [wi[k] + ti[k] / ii for k in range(3)]
     wj = [wj[k] + tj[k] / ij for k in range(3)]
     return vi, vj, wi, wj
-
-
-def cushion_one(n, v, w, r, m, e, mu, height, v_inelastic):
-    """`cushion` for one ball in plain floats (lists in, lists out), bit-identical to the
-    array version (same operations in the same order; see ball_ball_one)."""
-    n0, n1 = n
-    sin_t = min(max((height - r) / r, -0.95), 0.95)
-    cos_t = math.sqrt(1.0 - sin_t * sin_t)
-    approach = -(v[0] * n0 + v[1] * n1)
-    ee = e if approach > v_inelastic else 0.0
-    p_h = (1.0 + ee) * m * (approach if not approach < 0.0 else 0.0)
-    k = p_h / m
-    v = [v[0] + k * n0, v[1] + k * n1]
-    c = -cos_t
-    arm = [r * (c * n0 + sin_t * 0.0), r * (c * n1 + sin_t * 0.0), r * (c * 0.0 + sin_t * 1.0)]
-    normal = [-x / r for x in arm]
-    cw = _cross1(w, arm)
-    slip = [v[0] + cw[0], v[1] + cw[1], 0.0 + cw[2]]
-    sn = (slip[0] * normal[0] + slip[2] * normal[2]) + slip[1] * normal[1]
-    st = [slip[x] - sn * normal[x] for x in range(3)]
-    speed = math.sqrt((st[0] * st[0] + st[1] * st[1]) + st[2] * st[2])
-    a, b = mu * p_h / cos_t, speed * m / 3.5
-    jt = a if (a <= b or a != a) else b  # np.minimum, nan included
-    dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
-    imp = [-jt * x for x in dirn]
-    v = [v[0] + imp[0] / m, v[1] + imp[1] / m]
-    torque = _cross1(arm, imp)
-    inertia = 0.4 * m * r * r
-    w = [w[x] + torque[x] / inertia for x in range(3)]
-    return v, w

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from termpool.physics import contact, motion
+from termpool.physics import contact, cushion, motion
 from termpool.physics.motion import max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.roots import first_contact, first_line_contact, first_line_contact_one
@@ -574,9 +574,8 @@ class Engine(SlowContacts):
             bb, ib = b[bounce], i[bounce]
             nb, pb = n[bounce], p[bounce]
             slow = -(v[bounce] * nb).sum(axis=1) < ph.v_inelastic
-            vb, wb = contact.cushion(nb, v[bounce], w[bounce], self.radius[bb, ib],
-                                     self.mass[bb, ib], ph.e_cushion, ph.mu_cushion,
-                                     ph.cushion_height, ph.v_inelastic)
+            vb, wb = cushion.MODELS[ph.cushion].bounce(nb, v[bounce], w[bounce],
+                                                       self.radius[bb, ib], self.mass[bb, ib], ph)
             # Undo a resting contact's sub-micrometre sink. A ball that met the cushion slowly
             # (pressed into it by its spin, say) is set down HOVER off it, so that it takes a
             # third longer to come back than from touching: fewer events, no overlap.
@@ -608,8 +607,7 @@ class Engine(SlowContacts):
             n = [d0 / dist, d1 / dist]
         slow = -(v[0] * n[0] + v[1] * n[1]) < ph.v_inelastic
         r, m = row[_RADIUS], row[_MASS]
-        v, w = contact.cushion_one(n, v, w, r, m, ph.e_cushion, ph.mu_cushion,
-                                   ph.cushion_height, ph.v_inelastic)
+        v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, m, ph)
         # As _cushion: undo a sink, and set a slow ball down HOVER off the cushion.
         depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
         lift = max0(depth) + (HOVER if slow else 0.0)

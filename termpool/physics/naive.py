@@ -18,7 +18,7 @@ all schemes with one loop.
   mouth. With ``substeps=k`` every frame is run as k frames of dt / k (the "substep" scheme).
 - `EulerSim` is the engine's own model stepped the naive way: sliding, rolling and spinning
   friction (a slip that would reverse within a frame is completed to rolling), the engine's
-  contact laws (`contact.ball_ball`, `contact.cushion` with spin), the table's real rails,
+  contact laws (`contact.ball_ball`, the scene's cushion model with spin), the table's real rails,
   jaws, jaw tips and pocket holes. Its error is the stepping error alone.
 
 Events are dicts like the engine's: ``{"t", "type", "i"}`` plus ``"feature"`` for cushions
@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from termpool.physics import contact
+from termpool.physics import contact, cushion
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.state import POCKETED, ROLLING, SPINNING, STATIONARY
 from termpool.physics.state import norm as _norm
@@ -306,8 +306,7 @@ class EulerSim(_FrameSim):
             self.p[i] -= allgap[m, k] * n  # back to touching
             if float(self.v[i] @ n) >= 0:
                 continue
-            v, w = contact.cushion(n[None], self.v[i][None], self.w[i][None], self.r[i:i + 1],
-                                   self.m[i:i + 1], ph.e_cushion, ph.mu_cushion,
-                                   ph.cushion_height, ph.v_inelastic)
+            v, w = cushion.MODELS[ph.cushion].bounce(n[None], self.v[i][None], self.w[i][None],
+                                                     self.r[i:i + 1], self.m[i:i + 1], ph)
             self.v[i], self.w[i] = v[0], w[0]
             self._log(t, "cushion", [i], feature=feature)

@@ -6,6 +6,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from termpool.physics.cushion import MODELS as CUSHIONS
+
 BALL_RADIUS = 0.028575  # 2.25 in diameter
 BALL_MASS = 0.170
 
@@ -19,20 +21,44 @@ def nose_reach(radius, cushion_height: float):
     return radius * np.sqrt(1.0 - sin_t * sin_t)
 
 
+# The cushion of records and saved matches written before scenes could choose one.
+LEGACY_CUSHION = "simple"
+
+
+def as_recorded(d: dict) -> dict:
+    """A recorded `physics` object as it was played: one without `cushion` predates the
+    choice and was played with LEGACY_CUSHION, whatever the default is now."""
+    return d if "cushion" in d else {**d, "cushion": LEGACY_CUSHION}
+
+
 @dataclass(frozen=True)
 class Physics:
     mu_slide: float = 0.2  # ball-cloth sliding friction
     mu_roll: float = 0.01  # rolling resistance
     mu_spin: float = 0.0127  # spin (z) decay; wz falls at 5 mu_spin g / (2 R)
     e_ball: float = 0.95  # ball-ball restitution
-    e_cushion: float = 0.85  # horizontal normal restitution at the cushion
-    mu_cushion: float = 0.2  # friction at the cushion nose
+    # Cushion restitution and friction at its nose; None takes the cushion model's own
+    # (E_CUSHION, MU_CUSHION of its module), since each model means its own thing by them.
+    e_cushion: float | None = None
+    mu_cushion: float | None = None
     cushion_height: float = 0.0366  # nose height above the slate (0.64 ball diameters)
     g: float = 9.81
     ball_ball: str = "frictional"  # or "frictionless"
+    cushion: str = "mathavan"  # the cushion response model, a name in cushion.MODELS (why this
+    # one: docs/physics.md, Cushions)
     # Closing speeds below this are treated as perfectly inelastic: touching balls then settle
     # in a few contacts instead of an endless geometric series of bounces.
     v_inelastic: float = 0.005
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.cushion, str) or self.cushion not in CUSHIONS:
+            names = ", ".join(f"'{k}'" for k in CUSHIONS)
+            raise ValueError(f"physics.cushion: must be one of {names}")
+        model = CUSHIONS[self.cushion]
+        if self.e_cushion is None:
+            object.__setattr__(self, "e_cushion", model.E_CUSHION)
+        if self.mu_cushion is None:
+            object.__setattr__(self, "mu_cushion", model.MU_CUSHION)
 
     @classmethod
     def from_dict(cls, d: dict) -> Physics:
@@ -46,6 +72,9 @@ class Physics:
                 if val not in ("frictional", "frictionless"):
                     raise ValueError("physics.ball_ball: must be 'frictional' or 'frictionless'")
                 kw[key] = val
+                continue
+            if key == "cushion":
+                kw[key] = val  # checked by __post_init__
                 continue
             if isinstance(val, bool) or not isinstance(val, (int, float)):
                 raise ValueError(f"physics.{key}: must be a number")

@@ -197,7 +197,8 @@ def first_line_contact(
     Touching and resting contacts are treated as in `first_contact`, but only where the ball
     is `beside` the cushion segment now: a ball off its end (just off a jaw tip, say) may be
     nearer the line than `dist` without touching anything, and meets the segment when it
-    comes down to `dist` over it.
+    comes down to `dist` over it. A ball behind the line is only ignored beside the segment
+    (it came through); off its end (in a pocket's mouth) it can still come out and meet it.
     """
     gap = s0 - dist
     touching = (gap < TOUCH) & beside
@@ -214,7 +215,7 @@ def first_line_contact(
         ok = (r >= 0) & (2 * A * r + sv < 0)
         best = np.where(ok & (r < best), r, best)
     best = np.where((A == 0) & (sv < 0) & (C >= 0), -C / sv, best)
-    best = np.where((best <= horizon) & front, best, np.inf)
+    best = np.where((best <= horizon) & (front | ~beside), best, np.inf)
     return np.where(now, 0.0, best)
 
 
@@ -246,6 +247,6 @@ def first_line_contact_one(s0: float, sv: float, sa: float, dist: float, horizon
             best = r
     if A == 0 and sv < 0 and C >= 0:
         best = _over(-C, sv)
-    if not (best <= horizon and front):
+    if not (best <= horizon and (front or not beside)):
         best = math.inf
     return 0.0 if now else best
