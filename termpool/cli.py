@@ -261,10 +261,10 @@ def dump_json(result: dict) -> str:
 
 
 def _sim(args: argparse.Namespace) -> int:
-    from termpool.scene import SceneError, load_scene, loads_scene
+    from termpool.scene import SceneError, load_scene
 
     try:
-        scene = loads_scene(sys.stdin.read()) if args.scene == "-" else load_scene(args.scene)
+        scene = load_scene(args.scene)
     except SceneError as e:
         return _fail(str(e))
     from termpool.physics.engine import Engine
@@ -310,11 +310,10 @@ def _sim(args: argparse.Namespace) -> int:
 
 
 def _replay(args: argparse.Namespace) -> int:
-    from termpool.game.record import ReplayError, parse_replay, read_replay, replay
+    from termpool.game.record import ReplayError, read_replay, replay
 
     try:
-        data = parse_replay(sys.stdin.read(), "stdin") if args.file == "-" else read_replay(
-            args.file)
+        data = read_replay(args.file)
         shots = replay(data)
     except ReplayError as e:
         return _fail(str(e))

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from termpool.files import MAX_SCENE_BYTES, FileError, parse_json, read_text
 from termpool.physics.cue import strike
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.table import PRESETS, Table
@@ -109,13 +110,9 @@ def _reject_duplicates(pairs: list[tuple[str, Any]]) -> dict:
 
 def _parse_json(text: str, where: str) -> Any:
     try:
-        return json.loads(text, object_pairs_hook=_reject_duplicates)
-    except json.JSONDecodeError as e:
-        raise SceneError(
-            f"{where}: invalid JSON at line {e.lineno} column {e.colno}: {e.msg}"
-        ) from None
-    except SceneError as e:
-        raise SceneError(f"{where}: invalid JSON: {e}") from None
+        return parse_json(text, where, _reject_duplicates)
+    except FileError as e:
+        raise SceneError(str(e)) from None
 
 
 # ------------------------------------------------------------------------------------ table
@@ -388,17 +385,15 @@ def _game(spec: Any, balls: list[dict], table: Table, shot: Any) -> dict:
 
 def _read(path: str | os.PathLike) -> dict:
     try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-    except OSError as e:
-        raise SceneError(f"cannot read scene '{os.fspath(path)}': {e.strerror or e}") from None
-    except UnicodeDecodeError:
-        raise SceneError(f"{os.fspath(path)}: not a UTF-8 text file") from None
-    return _parse_json(text, os.fspath(path))
+        text = read_text(path, MAX_SCENE_BYTES, "scene")
+    except FileError as e:
+        raise SceneError(str(e)) from None
+    return _parse_json(text, "stdin" if os.fspath(path) == "-" else os.fspath(path))
 
 
 def load_scene(src: str | os.PathLike | dict) -> Scene:
-    """Load and validate a scene from a JSON file path or an already parsed dict."""
+    """Load and validate a scene from a JSON file path ("-": standard input) or an already
+    parsed dict."""
     raw = src if isinstance(src, dict) else _read(src)
     if not isinstance(raw, dict):
         raise SceneError("scene: must be a JSON object")

@@ -232,13 +232,14 @@ def test_not_utf8_exits_2(capsys, tmp_path) -> None:
     p = tmp_path / "bin.json"
     p.write_bytes(b"\xff\xfe\x00")
     rc, _, err = run_cli(capsys, str(p))
-    assert rc == 2 and "not a UTF-8 text file" in err
+    assert rc == 2 and "not UTF-8 text" in err
 
 
 def test_replay_from_stdin(saved, capsys, monkeypatch) -> None:
     import io
 
-    monkeypatch.setattr("sys.stdin", io.StringIO(json.dumps({"shots": saved["shots"][:1]})))
+    text = json.dumps({"shots": saved["shots"][:1]})
+    monkeypatch.setattr("sys.stdin", io.TextIOWrapper(io.BytesIO(text.encode())))
     rc, out, _ = run_cli(capsys, "-")
     assert rc == 0 and out.splitlines()[-1] == "1 shot: all identical"
 

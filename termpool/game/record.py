@@ -26,6 +26,7 @@ import os
 import struct
 from typing import Any
 
+from termpool.files import MAX_REPLAY_BYTES, FileError, parse_json, read_text
 from termpool.physics.engine import Engine
 from termpool.scene import Scene, SceneError, load_scene
 
@@ -207,10 +208,9 @@ def replay_shot(rec: Any, path: str = "shot") -> dict:
 def parse_replay(text: str, where: str = "replay") -> dict:
     """Parse a replay file's text and check its outline (raises ReplayError)."""
     try:
-        data = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise ReplayError(f"{where}: invalid JSON at line {e.lineno} column {e.colno}: "
-                          f"{e.msg}") from None
+        data = parse_json(text, where)
+    except FileError as e:
+        raise ReplayError(str(e)) from None
     if not isinstance(data, dict):
         raise ReplayError(f"{where}: must be a JSON object")
     if "shots" not in data:
@@ -221,16 +221,12 @@ def parse_replay(text: str, where: str = "replay") -> dict:
 
 
 def read_replay(path: str | os.PathLike) -> dict:
-    """Read and parse a replay file (raises ReplayError with one line)."""
-    name = os.fspath(path)
+    """Read and parse a replay file ("-": standard input); raises ReplayError with one line."""
     try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-    except OSError as e:
-        raise ReplayError(f"cannot read '{name}': {e.strerror or e}") from None
-    except UnicodeDecodeError:
-        raise ReplayError(f"{name}: not a UTF-8 text file") from None
-    return parse_replay(text, name)
+        text = read_text(path, MAX_REPLAY_BYTES, "replay")
+    except FileError as e:
+        raise ReplayError(str(e)) from None
+    return parse_replay(text, "stdin" if os.fspath(path) == "-" else os.fspath(path))
 
 
 def replay(data: dict) -> list[dict]:
