@@ -31,6 +31,7 @@ from termpool.physics.engine import Engine
 from termpool.scene import Scene, SceneError, load_scene
 
 MAX_SHOT_TIME = 600.0  # simulated seconds: a shot that runs longer is a broken record
+DT_RANGE = (1e-4, 1.0)  # s: the fixed step a record may give (the game's is 1/60)
 NEVER_STOP = ("mu_slide", "mu_roll")  # with either at 0 a rolling ball never stops
 RECORD_KEYS = ("n", "frame", "player", "scene", "shot", "dt", "time", "steps", "events",
                "final", "outcome")
@@ -162,6 +163,9 @@ def _check_record(rec: Any, path: str) -> tuple[Scene, float]:
     dt = rec["dt"]
     if not _is_number(dt) or dt <= 0:
         raise _fail(f"{path}.dt", "must be a positive number of seconds")
+    if not DT_RANGE[0] <= dt <= DT_RANGE[1]:
+        raise _fail(f"{path}.dt", f"must be from {DT_RANGE[0]:g} to {DT_RANGE[1]:g} seconds, "
+                                  f"not {dt:g}")
     if not _is_number(rec["time"]):
         raise _fail(f"{path}.time", "must be a finite number")
     for k in ("events", "final"):
@@ -217,6 +221,13 @@ def parse_replay(text: str, where: str = "replay") -> dict:
         raise ReplayError(f"{where}: missing key 'shots'")
     if not isinstance(data["shots"], list):
         raise ReplayError(f"{where}: shots: must be a list")
+    match = data.get("match", {})
+    if not isinstance(match, dict):
+        raise ReplayError(f"{where}: match: must be an object")
+    names = match.get("players", ["", ""])
+    if not (isinstance(names, list) and len(names) == 2 and all(isinstance(n, str)
+                                                                for n in names)):
+        raise ReplayError(f"{where}: match.players: must be a list of two names (strings)")
     return data
 
 
