@@ -14,7 +14,8 @@ import sys
 import time
 from typing import Any, NoReturn
 
-PROG = "termpool"
+from termpool.text import PROG, say
+
 METHODS = ("fixed", "event")
 
 
@@ -27,7 +28,7 @@ class _Parser(argparse.ArgumentParser):
     """argparse, but errors are one `termpool: ...` line on stderr and exit status 2."""
 
     def error(self, message: str) -> NoReturn:
-        _say(" ".join(message.split()))
+        say(" ".join(message.split()))
         raise _Exit(2)
 
     def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
@@ -36,12 +37,8 @@ class _Parser(argparse.ArgumentParser):
         raise _Exit(status)
 
 
-def _say(message: str) -> None:
-    sys.stderr.write(f"{PROG}: {' '.join(str(message).split())}\n")
-
-
 def _fail(message: str) -> int:
-    _say(message)
+    say(message)
     return 2
 
 
@@ -317,11 +314,10 @@ def _replay(args: argparse.Namespace) -> int:
         shots = replay(data)
     except ReplayError as e:
         return _fail(str(e))
+    from termpool.text import shown
+
     bad = [s for s in shots if not s["ok"]]
-    players = (data.get("match") or {}).get("players") if isinstance(data.get("match"),
-                                                                      dict) else None
-    if not (isinstance(players, list) and len(players) == 2):
-        players = None
+    players = data.get("match", {}).get("players")  # checked by read_replay
     if args.json:
         sys.stdout.write(json.dumps({"identical": not bad, "shots": shots}, indent=1) + "\n")
     else:
@@ -335,9 +331,10 @@ def _replay(args: argparse.Namespace) -> int:
                     from termpool.rules.words import in_names
 
                     reason = in_names(reason, players)
-                sys.stdout.write(f"{head}identical, {s['events']} events; {reason}\n")
+                sys.stdout.write(shown(f"{head}identical, {s['events']} events; {reason}")
+                                 + "\n")
             else:
-                sys.stdout.write(f"{head}DIFFERS: {'; '.join(s['differences'])}\n")
+                sys.stdout.write(shown(f"{head}DIFFERS: {'; '.join(s['differences'])}") + "\n")
         n = len(shots)
         verdict = "all identical" if not bad else f"{len(bad)} differ"
         sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")
