@@ -30,7 +30,11 @@ MAX_DEPTH = 64  # the deepest file termpool writes nests 8 levels
 
 
 class FileError(ValueError):
-    """A file that cannot be read, parsed or written; the message is one line."""
+    """A file that cannot be read, parsed or written; the message is one line. `unreadable`:
+    it could not be opened or read (`missing`: it does not exist)."""
+
+    unreadable = False
+    missing = False
 
 
 def _size(n: int) -> str:
@@ -52,7 +56,9 @@ def read_text(path: str | os.PathLike, limit: int, what: str = "file") -> str:
                     raise FileError(too_big)
                 data = f.read(limit + 1)
     except OSError as e:
-        raise FileError(f"cannot read {what} '{name}': {e.strerror or e}") from None
+        err = FileError(f"cannot read {what} '{name}': {e.strerror or e}")
+        err.unreadable, err.missing = True, isinstance(e, FileNotFoundError)
+        raise err from None
     if len(data) > limit:
         raise FileError(too_big)
     try:
