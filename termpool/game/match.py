@@ -248,6 +248,12 @@ class Match:
         self._run = run
         return run
 
+    def abandon(self, run: ShotRun) -> None:
+        """Forget a shot begun but never finished (the program ends mid-shot and cannot play
+        it out): the match stays as it was before it, ready to save."""
+        if run is self._run:
+            self._run = None
+
     def scene_dict(self, state: State | None = None) -> dict:
         """The table now as a scene (`load_scene` form, balls at rest), with the game block
         of `state` (default: the match's state)."""

@@ -96,6 +96,7 @@ class App:
         self._acc = 0.0
         self.fast = False
         self.message: list[tuple[str, str]] = []
+        self.notes: list[str] = []  # for the terminal after the game (see `record`)
         self._geom = None  # (cols, rows, layout, view)
         self._aim_cache = None
         if self.opts.mode is None:
@@ -664,7 +665,18 @@ class App:
         return m.pos, state
 
     def record(self):
-        """The match to save (--record): this one if it has shots, else the last that had."""
+        """The match to save (--record): this one if it has shots, else the last that had.
+        A shot still rolling (the game was left mid-shot) is played out in simulation first;
+        if even that fails, the match is kept as it stood before the shot, and `notes` says
+        so."""
+        if self.run is not None and self.run.outcome is None:
+            try:
+                self.run.finish()
+            except Exception as e:  # whatever went wrong, the shots before it are kept
+                self.match.abandon(self.run)
+                self.notes.append(f"the last shot could not be played out ({e}); the record "
+                                  "ends with the shot before it")
+            self.run = None
         if self.match is not None and self.match.history:
             return self.match
         return self.played[-1] if self.played else self.match
