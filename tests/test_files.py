@@ -11,6 +11,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
+from unprivileged import as_nobody
 
 from termpool import files
 from termpool.files import FileError, parse_json, read_text, write_atomic, write_problem
@@ -118,26 +119,6 @@ def test_write_problem_names_what_is_wrong(tmp_path) -> None:
     assert write_problem("/dev/null", force=True) == "exists and is not a regular file"
     assert write_problem("/proc/x.json") is not None  # nobody creates files there
     assert os.listdir(tmp_path) == ["f"]
-
-
-def as_nobody(fn):
-    """fn() in a child process that runs as an unprivileged user (root writes anywhere)."""
-    r, w = os.pipe()
-    pid = os.fork()
-    if pid == 0:  # the child: the code is already loaded, so no file needs reading
-        try:
-            os.close(r)
-            if os.geteuid() == 0:
-                os.setgid(65534)
-                os.setuid(65534)
-            os.write(w, repr(fn()).encode())
-        finally:
-            os._exit(0)
-    os.close(w)
-    with os.fdopen(r) as f:
-        out = f.read()
-    os.waitpid(pid, 0)
-    return out
 
 
 def test_write_problem_without_permission() -> None:

@@ -209,6 +209,16 @@ def test_play_malformed_keymap_is_one_line(capsys, tmp_path, keys, conf, words) 
     assert "\x1b" not in err and "\x07" not in err
 
 
+def test_play_with_an_unreadable_config_warns_and_plays(capsys, tmp_path, keys,
+                                                       monkeypatch) -> None:
+    (tmp_path / "xdg" / "termpool" / "keys.conf").mkdir(parents=True)
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "xdg"))
+    rc, out, err = main(capsys, *PLAY, "--keys", keys)
+    assert rc == 0 and "Space shoot" in out
+    assert err.count("\n") == 1 and err.startswith("termpool: warning: cannot read key map ")
+    assert err.endswith("; playing with the default keys\n")
+
+
 def test_play_keymap_from_dev_zero(capsys, keys) -> None:
     rc, _, err = main(capsys, *PLAY, "--keys", keys, "--keymap", "/dev/zero")
     one_line(rc, err, "/dev/zero: larger than 64 KiB")
