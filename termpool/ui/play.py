@@ -121,7 +121,9 @@ def _check_record(args: argparse.Namespace) -> None:
 def _signals_held():
     """Interrupts and termination signals wait until the block ends: the record is saved
     whole, then they act."""
-    held = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT}
+    from termpool.ui.term import STOP_SIGNALS
+
+    held = {signal.SIGINT, *STOP_SIGNALS}
     old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
     try:
         yield
@@ -176,13 +178,12 @@ def save_record(app, path: str | None, force: bool = False) -> int:
 def _stoppable():
     """SIGTERM, SIGHUP and SIGQUIT end a headless run the way Ctrl-C does (an exception), so
     the record is still saved."""
-    from termpool.ui.term import Stop
+    from termpool.ui.term import STOP_SIGNALS, Stop
 
     def stop(signum, frame):
         raise Stop(signum)
 
-    sigs = (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
-    old = {s: signal.signal(s, stop) for s in sigs}
+    old = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
     try:
         yield
     finally:
