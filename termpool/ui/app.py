@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from termpool.physics.cue import clamp_tip
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
@@ -30,7 +31,6 @@ MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
-SPIN_MAX = 0.5  # beyond this the cue strike is a miscue
 CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
 # computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
 CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
@@ -219,9 +219,18 @@ class App:
                push_out: bool = False) -> None:
         from termpool.game import Shot
 
+        side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
         shot = Shot(speed=speed, angle=angle, side=side, top=top, called=called,
                     push_out=push_out)
-        self.run = self.match.begin(shot)
+        try:
+            self.run = self.match.begin(shot)
+        except ValueError as e:  # a shot the match refuses: say why, and let the shooter
+            # aim again (the computer's shots are checked the same way; should one be refused,
+            # the shot is left to the keys rather than to a loop of refusals)
+            self.message = [(f"that shot cannot be played: {e}", "foul")]
+            self.phase = "aim"
+            self.dirty = True
+            return
         self.frames = self._simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
         self.fast = False  # fast-forward is for one shot
@@ -506,11 +515,10 @@ class App:
         elif action in ("spin_up", "spin_down", "spin_left", "spin_right"):
             dx = {"spin_left": -1, "spin_right": 1}.get(action, 0)
             dy = {"spin_down": -1, "spin_up": 1}.get(action, 0)
-            s, tp = self.side + dx * SPIN_STEP, self.top + dy * SPIN_STEP
-            r = math.hypot(s, tp)
-            if r > SPIN_MAX + 1e-9:  # keep the tip on the ball: slide along the miscue limit
-                s, tp = s * SPIN_MAX / r, tp * SPIN_MAX / r
-            self.side, self.top = round(s, 6), round(tp, 6)
+            # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue
+            # limit the tip slides along it.
+            self.side, self.top = clamp_tip(round(self.side + dx * SPIN_STEP, 6),
+                                            round(self.top + dy * SPIN_STEP, 6))
         elif action == "spin_reset":
             self.side = self.top = 0.0
         elif action == "cancel":
