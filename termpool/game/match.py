@@ -248,6 +248,11 @@ class Match:
         self._run = run
         return run
 
+    @property
+    def running(self) -> ShotRun | None:
+        """The shot begun and not yet finished, if any."""
+        return self._run
+
     def abandon(self, run: ShotRun) -> None:
         """Forget a shot begun but never finished (the program ends mid-shot and cannot play
         it out): the match stays as it was before it, ready to save."""

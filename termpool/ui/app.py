@@ -23,6 +23,7 @@ from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
 from termpool.ui.table_view import TableView, layout
+from termpool.ui.term import signals_held
 
 DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at any dt)
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
@@ -271,7 +272,8 @@ class App:
     def _finish_shot(self) -> None:
         m = self.match
         before = int(m.on_table.sum())
-        out = self.run.finish()
+        with signals_held():  # judged and recorded whole, whatever interrupts
+            out = self.run.finish()
         reason = self.names(out.reason)
         if out.foul:
             self.message = [(f"Foul: {reason}", "foul")]
@@ -674,20 +676,25 @@ class App:
 
     def record(self):
         """The match to save (--record): this one if it has shots, else the last that had.
-        A shot still rolling (the game was left mid-shot) is played out in simulation first;
-        if even that fails, the match is kept as it stood before the shot, and `notes` says
-        so."""
-        if self.run is not None and self.run.outcome is None:
+        A shot still rolling (the game was left mid-shot) is played out first: simulated again
+        from its start, since an interrupt may have stopped its engine between two updates
+        (the same steps give the same shot). Should even that fail, the match is kept as it
+        stood before the shot, and `notes` says so."""
+        m = self.match
+        if m is not None and m.running is not None:
+            shot = m.running.shot
+            m.abandon(m.running)
             try:
-                self.run.finish()
+                m.begin(shot).finish()
             except Exception as e:  # whatever went wrong, the shots before it are kept
-                self.match.abandon(self.run)
+                if m.running is not None:
+                    m.abandon(m.running)
                 self.notes.append(f"the last shot could not be played out ({e}); the record "
                                   "ends with the shot before it")
             self.run = None
-        if self.match is not None and self.match.history:
-            return self.match
-        return self.played[-1] if self.played else self.match
+        if m is not None and m.history:
+            return m
+        return self.played[-1] if self.played else m
 
 
 OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",

@@ -117,30 +117,17 @@ def _check_record(args: argparse.Namespace) -> None:
             raise PlayError(f"--record: cannot write '{args.record}': {why}")
 
 
-@contextmanager
-def _signals_held():
-    """Interrupts and termination signals wait until the block ends: the record is saved
-    whole, then they act."""
-    from termpool.ui.term import STOP_SIGNALS
-
-    held = {signal.SIGINT, *STOP_SIGNALS}
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
-
-
 def save_record(app, path: str | None, force: bool = False) -> int:
     """Write the match (--record) after play, however it ended; a shot still rolling is played
     out in simulation first. Says where the record went. Returns 0, or 1 when it could not go
     to `path` (it then goes to a new file in the data directory, if it can)."""
     from termpool.files import write_atomic, write_fallback, write_problem
     from termpool.text import say
+    from termpool.ui.term import signals_held
 
     if not path:
         return 0
-    with _signals_held():
+    with signals_held():
         match = app.record()
         for note in app.notes:
             say(note)

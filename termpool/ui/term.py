@@ -27,6 +27,7 @@ import termios
 import time
 import tty
 from collections.abc import Callable
+from contextlib import contextmanager
 from typing import Protocol
 
 from termpool.ui.keys import Mouse
@@ -59,6 +60,17 @@ class App(Protocol):
 
 
 STOP_SIGNALS = (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
+
+
+@contextmanager
+def signals_held():
+    """Ctrl-C and STOP_SIGNALS wait until the block ends, then act: what it does is done
+    whole (a shot judged and recorded, a record saved) whatever arrives meanwhile."""
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, *STOP_SIGNALS})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 class Stop(Exception):
