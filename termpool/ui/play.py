@@ -111,6 +111,8 @@ def _check_record(args: argparse.Namespace) -> None:
     """Before play: the --record file can be written (one line, status 2, if not)."""
     from termpool.files import write_problem
 
+    if args.record == "":
+        raise PlayError("--record: needs a file name ('-' for stdout)")
     if args.record and args.record != "-":
         why = write_problem(args.record, force=args.force)
         if why:
