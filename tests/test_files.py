@@ -90,6 +90,8 @@ def test_write_atomic_writes_and_replaces_keeping_the_mode(tmp_path) -> None:
     assert p.read_text() == "two"
     assert stat.S_IMODE(p.stat().st_mode) == 0o640
     assert sorted(os.listdir(tmp_path)) == ["rec.json"]  # no temporary file left
+    write_atomic(p, b"\x89PNG\x00\xff")  # bytes as they are
+    assert p.read_bytes() == b"\x89PNG\x00\xff"
 
 
 def test_write_atomic_leaves_the_old_file_whole_when_the_write_fails(tmp_path,
