@@ -6,7 +6,6 @@ See the package docstring (`termpool.game`) for the API and the choices made.
 from __future__ import annotations
 
 import copy
-import math
 from dataclasses import replace
 from typing import Any
 
@@ -64,8 +63,9 @@ class Match:
                              f"not {eight_break!r}")
         if theme not in THEMES:
             raise ValueError(f"theme: must be one of {', '.join(THEMES)}, not {theme!r}")
-        if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
-            raise ValueError("dt: must be a positive number of seconds")
+        if not (isinstance(dt, float) and record.DT_RANGE[0] <= dt <= record.DT_RANGE[1]):
+            raise ValueError(f"dt: must be from {record.DT_RANGE[0]:g} to "
+                             f"{record.DT_RANGE[1]:g} seconds (what a replay accepts)")
         self.mode, self.table, self.physics = mode, table, physics
         self.frames, self.players, self.seed = frames, tuple(players), seed
         self.three_foul, self.theme, self.dt = bool(three_foul), theme, dt
