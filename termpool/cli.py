@@ -42,14 +42,23 @@ def _fail(message: str) -> int:
     return 2
 
 
-def _positive(what: str):
+# What `sim` may be asked for: a step a replay would take, an hour of play at most, sampled at
+# up to 1 kHz (beyond these a run only costs unbounded time or output).
+DT_RANGE = (1e-4, 1.0)  # s: a fixed step, here and in a replay (the game's is 1/60)
+MAX_DURATION = 3600.0  # s
+MAX_SAMPLE_HZ = 1000.0
+
+
+def _positive(what: str, lo: float = 0.0, hi: float = math.inf):
     def parse(text: str) -> float:
         try:
             val = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"not a number: '{text}'") from None
+            raise argparse.ArgumentTypeError(f"not a number: '{text[:24]}'") from None
         if not math.isfinite(val) or val <= 0:
-            raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text}'")
+            raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text[:24]}'")
+        if not lo <= val <= hi:
+            raise argparse.ArgumentTypeError(f"must be from {lo:g} to {hi:g}, not {val:g}")
         return val
 
     parse.__name__ = what
@@ -90,13 +99,13 @@ def _parser() -> _Parser:
     s.add_argument("scene", metavar="SCENE", help="scene file (JSON), or - for stdin")
     s.add_argument(
         "--dt",
-        type=_positive("--dt"),
+        type=_positive("--dt", *DT_RANGE),
         default=1 / 60,
         help="fixed time step in seconds (default 1/60; ignored by --method event)",
     )
     s.add_argument(
         "--duration",
-        type=_positive("--duration"),
+        type=_positive("--duration", hi=MAX_DURATION),
         default=None,
         help="stop after this many simulated seconds (default: run until all balls are at rest)",
     )
@@ -108,7 +117,7 @@ def _parser() -> _Parser:
     )
     s.add_argument(
         "--sample-hz",
-        type=_positive("--sample-hz"),
+        type=_positive("--sample-hz", hi=MAX_SAMPLE_HZ),
         default=None,
         metavar="N",
         help="also output ball positions sampled N times per simulated second",

@@ -26,12 +26,12 @@ import os
 import struct
 from typing import Any
 
+from termpool.cli import DT_RANGE
 from termpool.files import MAX_REPLAY_BYTES, FileError, parse_json, read_text
 from termpool.physics.engine import Engine
 from termpool.scene import Scene, SceneError, load_scene
 
 MAX_SHOT_TIME = 600.0  # simulated seconds: a shot that runs longer is a broken record
-DT_RANGE = (1e-4, 1.0)  # s: the fixed step a record may give (the game's is 1/60)
 NEVER_STOP = ("mu_slide", "mu_roll")  # with either at 0 a rolling ball never stops
 RECORD_KEYS = ("n", "frame", "player", "scene", "shot", "dt", "time", "steps", "events",
                "final", "outcome")
