@@ -258,6 +258,16 @@ def test_ctrl_backslash_restores_the_terminal(game) -> None:
     assert b"Traceback" not in g.raw and b"core dumped" not in g.raw
 
 
+def test_kitty_terminal_ctrl_backslash_quits_like_sigquit(game) -> None:
+    # With all keys reported as escapes, Ctrl-\ is a key (CSI 92;5u), not a signal.
+    g = game("play", "--mode", "practice", cols=100, rows=32, kitty=True)
+    assert g.wait_for("You to break"), g.text()
+    g.pump(0.5)
+    g.send("\x1b[92;5u")
+    assert g.wait() == 128 + 3
+    assert restored(g.raw) and cooked(g.fd) and b"\x1b[<u" in g.raw
+
+
 def flow_control(fd: int) -> bool:
     return bool(termios.tcgetattr(fd)[0] & termios.IXON)
 
