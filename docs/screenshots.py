@@ -17,6 +17,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from termpool.files import write_atomic  # noqa: E402
 from termpool.ui.app import App, Options  # noqa: E402
 from termpool.ui.headless import play  # noqa: E402
 from termpool.ui.keys import parse_script  # noqa: E402
@@ -36,8 +37,8 @@ def _png(rgb: np.ndarray, path: Path) -> None:
         return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", crc)
 
     head = struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)
-    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", head)
-                     + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    write_atomic(path, b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", head)
+                 + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 def _colour(c: str, default: tuple[int, int, int]) -> tuple[int, int, int]:
@@ -73,7 +74,7 @@ def main() -> None:
     for cols, rows in SIZES:
         opts = dict(mode="8ball", opponent="human")
         text = play(App(Options(colors="mono", **opts)), parse_script(SCRIPT), cols, rows)
-        (OUT / f"{cols}x{rows}.txt").write_text(text + "\n")
+        write_atomic(OUT / f"{cols}x{rows}.txt", text + "\n")
         frames: list[str] = []
         play(App(Options(colors="truecolor", **opts)), parse_script(SCRIPT), cols, rows, frames)
         _png(_image(frames, cols, rows), OUT / f"{cols}x{rows}.png")

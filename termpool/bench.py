@@ -39,7 +39,8 @@ from fractions import Fraction
 from typing import Any, NoReturn
 
 from termpool import cli
-from termpool.cli import _Exit, _say
+from termpool.cli import _Exit
+from termpool.text import say as _say
 
 PROG = "termpool bench"
 

@@ -14,7 +14,8 @@ import sys
 import time
 from typing import Any, NoReturn
 
-PROG = "termpool"
+from termpool.text import PROG, say
+
 METHODS = ("fixed", "event")
 
 
@@ -27,7 +28,7 @@ class _Parser(argparse.ArgumentParser):
     """argparse, but errors are one `termpool: ...` line on stderr and exit status 2."""
 
     def error(self, message: str) -> NoReturn:
-        _say(" ".join(message.split()))
+        say(" ".join(message.split()))
         raise _Exit(2)
 
     def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
@@ -36,23 +37,28 @@ class _Parser(argparse.ArgumentParser):
         raise _Exit(status)
 
 
-def _say(message: str) -> None:
-    sys.stderr.write(f"{PROG}: {' '.join(str(message).split())}\n")
-
-
 def _fail(message: str) -> int:
-    _say(message)
+    say(message)
     return 2
 
 
-def _positive(what: str):
+# What `sim` may be asked for: a step a replay would take, an hour of play at most, sampled at
+# up to 1 kHz (beyond these a run only costs unbounded time or output).
+DT_RANGE = (1e-4, 1.0)  # s: a fixed step, here and in a replay (the game's is 1/60)
+MAX_DURATION = 3600.0  # s
+MAX_SAMPLE_HZ = 1000.0
+
+
+def _positive(what: str, lo: float = 0.0, hi: float = math.inf):
     def parse(text: str) -> float:
         try:
             val = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"not a number: '{text}'") from None
+            raise argparse.ArgumentTypeError(f"not a number: '{text[:24]}'") from None
         if not math.isfinite(val) or val <= 0:
-            raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text}'")
+            raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text[:24]}'")
+        if not lo <= val <= hi:
+            raise argparse.ArgumentTypeError(f"must be from {lo:g} to {hi:g}, not {val:g}")
         return val
 
     parse.__name__ = what
@@ -93,13 +99,13 @@ def _parser() -> _Parser:
     s.add_argument("scene", metavar="SCENE", help="scene file (JSON), or - for stdin")
     s.add_argument(
         "--dt",
-        type=_positive("--dt"),
+        type=_positive("--dt", *DT_RANGE),
         default=1 / 60,
         help="fixed time step in seconds (default 1/60; ignored by --method event)",
     )
     s.add_argument(
         "--duration",
-        type=_positive("--duration"),
+        type=_positive("--duration", hi=MAX_DURATION),
         default=None,
         help="stop after this many simulated seconds (default: run until all balls are at rest)",
     )
@@ -111,7 +117,7 @@ def _parser() -> _Parser:
     )
     s.add_argument(
         "--sample-hz",
-        type=_positive("--sample-hz"),
+        type=_positive("--sample-hz", hi=MAX_SAMPLE_HZ),
         default=None,
         metavar="N",
         help="also output ball positions sampled N times per simulated second",
@@ -261,10 +267,10 @@ def dump_json(result: dict) -> str:
 
 
 def _sim(args: argparse.Namespace) -> int:
-    from termpool.scene import SceneError, load_scene, loads_scene
+    from termpool.scene import SceneError, load_scene
 
     try:
-        scene = loads_scene(sys.stdin.read()) if args.scene == "-" else load_scene(args.scene)
+        scene = load_scene(args.scene)
     except SceneError as e:
         return _fail(str(e))
     from termpool.physics.engine import Engine
@@ -310,19 +316,17 @@ def _sim(args: argparse.Namespace) -> int:
 
 
 def _replay(args: argparse.Namespace) -> int:
-    from termpool.game.record import ReplayError, parse_replay, read_replay, replay
+    from termpool.game.record import ReplayError, read_replay, replay
 
     try:
-        data = parse_replay(sys.stdin.read(), "stdin") if args.file == "-" else read_replay(
-            args.file)
+        data = read_replay(args.file)
         shots = replay(data)
     except ReplayError as e:
         return _fail(str(e))
+    from termpool.text import shown
+
     bad = [s for s in shots if not s["ok"]]
-    players = (data.get("match") or {}).get("players") if isinstance(data.get("match"),
-                                                                      dict) else None
-    if not (isinstance(players, list) and len(players) == 2):
-        players = None
+    players = data.get("match", {}).get("players")  # checked by read_replay
     if args.json:
         sys.stdout.write(json.dumps({"identical": not bad, "shots": shots}, indent=1) + "\n")
     else:
@@ -336,9 +340,10 @@ def _replay(args: argparse.Namespace) -> int:
                     from termpool.rules.words import in_names
 
                     reason = in_names(reason, players)
-                sys.stdout.write(f"{head}identical, {s['events']} events; {reason}\n")
+                sys.stdout.write(shown(f"{head}identical, {s['events']} events; {reason}")
+                                 + "\n")
             else:
-                sys.stdout.write(f"{head}DIFFERS: {'; '.join(s['differences'])}\n")
+                sys.stdout.write(shown(f"{head}DIFFERS: {'; '.join(s['differences'])}") + "\n")
         n = len(shots)
         verdict = "all identical" if not bad else f"{len(bad)} differ"
         sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")

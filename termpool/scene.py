@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from termpool.files import MAX_SCENE_BYTES, FileError, parse_json, read_text
 from termpool.physics.cue import strike
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.table import PRESETS, Table
@@ -39,6 +40,30 @@ GAME_BALLS = {
 }
 GROUP_NAMES = ("solids", "stripes")
 OVERLAP_TOL = 1e-6
+
+# Limits on what a scene may hold (docs/scenes.md lists them): values beyond them mean nothing
+# on a pool table, and the extreme ones (a radius of 1e-200, a speed of 1e308) only overflow or
+# ask the engine for unbounded work. Lengths in m, angles in degrees.
+MAX_BALLS = 1000  # the engine keeps N x N pair arrays: about 190 MB at 1000 balls
+RADIUS_RANGE = (0.001, 0.5)  # m
+MASS_RANGE = (0.001, 100.0)  # kg
+MAX_SPEED = 25.0  # m/s, a ball's or a shot's (a hard break is about 11 m/s)
+MAX_SURFACE_SPEED = 2 * MAX_SPEED  # m/s, a ball's radius times its spin; a tip offset of
+# 0.5 R at MAX_SPEED gives 1.25 MAX_SPEED
+TABLE_RANGES = {
+    "length": (0.1, 10.0), "width": (0.1, 10.0),
+    "corner_mouth": (0.001, 1.0), "side_mouth": (0.001, 1.0), "jaw_length": (0.001, 1.0),
+    "corner_hole_radius": (0.001, 1.0), "side_hole_radius": (0.001, 1.0),
+    "hole_depth": (0.0, 1.0), "corner_jaw_angle": (1.0, 180.0), "side_jaw_angle": (1.0, 180.0),
+}
+# Physics values: (low, high); the friction coefficients in FRICTIONLESS_OK may also be 0.
+PHYSICS_RANGES = {
+    "mu_slide": (1e-4, 1.0), "mu_roll": (1e-4, 1.0), "mu_spin": (1e-4, 1.0),
+    "mu_cushion": (0.0, 1.0), "e_ball": (0.0, 1.0), "e_cushion": (0.0, 1.0),
+    "cushion_height": (0.0, 1.0), "g": (0.1, 100.0), "v_inelastic": (0.0, 1.0),
+}
+FRICTIONLESS_OK = ("mu_slide", "mu_roll", "mu_spin")
+PHYSICS_UNITS = {"g": "m/s^2", "cushion_height": "m", "v_inelastic": "m/s"}
 
 # Rows from the apex (on the foot spot) towards the foot rail; within a row, ids by increasing y.
 RACK_ROWS = {
@@ -85,17 +110,32 @@ def _check_keys(d: Any, allowed: tuple[str, ...], path: str) -> None:
             raise SceneError(f"{path}: unknown key '{key}' (allowed: {', '.join(allowed)})")
 
 
-def _number(val: Any, path: str, *, positive: bool = False, nonneg: bool = False) -> float:
+def _number(val: Any, path: str, *, positive: bool = False, nonneg: bool = False,
+            within: tuple[float, float] | None = None, unit: str = "") -> float:
     if isinstance(val, bool) or not isinstance(val, (int, float)):
         raise SceneError(f"{path}: must be a number, not {_fmt(val)}")
-    val = float(val)
+    try:
+        val = float(val)
+    except OverflowError:  # an integer beyond any float
+        val = math.inf
     if not math.isfinite(val):
         raise SceneError(f"{path}: must be finite")
     if positive and val <= 0:
         raise SceneError(f"{path}: must be positive")
     if nonneg and val < 0:
         raise SceneError(f"{path}: must not be negative")
+    if within is not None:
+        _within(val, within, path, unit)
     return val
+
+
+def _within(val: float, limits: tuple[float, float], path: str, unit: str = "") -> None:
+    lo, hi = limits
+    unit = f" {unit}" if unit else ""
+    if val < lo:
+        raise SceneError(f"{path}: must be at least {lo:g}{unit}, not {val:g}")
+    if val > hi:
+        raise SceneError(f"{path}: must be at most {hi:g}{unit}, not {val:g}")
 
 
 def _reject_duplicates(pairs: list[tuple[str, Any]]) -> dict:
@@ -109,13 +149,9 @@ def _reject_duplicates(pairs: list[tuple[str, Any]]) -> dict:
 
 def _parse_json(text: str, where: str) -> Any:
     try:
-        return json.loads(text, object_pairs_hook=_reject_duplicates)
-    except json.JSONDecodeError as e:
-        raise SceneError(
-            f"{where}: invalid JSON at line {e.lineno} column {e.colno}: {e.msg}"
-        ) from None
-    except SceneError as e:
-        raise SceneError(f"{where}: invalid JSON: {e}") from None
+        return parse_json(text, where, _reject_duplicates)
+    except FileError as e:
+        raise SceneError(str(e)) from None
 
 
 # ------------------------------------------------------------------------------------ table
@@ -144,13 +180,10 @@ def _table(spec: Any) -> Table:
             if val not in ("standard", "none"):
                 raise SceneError("table.pockets: must be 'standard' or 'none'")
             kw[key] = val
-        elif key == "hole_depth":
-            kw[key] = _number(val, f"table.{key}", nonneg=True)
         else:
-            kw[key] = _number(val, f"table.{key}", positive=True)
-    for key in ("corner_jaw_angle", "side_jaw_angle"):
-        if key in kw and kw[key] > 180:
-            raise SceneError(f"table.{key}: must be at most 180 degrees")
+            unit = "degrees" if key.endswith("_angle") else "m"
+            kw[key] = _number(val, f"table.{key}", positive=key != "hole_depth",
+                              nonneg=key == "hole_depth", within=TABLE_RANGES.get(key), unit=unit)
     try:
         t = Table(**kw)
     except ValueError as e:
@@ -161,11 +194,38 @@ def _table(spec: Any) -> Table:
             raise SceneError("table: pocket mouths do not fit along the length")
         if 2 * a >= t.width:
             raise SceneError("table: corner pocket mouths do not fit across the width")
+        _check_pockets(t)
     return t
+
+
+def _check_pockets(t: Table) -> None:
+    """A ball between a pocket's jaws can leave only past their outer ends; when both ends lie
+    over the hole, it falls in first. Beyond that it would roll off the table."""
+    ends = t.seg_b[[k for k, kind in enumerate(t.seg_kind) if kind == "jaw"]]
+    for k, name in enumerate(t.hole_names):
+        far = np.hypot(*(ends[2 * k:2 * k + 2] - t.hole_c[k]).T).max() - t.hole_r[k]
+        if far > 0:
+            raise SceneError(
+                f"table: the jaws of the {name.replace('_', ' ')} pocket end {far:.3g} m "
+                "outside its hole, so a ball could pass between them and leave the table (the "
+                "hole must reach both jaw ends: change jaw_length, hole_depth or the hole's "
+                "radius)")
 
 
 def table_to_dict(t: Table) -> dict:
     return {name: getattr(t, name) for name in TABLE_FIELDS}
+
+
+def _check_physics(physics: Physics) -> None:
+    for key, limits in PHYSICS_RANGES.items():
+        val = getattr(physics, key)
+        if val == 0 and key in FRICTIONLESS_OK:
+            continue
+        try:
+            _within(val, limits, f"physics.{key}", PHYSICS_UNITS.get(key, ""))
+        except SceneError as e:
+            raise SceneError(f"{e} (or 0, frictionless)" if key in FRICTIONLESS_OK
+                             else str(e)) from None
 
 
 # ------------------------------------------------------------------------------------ balls
@@ -201,8 +261,17 @@ def _ball(spec: Any, i: int) -> dict:
     if not isinstance(w, list) or len(w) != 3:
         raise SceneError(f"{path}.w: must be a list of 3 numbers [wx, wy, wz]")
     b["w"] = [_number(v, f"{path}.w[{k}]") for k, v in enumerate(w)]
-    b["radius"] = _number(spec.get("radius", BALL_RADIUS), f"{path}.radius", positive=True)
-    b["mass"] = _number(spec.get("mass", BALL_MASS), f"{path}.mass", positive=True)
+    b["radius"] = _number(spec.get("radius", BALL_RADIUS), f"{path}.radius", positive=True,
+                          within=RADIUS_RANGE, unit="m")
+    b["mass"] = _number(spec.get("mass", BALL_MASS), f"{path}.mass", positive=True,
+                        within=MASS_RANGE, unit="kg")
+    if math.hypot(b["vx"], b["vy"]) > MAX_SPEED:
+        raise SceneError(f"{path} (id '{bid}'): speed {math.hypot(b['vx'], b['vy']):g} m/s "
+                         f"is above the limit of {MAX_SPEED:g} m/s")
+    surface = b["radius"] * math.hypot(*b["w"])
+    if surface > MAX_SURFACE_SPEED:
+        raise SceneError(f"{path} (id '{bid}'): spin w times the radius is {surface:g} m/s, "
+                         f"above the limit of {MAX_SURFACE_SPEED:g} m/s")
     return b
 
 
@@ -236,10 +305,30 @@ def _balls(spec: Any, table: Table) -> list[dict]:
         raise SceneError("balls: must be a list of balls or a rack name ('8ball' or '9ball')")
     if not spec:
         raise SceneError("balls: must list at least one ball")
+    if len(spec) > MAX_BALLS:
+        raise SceneError(f"balls: {len(spec)} balls is more than the limit of {MAX_BALLS}")
     return [_ball(b, i) for i, b in enumerate(spec)]
 
 
+def _first_overlaps(balls: list[dict]) -> dict[int, int]:
+    """{i: j} for the first ball i (in list order) that overlaps an earlier ball j, if any:
+    all pairs at once in numpy, a block of rows at a time (memory BLOCK x N)."""
+    n = len(balls)
+    pos = np.array([[b["x"], b["y"]] for b in balls], float)
+    rad = np.array([b["radius"] for b in balls], float)
+    block = 256
+    for start in range(0, n, block):
+        rows = np.arange(start, min(n, start + block))
+        d = np.hypot(pos[rows, None, 0] - pos[None, :, 0], pos[rows, None, 1] - pos[None, :, 1])
+        bad = (d < rad[rows, None] + rad[None, :] - OVERLAP_TOL) & (np.arange(n) < rows[:, None])
+        if bad.any():
+            r, j = np.argwhere(bad)[0]  # the first row, then its first earlier ball
+            return {int(rows[r]): int(j)}
+    return {}
+
+
 def _check_layout(balls: list[dict], table: Table, physics: Physics) -> None:
+    overlap = _first_overlaps(balls)
     seen: dict[str, int] = {}
     for i, b in enumerate(balls):
         tag = f"balls[{i}] (id '{b['id']}')"
@@ -254,11 +343,10 @@ def _check_layout(balls: list[dict], table: Table, physics: Physics) -> None:
                 f"[{reach:g}, {table.length - reach:g}] x [{reach:g}, {table.width - reach:g}] "
                 "(or in a pocket's mouth, clear of the jaws)"
             )
-        for j in range(i):
-            o = balls[j]
+        if i in overlap:
+            o = balls[overlap[i]]
             d = math.hypot(b["x"] - o["x"], b["y"] - o["y"])
-            if d < b["radius"] + o["radius"] - OVERLAP_TOL:
-                raise SceneError(f"{tag}: overlaps ball '{o['id']}' (centres {d:.6g} m apart)")
+            raise SceneError(f"{tag}: overlaps ball '{o['id']}' (centres {d:.6g} m apart)")
 
 
 # ------------------------------------------------------------------------------------- shot
@@ -272,7 +360,8 @@ def _apply_shot(spec: Any, balls: list[dict]) -> None:
         raise SceneError(f"shot.ball: no ball with id '{bid}' in the scene")
     if "speed" not in spec:
         raise SceneError("shot: missing key 'speed'")
-    speed = _number(spec["speed"], "shot.speed", nonneg=True)
+    speed = _number(spec["speed"], "shot.speed", nonneg=True, within=(0.0, MAX_SPEED),
+                    unit="m/s")
     angle = _number(spec.get("angle", 0.0), "shot.angle")
     side = _number(spec.get("side", 0.0), "shot.side")
     top = _number(spec.get("top", 0.0), "shot.top")
@@ -388,17 +477,15 @@ def _game(spec: Any, balls: list[dict], table: Table, shot: Any) -> dict:
 
 def _read(path: str | os.PathLike) -> dict:
     try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-    except OSError as e:
-        raise SceneError(f"cannot read scene '{os.fspath(path)}': {e.strerror or e}") from None
-    except UnicodeDecodeError:
-        raise SceneError(f"{os.fspath(path)}: not a UTF-8 text file") from None
-    return _parse_json(text, os.fspath(path))
+        text = read_text(path, MAX_SCENE_BYTES, "scene")
+    except FileError as e:
+        raise SceneError(str(e)) from None
+    return _parse_json(text, "stdin" if os.fspath(path) == "-" else os.fspath(path))
 
 
 def load_scene(src: str | os.PathLike | dict) -> Scene:
-    """Load and validate a scene from a JSON file path or an already parsed dict."""
+    """Load and validate a scene from a JSON file path ("-": standard input) or an already
+    parsed dict."""
     raw = src if isinstance(src, dict) else _read(src)
     if not isinstance(raw, dict):
         raise SceneError("scene: must be a JSON object")
@@ -414,6 +501,7 @@ def load_scene(src: str | os.PathLike | dict) -> Scene:
         physics = Physics.from_dict(phys_spec)
     except ValueError as e:
         raise SceneError(str(e)) from None
+    _check_physics(physics)
     balls = _balls(raw.get("balls", "8ball"), table)
     _check_layout(balls, table, physics)
     if "shot" in raw:

@@ -244,6 +244,10 @@ def test_bad_scenes_exit_2(tmp_path: Path) -> None:
         (["sim", "examples/break.json", "--dt", "inf"], "--dt"),
         (["sim", "examples/break.json", "--duration", "-1"], "--duration"),
         (["sim", "examples/break.json", "--sample-hz", "0"], "--sample-hz"),
+        (["sim", "examples/break.json", "--dt", "1e-300"], "--dt: must be from 0.0001 to 1"),
+        (["sim", "examples/break.json", "--duration", "1e9"], "--duration: must be from 0 to "
+                                                               "3600"),
+        (["sim", "examples/break.json", "--sample-hz", "1e300"], "--sample-hz: must be from 0"),
         (["sim", "examples/break.json", "--method", "rk4"], "--method"),
         (["sim", "examples/break.json", "--bogus"], "--bogus"),
         (["sim"], "SCENE"),

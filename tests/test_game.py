@@ -519,6 +519,8 @@ def test_take_back_and_rerack_only_in_practice() -> None:
         ({"three_foul": True}, "three_foul"),
         ({"theme": "neon"}, "theme"),
         ({"table": Table(pockets="none")}, "table"),
+        ({"dt": 1e-300}, "dt: must be from 0.0001 to 1 seconds"),  # no replay would take it
+        ({"dt": 2.0}, "dt: must be from 0.0001 to 1 seconds"),
     ],
 )
 def test_bad_settings(kw, words) -> None:

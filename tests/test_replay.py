@@ -185,6 +185,17 @@ MALFORMED = [
     (lambda d: shot0(d).pop("events"), "shots[0]: missing key 'events'"),
     (lambda d: shot0(d).update(dt=-0.1), "shots[0].dt: must be a positive number"),
     (lambda d: shot0(d).update(dt="1/60"), "shots[0].dt: must be a positive number"),
+    (lambda d: shot0(d).update(dt=1e-300), "shots[0].dt: must be from 0.0001 to 1 seconds, "
+                                           "not 1e-300"),
+    (lambda d: shot0(d).update(dt=5.0), "shots[0].dt: must be from 0.0001 to 1 seconds"),
+    (lambda d: d.update(match={"players": [1, 2]}), "match.players: must be a list of two"),
+    (lambda d: d["match"].update(players=["a", None]), "match.players: must be a list of two"),
+    (lambda d: d["match"].update(players="ab"), "match.players: must be a list of two"),
+    (lambda d: d.update(match=[]), "match: must be an object"),
+    (lambda d: shot0(d)["scene"]["balls"][0].update(radius=1e-200),
+     "shots[0].scene: balls[0].radius: must be at least 0.001 m"),
+    (lambda d: shot0(d)["shot"].update(speed=1e308), "shots[0].scene: shot.speed: must be at "
+                                                     "most 25 m/s"),
     (lambda d: shot0(d).update(n=1.5), "shots[0].n: must be a whole number"),
     (lambda d: shot0(d).update(time=None), "shots[0].time: must be a finite number"),
     (lambda d: shot0(d).update(events={}), "shots[0].events: must be a list"),
@@ -232,13 +243,14 @@ def test_not_utf8_exits_2(capsys, tmp_path) -> None:
     p = tmp_path / "bin.json"
     p.write_bytes(b"\xff\xfe\x00")
     rc, _, err = run_cli(capsys, str(p))
-    assert rc == 2 and "not a UTF-8 text file" in err
+    assert rc == 2 and "not UTF-8 text" in err
 
 
 def test_replay_from_stdin(saved, capsys, monkeypatch) -> None:
     import io
 
-    monkeypatch.setattr("sys.stdin", io.StringIO(json.dumps({"shots": saved["shots"][:1]})))
+    text = json.dumps({"shots": saved["shots"][:1]})
+    monkeypatch.setattr("sys.stdin", io.TextIOWrapper(io.BytesIO(text.encode())))
     rc, out, _ = run_cli(capsys, "-")
     assert rc == 0 and out.splitlines()[-1] == "1 shot: all identical"
 

@@ -157,6 +157,140 @@ def test_loads_scene_text() -> None:
         loads_scene("{balls}")
 
 
+# ---------------------------------------------------------------------------------- limits
+
+ONE = {"id": "cue", "x": 0.6, "y": 0.6}
+
+
+@pytest.mark.parametrize(
+    "scene, expected",
+    [
+        ({"balls": [{**ONE, "radius": 1e-200}]}, "balls[0].radius: must be at least 0.001 m, "
+                                                 "not 1e-200"),
+        ({"balls": [{**ONE, "radius": 0.6}]}, "balls[0].radius: must be at most 0.5 m"),
+        ({"balls": [{**ONE, "mass": 5e-324}]}, "balls[0].mass: must be at least 0.001 kg"),
+        ({"balls": [{**ONE, "mass": 1e-20}]}, "balls[0].mass: must be at least 0.001 kg"),
+        ({"balls": [{**ONE, "mass": 1e5}]}, "balls[0].mass: must be at most 100 kg"),
+        ({"balls": [{**ONE, "vx": 20.0, "vy": 20.0}]},
+         "balls[0] (id 'cue'): speed 28.2843 m/s is above the limit of 25 m/s"),
+        ({"balls": [{**ONE, "w": [0, 0, 1e308]}]},
+         "balls[0] (id 'cue'): spin w times the radius is 2.8575e+306 m/s, above the limit"),
+        ({"balls": [{**ONE, "x": 10 ** 400}]}, "balls[0].x: must be finite"),
+        (two_balls(speed=1e10), "shot.speed: must be at most 25 m/s, not 1e+10"),
+        (two_balls(speed=1e308), "shot.speed: must be at most 25 m/s"),
+        ({"physics": {"mu_slide": 5e-324}}, "physics.mu_slide: must be at least 0.0001, "
+                                            "not 4.94066e-324 (or 0, frictionless)"),
+        ({"physics": {"mu_slide": 1e15}}, "physics.mu_slide: must be at most 1"),
+        ({"physics": {"mu_slide": 1e308}}, "physics.mu_slide: must be at most 1"),
+        ({"physics": {"mu_roll": 2}}, "physics.mu_roll: must be at most 1"),
+        ({"physics": {"mu_spin": 1e-9}}, "physics.mu_spin: must be at least 0.0001"),
+        ({"physics": {"mu_cushion": 3}}, "physics.mu_cushion: must be at most 1"),
+        ({"physics": {"g": 5e-324}}, "physics.g: must be at least 0.1 m/s^2"),
+        ({"physics": {"g": 1e4}}, "physics.g: must be at most 100 m/s^2"),
+        ({"physics": {"cushion_height": 1e308}}, "physics.cushion_height: must be at most 1 m"),
+        ({"physics": {"v_inelastic": 50}}, "physics.v_inelastic: must be at most 1 m/s"),
+        ({"table": {"length": 1e-300}}, "table.length: must be at least 0.1 m, not 1e-300"),
+        ({"table": {"width": 1e300}}, "table.width: must be at most 10 m"),
+        ({"table": {"corner_mouth": 1e308}}, "table.corner_mouth: must be at most 1 m"),
+        ({"table": {"jaw_length": 1e-9}}, "table.jaw_length: must be at least 0.001 m"),
+        ({"table": {"side_hole_radius": 2}}, "table.side_hole_radius: must be at most 1 m"),
+        ({"table": {"hole_depth": 1e300}}, "table.hole_depth: must be at most 1 m"),
+        ({"table": {"side_jaw_angle": 1e-3}}, "table.side_jaw_angle: must be at least 1 degrees"),
+    ],
+)
+def test_values_without_physical_meaning_are_refused(scene: dict, expected: str) -> None:
+    assert error(scene) == expected or error(scene).startswith(expected)
+
+
+@pytest.mark.parametrize("ok", [
+    {"balls": [{**ONE, "radius": 0.001, "mass": 0.001}]},
+    {"balls": [{**ONE, "radius": 0.5, "mass": 100, "x": 1.0}]},
+    {"balls": [{**ONE, "vx": 25.0}]},
+    two_balls(speed=25.0, top=0.5),
+    {"physics": {"mu_slide": 0, "mu_roll": 0, "mu_spin": 0}},
+    {"physics": {"mu_slide": 1e-4, "mu_roll": 1, "g": 0.1, "e_cushion": 0}},
+    {"physics": {"g": 100, "mu_cushion": 1, "v_inelastic": 1, "cushion_height": 1}},
+    {"table": {"pockets": "none", "length": 0.1, "width": 0.1},
+     "balls": [{"x": 0.05, "y": 0.05, "radius": 0.01}]},
+    {"table": {"pockets": "none", "length": 10, "width": 10}, "balls": [ONE]},
+])
+def test_values_at_the_limits_load(ok: dict) -> None:
+    load_scene(ok)
+
+
+# The jaws end where the hole no longer lies under them: a ball that slips between them
+# must fall in before it passes their ends (found rolling off a table at (-1.24, 0.06)).
+LEAKY_POCKETS = [{"hole_depth": 0.1}, {"jaw_length": 0.017, "hole_depth": 0.03},
+                 {"jaw_length": 0.01}, {"jaw_length": 0.3}, {"corner_hole_radius": 0.03},
+                 {"side_jaw_angle": 170, "jaw_length": 0.2}]
+
+
+@pytest.mark.parametrize("table", LEAKY_POCKETS)
+def test_pockets_a_ball_could_pass_through_are_refused(table: dict) -> None:
+    msg = error({"table": table, "balls": [ONE]})
+    assert msg.startswith("table: the jaws of the ") and "outside its hole" in msg
+
+
+@pytest.mark.parametrize("table", [{"hole_depth": 0.019}, {"jaw_length": 0.1},
+                                   {"side_hole_radius": 0.09, "hole_depth": 0.015}])
+def test_a_ball_through_an_accepted_pocket_falls_in(table: dict) -> None:
+    from termpool.physics.engine import POCKETED, Engine
+
+    # The shot that left the table with hole_depth 0.1: at 42 degrees into the side pocket.
+    sc = load_scene({"table": table, "balls": [{"id": "cue", "x": 0.8984, "y": 0.9354}],
+                     "shot": {"speed": 4.0, "angle": 42.0}})
+    eng = Engine(sc.table, sc.physics, sc.pos, sc.vel, sc.w, sc.radius, sc.mass)
+    eng.run(1 / 60)
+    x, y = eng.pos[0, 0]
+    assert eng.state[0, 0] == POCKETED or sc.table.on_bed(x, y, R / 2)
+
+
+def test_every_preset_has_pockets_that_hold() -> None:
+    for name in ("7ft", "8ft", "9ft"):
+        load_scene({"table": name, "balls": "8ball"})
+        load_scene({"table": {"preset": name}, "balls": "9ball"})
+
+
+def test_more_balls_than_the_limit_is_one_line() -> None:
+    from termpool.scene import MAX_BALLS
+
+    balls = [{"x": 0.1, "y": 0.1}] * (MAX_BALLS + 1)
+    assert error({"balls": balls}) == f"balls: {MAX_BALLS + 1} balls is more than the limit " \
+                                      f"of {MAX_BALLS}"
+    assert error({"balls": balls * 10}).startswith(f"balls: {10 * (MAX_BALLS + 1)} balls")
+
+
+def grid(n: int, table: float = 10.0, gap: float = 0.1) -> list[dict]:
+    cols = int(table / gap) - 1
+    return [{"id": str(k), "x": gap * (1 + k % cols), "y": gap * (1 + k // cols)}
+            for k in range(n)]
+
+
+def test_the_limit_of_balls_loads() -> None:
+    from termpool.scene import MAX_BALLS
+
+    sc = load_scene({"table": {"pockets": "none", "length": 10, "width": 10},
+                     "balls": grid(MAX_BALLS)})
+    assert len(sc.ids) == MAX_BALLS
+
+
+def test_overlaps_are_found_in_list_order_among_many_balls() -> None:
+    from termpool.scene import MAX_BALLS
+
+    table = {"pockets": "none", "length": 10, "width": 10}
+    balls = grid(MAX_BALLS)
+    balls[900] = {**balls[900], "x": balls[10]["x"] + 2 * R - 1e-3, "y": balls[10]["y"]}
+    balls[700] = {**balls[700], "x": balls[650]["x"], "y": balls[650]["y"] + R}
+    assert error({"table": table, "balls": balls}).startswith(
+        "balls[700] (id '700'): overlaps ball '650' (centres 0.028575 m apart)")
+    # A ball found off the table before the first overlap is reported first, as before.
+    balls[600] = {**balls[600], "x": 20.0}
+    assert error({"table": table, "balls": balls}).startswith("balls[600] (id '600'): off the")
+    # Exactly touching (frozen) balls are not overlaps.
+    row = [{"id": str(k), "x": 1.0 + 2 * R * k, "y": 0.5} for k in range(15)]
+    assert len(load_scene({"balls": row}).ids) == 15
+
+
 # ---------------------------------------------------------------------------------- racks
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.ui.app import App, Options, power_to_speed
 from termpool.ui.controls import PowerCharge
 from termpool.ui.headless import play, screen_text
@@ -86,6 +87,51 @@ def test_spin_keys_set_the_tip_and_stay_inside_the_miscue_limit() -> None:
     s = shots(app)[0]
     assert np.hypot(s["side"], s["top"]) == pytest.approx(0.5)
     assert s["side"] < 0 < s["top"]
+
+
+def test_spin_then_shot_from_the_bug_report_is_played() -> None:
+    # The tip was clamped to 0.5 + 1e-9 and then rounded, which could land past the miscue
+    # limit: this script ended the game with "tip offset 0.50 R is a miscue".
+    app = app_for()
+    run_script(app, "enter w*5 a w space-hold 0.5 wait 1")
+    (s,) = shots(app)
+    assert math.hypot(s["side"], s["top"]) <= MISCUE_OFFSET and s["side"] < 0 < s["top"]
+
+
+def test_every_tip_the_spin_keys_reach_is_one_the_strike_takes() -> None:
+    """Every sequence of up to 10 presses of the four spin keys at once (the bug took 7):
+    walk the tip offsets they reach from the centre, press by press, and strike from each."""
+    app = app_for()
+    run_script(app, "enter")
+    seen = level = {(0.0, 0.0)}
+    for _ in range(10):
+        reached = set()
+        for tip in level:
+            for name in "wasd":
+                app.side, app.top = tip
+                app.key(Key(name), 0.0)
+                reached.add((app.side, app.top))
+        level = reached - seen
+        seen = seen | reached
+    for tip in seen:
+        strike(1.0, 0.0, *tip)  # raises for a miscue
+    assert len(seen) > 1000  # the grid inside the limit, and many points along it
+    assert max(math.hypot(*t) for t in seen) == pytest.approx(MISCUE_OFFSET, abs=1e-12)
+
+
+def test_a_shot_the_match_refuses_is_a_message_not_a_crash(monkeypatch) -> None:
+    from termpool.game import Match
+
+    app = app_for()
+    run_script(app, "enter")
+
+    def refuse(self, shot):
+        raise ValueError("called: name the pocket for the 8")
+
+    monkeypatch.setattr(Match, "begin", refuse)
+    run_script(app, "space-hold 0.5 wait 1")
+    assert app.phase == "aim" and not app.match.history
+    assert app.message[0][0] == "that shot cannot be played: called: name the pocket for the 8"
 
 
 def test_no_shot_while_balls_move() -> None:

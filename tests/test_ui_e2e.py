@@ -91,7 +91,8 @@ def test_first_frame_comes_before_any_terminal_query(game) -> None:
     assert g.wait() == 0
 
 
-@pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 128 + 15), (signal.SIGHUP, 128 + 1)])
+@pytest.mark.parametrize("sig, code", [(signal.SIGTERM, 128 + 15), (signal.SIGHUP, 128 + 1),
+                                       (signal.SIGQUIT, 128 + 3)])
 def test_signals_restore_the_terminal(game, sig, code) -> None:
     g = game("play", "--mode", "8ball", "--opponent", "human", cols=100, rows=32)
     assert g.wait_for("Player 1 to break"), g.text()
@@ -246,3 +247,69 @@ def test_a_key_right_after_a_frame_is_drawn_without_waiting_for_the_idle_timeout
         assert g.wait_for(f"keys seen {k}", timeout=10), g.text()
     g.send("x")
     assert g.wait(timeout=10) == 0
+
+
+def test_ctrl_backslash_restores_the_terminal(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert g.wait_for("You to break"), g.text()
+    g.send("\x1c")  # Ctrl-\: the terminal sends SIGQUIT
+    assert g.wait() == 128 + 3
+    assert restored(g.raw) and cooked(g.fd)
+    assert b"Traceback" not in g.raw and b"core dumped" not in g.raw
+
+
+def test_kitty_terminal_ctrl_backslash_quits_like_sigquit(game) -> None:
+    # With all keys reported as escapes, Ctrl-\ is a key (CSI 92;5u), not a signal.
+    g = game("play", "--mode", "practice", cols=100, rows=32, kitty=True)
+    assert g.wait_for("You to break"), g.text()
+    g.pump(0.5)
+    g.send("\x1b[92;5u")
+    assert g.wait() == 128 + 3
+    assert restored(g.raw) and cooked(g.fd) and b"\x1b[<u" in g.raw
+
+
+def flow_control(fd: int) -> bool:
+    return bool(termios.tcgetattr(fd)[0] & termios.IXON)
+
+
+def test_ctrl_s_cannot_freeze_the_game(game) -> None:
+    g = game("play", "--mode", "practice", cols=100, rows=32)
+    assert flow_control(g.fd)  # a terminal starts with it on
+    assert g.wait_for("You to break"), g.text()
+    assert not flow_control(g.fd)  # off while playing
+    g.send("\x13", pause=0.2)  # Ctrl-S: with flow control on, all output would stop here
+    g.send("h")
+    assert g.wait_for("this help", timeout=10), g.text()  # the help box is drawn
+    g.kill(signal.SIGTERM)
+    assert g.wait() == 128 + 15
+    assert restored(g.raw) and cooked(g.fd) and flow_control(g.fd)  # and back on at the end
+
+
+def break_shot(g) -> None:
+    """Practice: place the cue ball and break (the balls then roll for seconds)."""
+    assert g.wait_for("You to break"), g.text()
+    g.send("\r", pause=0.3)
+    g.send(" ", pause=1.2)  # no auto-repeat in a pty: the swinging meter starts ...
+    g.send(" ", pause=0.3)  # ... and the second tap strikes
+
+
+@pytest.mark.parametrize("how, code", [("qy", 0), ("\x03", 130), (signal.SIGTERM, 143),
+                                       (signal.SIGHUP, 129)])
+def test_leaving_while_the_balls_roll_keeps_the_record(game, tmp_path, capsys, how,
+                                                       code) -> None:
+    from termpool import cli
+
+    rec = tmp_path / "match.json"
+    g = game("play", "--mode", "practice", "--record", str(rec), cols=100, rows=32)
+    break_shot(g)
+    if isinstance(how, str):
+        for ch in how:
+            g.send(ch, pause=0.1)
+    else:
+        g.kill(how)
+    assert g.wait() == code
+    assert restored(g.raw)
+    assert b"Traceback" not in g.raw
+    assert f"record saved to {rec} (1 shot)".encode() in g.raw
+    assert cli.main(["replay", str(rec)]) == 0  # the shot, played out, replays identically
+    assert capsys.readouterr().out.endswith("1 shot: all identical\n")

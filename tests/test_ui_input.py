@@ -11,7 +11,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from termpool.ui.controls import AimControl, KeyMap, PowerCharge, load_keymap, parse_keymap
+from termpool.ui.controls import (
+    ACTIONS,
+    AimControl,
+    KeyMap,
+    PowerCharge,
+    load_keymap,
+    parse_keymap,
+)
 from termpool.ui.keys import (
     NAMED_KEYS,
     Key,
@@ -388,13 +395,87 @@ def test_keymap_constructor_errors():
         KeyMap({"shoot": ["x"], "quit": ["x"]})
 
 
+@pytest.mark.parametrize("text, line", [
+    ("pause = ctrl+c\n", 1), ("\nhelp = ctrl+z\n", 2), ("pause = ctrl+shift+c\n", 1),
+    ("pause = ctrl+alt+z\n", 1), ("quit = q, ctrl+\\\n", 1),
+])
+def test_keys_the_terminal_keeps_cannot_be_bound(text, line):
+    with pytest.raises(ValueError, match=f"^keys.conf line {line}: key '.*' cannot be bound: "
+                                         "Ctrl-"):
+        parse_keymap(text)
+    with pytest.raises(ValueError, match="cannot be bound"):
+        KeyMap({"pause": ["ctrl+c"]})
+
+
+@pytest.mark.parametrize("text, missing", [
+    ("shoot =\n", "shoot"), ("quit =\n", "quit"), ("confirm =\n", "confirm"),
+    ("pause = space\n", "shoot"),  # taken from shoot by another binding
+    ("pause = q\nhelp = enter\n", "confirm and quit"),
+    ("".join(f"{a} =\n" for a in ACTIONS), "shoot and confirm and quit"),
+])
+def test_a_map_that_leaves_no_way_to_play_or_leave_is_refused(text, missing):
+    with pytest.raises(ValueError, match=f"^keys.conf: no key left for {missing}: a game "):
+        parse_keymap(text)
+
+
+def test_the_required_actions_can_move_to_other_keys():
+    km = parse_keymap("shoot = enter\nconfirm = tab\nquit = ctrl+q\n")
+    assert km.action(K("enter")) == "shoot" and km.action(K("q", ctrl=True)) == "quit"
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path):
+    p = tmp_path / "keys.conf"
+    p.write_bytes("\ufeffpause = k\n".encode())
+    assert load_keymap(p).action(K("k")) == "pause"
+
+
+def test_an_unreadable_default_config_falls_back_with_a_warning(tmp_path):
+    xdg = tmp_path / "xdg"
+    (xdg / "termpool" / "keys.conf").mkdir(parents=True)  # a directory where the file goes
+    said = []
+    km = load_keymap(env={"XDG_CONFIG_HOME": str(xdg)}, warn=said.append)
+    assert km.action(K("space")) == "shoot"
+    assert len(said) == 1 and said[0].startswith("cannot read key map ")
+    assert said[0].endswith("Is a directory; playing with the default keys")
+    # An explicit --keymap that cannot be read stays an error.
+    with pytest.raises(ValueError, match="Is a directory"):
+        load_keymap(xdg / "termpool" / "keys.conf")
+
+
+def test_a_config_directory_that_cannot_be_entered_falls_back(tmp_path):
+    import ast
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    from unprivileged import as_nobody
+
+    xdg = Path(tempfile.mkdtemp(dir="/tmp"))
+    try:
+        (xdg / "termpool").mkdir(mode=0o700)
+        (xdg / "termpool" / "keys.conf").write_text("pause = k\n")
+        xdg.chmod(0o755)
+        (xdg / "termpool").chmod(0o000)
+
+        def load():
+            said = []
+            km = load_keymap(env={"XDG_CONFIG_HOME": str(xdg)}, warn=said.append)
+            return km.action(K("space")), said
+
+        action, said = ast.literal_eval(as_nobody(load))
+        assert action == "shoot" and len(said) == 1 and "Permission denied" in said[0]
+    finally:
+        (xdg / "termpool").chmod(0o700)
+        shutil.rmtree(xdg)
+
+
 def test_load_keymap_finds_the_config_file(tmp_path):
     xdg = tmp_path / "xdg"
     # missing file: the defaults
     km = load_keymap(env={"XDG_CONFIG_HOME": str(xdg)})
     assert km.action(K("space")) == "shoot"
     (xdg / "termpool").mkdir(parents=True)
-    (xdg / "termpool" / "keys.conf").write_text("shoot = enter\n")
+    (xdg / "termpool" / "keys.conf").write_text("shoot = enter\nconfirm = tab\n")
     assert load_keymap(env={"XDG_CONFIG_HOME": str(xdg)}).action(K("enter")) == "shoot"
     # no XDG_CONFIG_HOME: ~/.config
     home = tmp_path / "home"
@@ -408,18 +489,18 @@ def test_load_keymap_finds_the_config_file(tmp_path):
 
 
 def test_load_keymap_errors(tmp_path):
-    with pytest.raises(ValueError, match="^nope.conf: no such file$"):
+    with pytest.raises(ValueError, match="^cannot read key map '.*nope.conf': No such file"):
         load_keymap(tmp_path / "nope.conf")
     bad = tmp_path / "keys.conf"
     bad.write_bytes(b"shoot = \xff\n")
-    with pytest.raises(ValueError, match="^keys.conf: not UTF-8 text$"):
+    with pytest.raises(ValueError, match="^.*/keys.conf: not UTF-8 text$"):
         load_keymap(bad)
     bad.write_text("# ok\nshoot = spce\n")
     with pytest.raises(ValueError, match="^keys.conf line 2: unknown key name 'spce'$"):
         load_keymap(bad)
     d = tmp_path / "dir.conf"
     d.mkdir()
-    with pytest.raises(ValueError, match="^dir.conf: cannot read"):
+    with pytest.raises(ValueError, match="^cannot read key map '.*dir.conf': Is a directory"):
         load_keymap(d)
 
 

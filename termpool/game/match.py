@@ -6,7 +6,6 @@ See the package docstring (`termpool.game`) for the API and the choices made.
 from __future__ import annotations
 
 import copy
-import math
 from dataclasses import replace
 from typing import Any
 
@@ -64,8 +63,9 @@ class Match:
                              f"not {eight_break!r}")
         if theme not in THEMES:
             raise ValueError(f"theme: must be one of {', '.join(THEMES)}, not {theme!r}")
-        if not (isinstance(dt, float) and math.isfinite(dt) and dt > 0):
-            raise ValueError("dt: must be a positive number of seconds")
+        if not (isinstance(dt, float) and record.DT_RANGE[0] <= dt <= record.DT_RANGE[1]):
+            raise ValueError(f"dt: must be from {record.DT_RANGE[0]:g} to "
+                             f"{record.DT_RANGE[1]:g} seconds (what a replay accepts)")
         self.mode, self.table, self.physics = mode, table, physics
         self.frames, self.players, self.seed = frames, tuple(players), seed
         self.three_foul, self.theme, self.dt = bool(three_foul), theme, dt
@@ -247,6 +247,17 @@ class Match:
             raise ValueError(str(e)) from None
         self._run = run
         return run
+
+    @property
+    def running(self) -> ShotRun | None:
+        """The shot begun and not yet finished, if any."""
+        return self._run
+
+    def abandon(self, run: ShotRun) -> None:
+        """Forget a shot begun but never finished (the program ends mid-shot and cannot play
+        it out): the match stays as it was before it, ready to save."""
+        if run is self._run:
+            self._run = None
 
     def scene_dict(self, state: State | None = None) -> dict:
         """The table now as a scene (`load_scene` form, balls at rest), with the game block

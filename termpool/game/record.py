@@ -26,6 +26,8 @@ import os
 import struct
 from typing import Any
 
+from termpool.cli import DT_RANGE
+from termpool.files import MAX_REPLAY_BYTES, FileError, parse_json, read_text
 from termpool.physics.engine import Engine
 from termpool.physics.params import as_recorded
 from termpool.scene import Scene, SceneError, load_scene
@@ -166,6 +168,9 @@ def _check_record(rec: Any, path: str) -> tuple[Scene, float]:
     dt = rec["dt"]
     if not _is_number(dt) or dt <= 0:
         raise _fail(f"{path}.dt", "must be a positive number of seconds")
+    if not DT_RANGE[0] <= dt <= DT_RANGE[1]:
+        raise _fail(f"{path}.dt", f"must be from {DT_RANGE[0]:g} to {DT_RANGE[1]:g} seconds, "
+                                  f"not {dt:g}")
     if not _is_number(rec["time"]):
         raise _fail(f"{path}.time", "must be a finite number")
     for k in ("events", "final"):
@@ -212,30 +217,32 @@ def replay_shot(rec: Any, path: str = "shot") -> dict:
 def parse_replay(text: str, where: str = "replay") -> dict:
     """Parse a replay file's text and check its outline (raises ReplayError)."""
     try:
-        data = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise ReplayError(f"{where}: invalid JSON at line {e.lineno} column {e.colno}: "
-                          f"{e.msg}") from None
+        data = parse_json(text, where)
+    except FileError as e:
+        raise ReplayError(str(e)) from None
     if not isinstance(data, dict):
         raise ReplayError(f"{where}: must be a JSON object")
     if "shots" not in data:
         raise ReplayError(f"{where}: missing key 'shots'")
     if not isinstance(data["shots"], list):
         raise ReplayError(f"{where}: shots: must be a list")
+    match = data.get("match", {})
+    if not isinstance(match, dict):
+        raise ReplayError(f"{where}: match: must be an object")
+    names = match.get("players", ["", ""])
+    if not (isinstance(names, list) and len(names) == 2 and all(isinstance(n, str)
+                                                                for n in names)):
+        raise ReplayError(f"{where}: match.players: must be a list of two names (strings)")
     return data
 
 
 def read_replay(path: str | os.PathLike) -> dict:
-    """Read and parse a replay file (raises ReplayError with one line)."""
-    name = os.fspath(path)
+    """Read and parse a replay file ("-": standard input); raises ReplayError with one line."""
     try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
-    except OSError as e:
-        raise ReplayError(f"cannot read '{name}': {e.strerror or e}") from None
-    except UnicodeDecodeError:
-        raise ReplayError(f"{name}: not a UTF-8 text file") from None
-    return parse_replay(text, name)
+        text = read_text(path, MAX_REPLAY_BYTES, "replay")
+    except FileError as e:
+        raise ReplayError(str(e)) from None
+    return parse_replay(text, "stdin" if os.fspath(path) == "-" else os.fspath(path))
 
 
 def replay(data: dict) -> list[dict]:

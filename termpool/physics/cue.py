@@ -7,6 +7,21 @@ import math
 MISCUE_OFFSET = 0.5  # tip offsets beyond half a radius slip off the ball
 
 
+def clamp_tip(side: float, top: float) -> tuple[float, float]:
+    """The tip offset (side, top) as it is, or moved in along its direction onto the miscue
+    limit when it lies beyond it: every result is a tip offset `strike` accepts (the spin
+    control and the strike share this one limit)."""
+    if math.hypot(side, top) <= MISCUE_OFFSET:
+        return side, top
+    big = max(abs(side), abs(top))  # scaled to at most 1 first: the hypot of two huge
+    side, top = side / big, top / big  # offsets would overflow
+    off = math.hypot(side, top)
+    side, top = side * MISCUE_OFFSET / off, top * MISCUE_OFFSET / off
+    while math.hypot(side, top) > MISCUE_OFFSET:  # the scaling can round a hair outside
+        side, top = math.nextafter(side, 0.0), math.nextafter(top, 0.0)
+    return side, top
+
+
 def strike(
     speed: float, angle_deg: float, side: float = 0.0, top: float = 0.0, radius: float = 0.028575
 ) -> tuple[tuple[float, float], tuple[float, float, float]]:

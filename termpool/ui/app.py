@@ -18,10 +18,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from termpool.physics.cue import clamp_tip
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
 from termpool.ui.table_view import TableView, layout
+from termpool.ui.term import signals_held
 
 DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at any dt)
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
@@ -30,7 +32,6 @@ MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
-SPIN_MAX = 0.5  # beyond this the cue strike is a miscue
 CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
 # computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
 CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
@@ -96,6 +97,7 @@ class App:
         self._acc = 0.0
         self.fast = False
         self.message: list[tuple[str, str]] = []
+        self.notes: list[str] = []  # for the terminal after the game (see `record`)
         self._geom = None  # (cols, rows, layout, view)
         self._aim_cache = None
         if self.opts.mode is None:
@@ -218,9 +220,18 @@ class App:
                push_out: bool = False) -> None:
         from termpool.game import Shot
 
+        side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
         shot = Shot(speed=speed, angle=angle, side=side, top=top, called=called,
                     push_out=push_out)
-        self.run = self.match.begin(shot)
+        try:
+            self.run = self.match.begin(shot)
+        except ValueError as e:  # a shot the match refuses: say why, and let the shooter
+            # aim again (the computer's shots are checked the same way; should one be refused,
+            # the shot is left to the keys rather than to a loop of refusals)
+            self.message = [(f"that shot cannot be played: {e}", "foul")]
+            self.phase = "aim"
+            self.dirty = True
+            return
         self.frames = self._simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
         self.fast = False  # fast-forward is for one shot
@@ -261,7 +272,8 @@ class App:
     def _finish_shot(self) -> None:
         m = self.match
         before = int(m.on_table.sum())
-        out = self.run.finish()
+        with signals_held():  # judged and recorded whole, whatever interrupts
+            out = self.run.finish()
         reason = self.names(out.reason)
         if out.foul:
             self.message = [(f"Foul: {reason}", "foul")]
@@ -505,11 +517,10 @@ class App:
         elif action in ("spin_up", "spin_down", "spin_left", "spin_right"):
             dx = {"spin_left": -1, "spin_right": 1}.get(action, 0)
             dy = {"spin_down": -1, "spin_up": 1}.get(action, 0)
-            s, tp = self.side + dx * SPIN_STEP, self.top + dy * SPIN_STEP
-            r = math.hypot(s, tp)
-            if r > SPIN_MAX + 1e-9:  # keep the tip on the ball: slide along the miscue limit
-                s, tp = s * SPIN_MAX / r, tp * SPIN_MAX / r
-            self.side, self.top = round(s, 6), round(tp, 6)
+            # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue
+            # limit the tip slides along it.
+            self.side, self.top = clamp_tip(round(self.side + dx * SPIN_STEP, 6),
+                                            round(self.top + dy * SPIN_STEP, 6))
         elif action == "spin_reset":
             self.side = self.top = 0.0
         elif action == "cancel":
@@ -664,10 +675,26 @@ class App:
         return m.pos, state
 
     def record(self):
-        """The match to save (--record): this one if it has shots, else the last that had."""
-        if self.match is not None and self.match.history:
-            return self.match
-        return self.played[-1] if self.played else self.match
+        """The match to save (--record): this one if it has shots, else the last that had.
+        A shot still rolling (the game was left mid-shot) is played out first: simulated again
+        from its start, since an interrupt may have stopped its engine between two updates
+        (the same steps give the same shot). Should even that fail, the match is kept as it
+        stood before the shot, and `notes` says so."""
+        m = self.match
+        if m is not None and m.running is not None:
+            shot = m.running.shot
+            m.abandon(m.running)
+            try:
+                m.begin(shot).finish()
+            except Exception as e:  # whatever went wrong, the shots before it are kept
+                if m.running is not None:
+                    m.abandon(m.running)
+                self.notes.append(f"the last shot could not be played out ({e}); the record "
+                                  "ends with the shot before it")
+            self.run = None
+        if m is not None and m.history:
+            return m
+        return self.played[-1] if self.played else m
 
 
 OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",

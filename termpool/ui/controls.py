@@ -22,10 +22,11 @@ headless key scripts (`keys.parse_script`) replay bit for bit.
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import ClassVar
 
+from termpool.files import MAX_CONFIG_BYTES, FileError, read_text
 from termpool.ui.keys import Key, parse_key
 
 # action -> (help text); the order is the order of the help screen
@@ -54,6 +55,18 @@ ACTIONS: dict[str, str] = {
     "undo": "undo the shot (practice)",
     "rerack": "rerack (practice)",
 }
+
+
+# Actions a game cannot do without: it could not be played, answered or left.
+REQUIRED = ("shoot", "confirm", "quit")
+# Keys the terminal or the game keeps for itself; a binding could never fire.
+RESERVED = {"c": "Ctrl-C interrupts the game", "z": "Ctrl-Z suspends the game",
+            "\\": "Ctrl-\\ quits the game"}
+
+
+def _check_bindable(key: Key, spec: str) -> None:
+    if key.ctrl and key.name in RESERVED:  # with any other modifier it is the same byte
+        raise ValueError(f"key '{spec}' cannot be bound: {RESERVED[key.name]}")
 
 
 def _conf_name(path: Path) -> str:
@@ -87,7 +100,9 @@ class KeyMap:
         explicit: dict[tuple, str] = {}
         for action, specs in bindings.items():
             for spec in specs:
-                ident = _ident(parse_key(spec))
+                key = parse_key(spec)
+                _check_bindable(key, spec)
+                ident = _ident(key)
                 other = explicit.get(ident)
                 if other is not None and other != action:
                     raise ValueError(f"key '{spec}' is bound to both {other} and {action}")
@@ -100,6 +115,10 @@ class KeyMap:
                 keys = [k for k in map(parse_key, self.DEFAULTS[action])
                         if _ident(k) not in explicit]
             self._keys[action] = list(dict.fromkeys(keys))  # drop repeats, keep the order
+        missing = [a for a in REQUIRED if not self._keys[a]]
+        if missing:
+            raise ValueError(f"no key left for {' and '.join(missing)}: a game cannot be played "
+                             "or left without shoot, confirm and quit")
         self._index = {_ident(k): a for a, keys in self._keys.items() for k in keys}
 
     def action(self, key: Key) -> str | None:
@@ -158,6 +177,7 @@ def parse_keymap(text: str, name: str = "keys.conf") -> KeyMap:
         for spec in specs:
             try:
                 key = parse_key(spec)
+                _check_bindable(key, spec)
             except ValueError as e:
                 raise ValueError(f"{where}: {e}") from None
             prev = owner.get(_ident(key))
@@ -166,30 +186,33 @@ def parse_keymap(text: str, name: str = "keys.conf") -> KeyMap:
                                  f"on line {prev[1]}")
             owner[_ident(key)] = (action, n)
         bindings[action] = specs
-    return KeyMap(bindings)
+    try:
+        return KeyMap(bindings)
+    except ValueError as e:
+        raise ValueError(f"{name}: {e}") from None
 
 
 def load_keymap(path: str | os.PathLike[str] | None = None,
-                env: Mapping[str, str] | None = None) -> KeyMap:
+                env: Mapping[str, str] | None = None,
+                warn: Callable[[str], None] | None = None) -> KeyMap:
     """The key map: defaults, overridden by the config file.
 
-    Without `path`, the file at `config_path(env)` is read if it exists (missing: defaults).
-    A `path` given explicitly must exist. Errors are one-line ValueErrors naming the file.
+    Without `path`, the file at `config_path(env)` is read if it exists (missing: defaults;
+    unreadable, e.g. a config directory that cannot be entered: defaults, and `warn` is told
+    why). A `path` given explicitly must be readable. Errors are one-line ValueErrors naming
+    the file.
     """
     explicit = path is not None
     p = Path(path) if explicit else config_path(env)
-    name = _conf_name(p)
     try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        if explicit:
-            raise ValueError(f"{name}: no such file") from None
+        text = read_text(p, MAX_CONFIG_BYTES, "key map")
+    except FileError as e:
+        if explicit or not e.unreadable:
+            raise ValueError(str(e)) from None
+        if not e.missing and warn is not None:
+            warn(f"{e}; playing with the default keys")
         return KeyMap()
-    except UnicodeDecodeError:
-        raise ValueError(f"{name}: not UTF-8 text") from None
-    except OSError as e:
-        raise ValueError(f"{name}: cannot read ({e.strerror or e})") from None
-    return parse_keymap(text, name)
+    return parse_keymap(text, _conf_name(p))
 
 
 # ----------------------------------------------------------------------------- aiming

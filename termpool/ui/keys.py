@@ -358,14 +358,28 @@ def from_keystroke(ks: object) -> Key | None:
 # ----------------------------------------------------------------------------- scripts
 
 
-def _seconds(text: str, what: str) -> float:
+# Limits of a key script, so that a script file cannot ask for unbounded time or memory.
+MAX_TAPS = 1000  # NAME*N
+MAX_HOLD_S = 60.0  # NAME-hold SECONDS
+MAX_SCRIPT_S = 3600.0  # the whole script, on the virtual clock
+MAX_SCRIPT_EVENTS = 200_000
+
+
+def _seconds(text: str, what: str, most: float = MAX_SCRIPT_S) -> float:
     try:
         val = float(text)
     except ValueError:
-        raise ValueError(f"{what}: '{text}' is not a number of seconds") from None
+        raise ValueError(f"{what}: '{text[:20]}' is not a number of seconds") from None
     if not math.isfinite(val) or val < 0:
-        raise ValueError(f"{what}: seconds must be finite and not negative, not '{text}'")
+        raise ValueError(f"{what}: seconds must be finite and not negative, not '{text[:20]}'")
+    if val > most:
+        raise ValueError(f"{what}: at most {most:g} seconds, not {val:g}")
     return val
+
+
+def _cell(text: str) -> bool:
+    """A whole number a script may hold: ASCII digits, below 10000."""
+    return text.isascii() and text.isdigit() and len(text) <= 4
 
 
 @dataclass(frozen=True)
@@ -406,6 +420,12 @@ def decode_input(text: str) -> list:
     return out
 
 
+def _check_length(t: float, events: list) -> None:
+    if t > MAX_SCRIPT_S or len(events) > MAX_SCRIPT_EVENTS:
+        raise ValueError(f"script: longer than the limit of {MAX_SCRIPT_S:g} seconds or "
+                         f"{MAX_SCRIPT_EVENTS} key events")
+
+
 def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
                  repeat_rate: float = 0.033) -> list[tuple[float, Key]]:
     """A headless key script -> [(time, Key)] on a virtual clock starting at 0.
@@ -414,7 +434,9 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
     release at t + tap_gap/2, next token at t + tap_gap; NAME*N: N such taps; wait SECONDS:
     advance the clock; NAME-hold SECONDS: press at t, repeats at t + repeat_delay + k *
     repeat_rate while before t + SECONDS, release at t + SECONDS, next token tap_gap later.
-    A bad token raises ValueError("script token 3 'spce': ...").
+    A bad token raises ValueError("script token 3 'spce': ..."), and so does a script beyond
+    the limits (MAX_TAPS taps in a token, holds of MAX_HOLD_S, MAX_SCRIPT_S seconds in all,
+    MAX_SCRIPT_EVENTS events).
     """
     if not (tap_gap > 0 and repeat_delay > 0 and repeat_rate > 0):
         raise ValueError("script: tap_gap, repeat_delay and repeat_rate must be positive")
@@ -423,13 +445,14 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
     t = 0.0
     i = 0
     while i < len(tokens):
+        _check_length(t, events)
         tok = tokens[i]
-        where = f"script token {i + 1} '{tok}'"
+        where = f"script token {i + 1} '{tok if len(tok) <= 40 else tok[:40] + '...'}'"
         try:
             if tok.lower() == "click":  # click COL ROW: a left click on that cell (0-based)
-                if i + 2 >= len(tokens) or not (tokens[i + 1].isdigit()
-                                                 and tokens[i + 2].isdigit()):
-                    raise ValueError("click needs a column and a row (whole numbers) after it")
+                if i + 2 >= len(tokens) or not all(_cell(v) for v in tokens[i + 1:i + 3]):
+                    raise ValueError("click needs a column and a row (whole numbers below "
+                                     "10000) after it")
                 col, row = int(tokens[i + 1]), int(tokens[i + 2])
                 events.append((t, Mouse(col, row, "press")))
                 events.append((t + tap_gap / 2, Mouse(col, row, "release")))
@@ -446,7 +469,7 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
                 if i + 1 >= len(tokens):
                     raise ValueError("a hold needs a number of seconds after it")
                 key = parse_key(tok[:-5])
-                hold = _seconds(tokens[i + 1], "hold")
+                hold = _seconds(tokens[i + 1], "hold", MAX_HOLD_S)
                 events.append((t, key))
                 k = 0
                 while (rt := t + repeat_delay + k * repeat_rate) < t + hold:
@@ -458,8 +481,9 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
                 continue
             name, star, count = tok.rpartition("*") if "*" in tok[1:] else ("", "", "")
             if star:
-                if not count.isdigit() or int(count) < 1:
-                    raise ValueError(f"repeat count must be a whole number >= 1, not '{count}'")
+                if not (_cell(count) and 1 <= int(count) <= MAX_TAPS):
+                    raise ValueError(f"repeat count must be a whole number from 1 to "
+                                     f"{MAX_TAPS}, not '{count[:20]}'")
                 n = int(count)
             else:
                 name, n = tok, 1
@@ -471,6 +495,7 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
             i += 1
         except ValueError as e:
             raise ValueError(f"{where}: {e}") from None
+    _check_length(t, events)
     # rounded so that sums like 0.1 + 0.2 print as written; still a pure function of the text
     return [(round(et, 9), k) for et, k in events]
 

@@ -2,8 +2,9 @@
 
 The app itself (``termpool.ui.app.App``) never touches the terminal: it takes keys with their
 times, advances on `tick(now)` and hands back cells. This module owns everything that must be
-undone: the alternate screen, the hidden cursor, cbreak mode, the kitty keyboard flags. They are
-restored on every way out (normal exit, Ctrl-C, SIGTERM, SIGHUP, exceptions) and around Ctrl-Z.
+undone: the alternate screen, the hidden cursor, cbreak mode with flow control off (so Ctrl-S
+cannot freeze the game), the kitty keyboard flags. They are restored on every way out (normal
+exit, Ctrl-C, SIGTERM, SIGHUP, SIGQUIT from Ctrl-\\, exceptions) and around Ctrl-Z.
 
 Start-up never waits on the terminal: the first frame is written before the one query we make
 (kitty keyboard support, followed by a DA1 request that nearly every terminal answers), and
@@ -26,6 +27,7 @@ import termios
 import time
 import tty
 from collections.abc import Callable
+from contextlib import contextmanager
 from typing import Protocol
 
 from termpool.ui.keys import Mouse
@@ -57,8 +59,22 @@ class App(Protocol):
     def wake_in(self, t: float) -> float | None: ...
 
 
+STOP_SIGNALS = (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
+
+
+@contextmanager
+def signals_held():
+    """Ctrl-C and STOP_SIGNALS wait until the block ends, then act: what it does is done
+    whole (a shot judged and recorded, a record saved) whatever arrives meanwhile."""
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, *STOP_SIGNALS})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
 class Stop(Exception):
-    """Raised from a signal handler (SIGTERM, SIGHUP) to leave through the `finally`s."""
+    """Raised from a signal handler (STOP_SIGNALS) to leave through the `finally`s."""
 
     def __init__(self, signum: int) -> None:
         super().__init__(signal.Signals(signum).name)
@@ -89,6 +105,11 @@ class Terminal:
 
     def enter(self) -> None:
         tty.setcbreak(self.fd_in, termios.TCSANOW)
+        # Flow control off: Ctrl-S would stop our output until Ctrl-Q, and a game blocked on a
+        # write answers nothing, not even SIGTERM. Ctrl-S and Ctrl-Q then arrive as keys.
+        attrs = termios.tcgetattr(self.fd_in)
+        attrs[0] &= ~termios.IXON
+        termios.tcsetattr(self.fd_in, termios.TCSANOW, attrs)
         self.write(self.enter_s + (KITTY_PUSH if self.kitty else "")
                    + (MOUSE_ON if self.mouse else ""))
         self.active = True
@@ -199,11 +220,10 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
     def on_tstp(signum, frame):
         flags["suspend"] = True
 
-    old = {s: signal.getsignal(s) for s in (signal.SIGWINCH, signal.SIGTERM, signal.SIGHUP,
-                                            signal.SIGTSTP)}
+    old = {s: signal.getsignal(s) for s in (signal.SIGWINCH, signal.SIGTSTP, *STOP_SIGNALS)}
     signal.signal(signal.SIGWINCH, on_winch)
-    signal.signal(signal.SIGTERM, on_stop)
-    signal.signal(signal.SIGHUP, on_stop)
+    for sig in STOP_SIGNALS:
+        signal.signal(sig, on_stop)
     signal.signal(signal.SIGTSTP, on_tstp)
 
     def suspend() -> None:
@@ -261,6 +281,9 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
                 elif key.ctrl and key.name == "c":
                     if key.kind == "press":
                         raise KeyboardInterrupt
+                elif key.ctrl and key.name == "\\":  # kitty mode: Ctrl-\ is a key, no SIGQUIT
+                    if key.kind == "press":
+                        raise Stop(signal.SIGQUIT)
                 else:
                     app.key(key, now)
             if keys_in.closed:
