@@ -51,7 +51,7 @@ MAX_SPEED = 25.0  # m/s, a ball's or a shot's (a hard break is about 11 m/s)
 MAX_SURFACE_SPEED = 2 * MAX_SPEED  # m/s, a ball's radius times its spin; a tip offset of
 # 0.5 R at MAX_SPEED gives 1.25 MAX_SPEED
 TABLE_RANGES = {
-    "length": (0.1, 10.0), "width": (0.1, 10.0),
+    "length": (0.1, 100.0), "width": (0.1, 100.0),
     "corner_mouth": (0.001, 1.0), "side_mouth": (0.001, 1.0), "jaw_length": (0.001, 1.0),
     "corner_hole_radius": (0.001, 1.0), "side_hole_radius": (0.001, 1.0),
     "hole_depth": (0.0, 1.0), "corner_jaw_angle": (1.0, 180.0), "side_jaw_angle": (1.0, 180.0),
