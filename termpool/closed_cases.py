@@ -18,7 +18,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from termpool.closed_form import (
-    ROLLING_MASS,
     Answer,
     Track,
     cradle,
@@ -26,7 +25,6 @@ from termpool.closed_form import (
     shot,
 )
 from termpool.physics.params import BALL_RADIUS, Physics
-from termpool.physics.roots import SINK
 
 R = BALL_RADIUS
 TABLE = {"length": 50.0, "width": 30.0, "pockets": "none"}  # no ball reaches a cushion
@@ -36,10 +34,6 @@ EXACT_MM = 1e-6  # 1 nm
 EXACT_MS = 1e-6  # 1 ns
 EXACT_WHY = ("exact inside every step: rounding, well under the engine's 1 nm contact "
              "tolerance (roots.TOUCH)")
-PUSH_WHY = ("the push is run today as slow contacts, and the first comes only when the cue "
-            "ball has sunk roots.SINK (0.45 um) into the row: the row stands still meanwhile, "
-            "spared its rolling resistance, and the body then moves that much faster to the "
-            "end; the bound is twice the error this gives")
 
 
 @dataclass
@@ -250,18 +244,6 @@ def draw(v0: float = 2.0, top: float = -0.4, gap: float = 0.3, e: float = 1.0) -
         _spin_facts())
 
 
-def push_tolerance(ph: Physics, pushed: int, duration: float) -> tuple[float, float]:
-    """(mm, ms): twice the engine's error from starting a push late. The pusher, from rest,
-    sinks SINK into the row after dt0 = sqrt(2 SINK / (mu_s g)); the row, still until then,
-    keeps the k n mu_r g dt0 that rolling resistance would have taken from the body's
-    (1 + k n)-fold momentum (k = ROLLING_MASS), so the body moves faster by
-    dv = k n mu_r g dt0 / (1 + k n) for `duration`, and stops dv / (mu_r g) later."""
-    kn = ROLLING_MASS * pushed
-    dt0 = math.sqrt(2.0 * SINK / (ph.mu_slide * ph.g))
-    dv = kn * ph.mu_roll * ph.g * dt0 / (1.0 + kn)
-    return 2e3 * dv * duration, 2e3 * dv / (ph.mu_roll * ph.g)
-
-
 def _cradle(name: str, desc: str, v0: float, w) -> Case:
     ph = Physics.from_dict(ELASTIC)
     start, row_x, row = (0.8, Y), 1.2, 5
@@ -276,10 +258,8 @@ def _cradle(name: str, desc: str, v0: float, w) -> Case:
              lambda evs, s, f: _after(evs, "slide_to_roll", 0)["t"]),
         Fact("last ball's travel", "m", lambda evs, s, f: f[row, 0] - s[row, 0]),
     ]
-    evs = model.events
-    push = event(evs, "roll_to_stop", [1])["t"] - event(evs, "ball_ball", [0, 1])["t"]
     return Case(name, desc, _scene(desc, ELASTIC, balls), model, seed, facts,
-                *push_tolerance(ph, row - 1, push), PUSH_WHY)
+                EXACT_MM, EXACT_MS, EXACT_WHY)
 
 
 def cradles() -> list[Case]:

@@ -40,7 +40,6 @@ from termpool.physics.table import Table
 FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
 MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
-HOVER = 8e-7  # m: gap left under a ball after a slow cushion contact (< CLUSTER_GAP)
 # Work bound: after BUDGET events of one table within a WINDOW of simulated time, its further
 # contacts in that window are solved as clusters, inelastically (a light ball squeezed
 # between a heavy one and a rail would otherwise bounce without end). Windows are fixed in
@@ -136,6 +135,10 @@ class Engine(SlowContacts):
         self.tb = np.zeros(B)  # each table's own clock inside a step
         self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
         self._count = np.zeros(B, dtype=np.int64)
+        # Groups of balls held by resting contacts (joined.py): a label per ball (-1: none)
+        # and, per table, how many balls are grouped, so that tables without any pay nothing.
+        self.group = np.full((B, N), -1, dtype=np.int64)
+        self._ngroup = np.zeros(B, dtype=np.int64)
         self.time = 0.0
         self.steps = 0
         self.passes = 0  # event passes run: the engine's measure of work
@@ -446,22 +449,32 @@ class Engine(SlowContacts):
             cu = np.flatnonzero(kind == 2)
             pr = np.flatnonzero(kind == 3)
         labels: dict = {}
-        clusters: list[tuple[int, list[int], bool]] = []
+        # (event, seed balls, every contact inelastic, the event's own slow contact)
+        clusters: list[tuple[int, list[int], bool, bool]] = []
+        # Balls held in a group by resting contacts (joined.py): any event of one of them
+        # renews the whole group's motion, since its contact forces change with it.
+        grouped = self._grouped(tabs, i, j, kind)
         if tr.size:
-            self._transition(tabs[tr], i[tr])
+            if grouped is not None:
+                for n in tr[grouped[tr]].tolist():
+                    clusters.append((n, self._group_of(int(tabs[n]), int(i[n])), False, False))
+                tr = tr[~grouped[tr]]
+            if tr.size:
+                self._transition(tabs[tr], i[tr])
         if cu.size:
-            # A slow bounce of a ball that touches another ball (pressed into the rail), or
-            # any bounce over the work bound, is solved with its cluster.
-            squeeze = self._squeezed(tabs[cu], i[cu])
+            # A slow bounce (or any bounce over the work bound) is solved with its cluster:
+            # the ball settles on the cushion, and stays pressed to it while friction drives
+            # it there.
+            slow = self._slow_bounce(tabs[cu], i[cu])
             if any_busy:
-                squeeze |= busy[cu]
+                slow |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self._nseg + self._npt)
             if self.record:
                 labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
                                   strict=True))
-            if squeeze.any():
-                for n in cu[squeeze].tolist():
-                    clusters.append((n, [int(i[n])], bool(busy[n])))
-                cu = cu[~squeeze]
+            if slow.any():
+                for n in cu[slow].tolist():
+                    clusters.append((n, [int(i[n])], bool(busy[n]), True))
+                cu = cu[~slow]
             if cu.size:
                 self._cushion(tabs[cu], i[cu])
         more_b, more_i = [tabs], [i]
@@ -469,20 +482,59 @@ class Engine(SlowContacts):
             more_b.append(tabs[pr])
             more_i.append(j[pr])
             self._pairs(tabs[pr], i[pr], j[pr], pr, busy[pr] if any_busy else None, clusters)
+        if grouped is not None:
+            # A fast contact or bounce of a grouped ball: the rest of its group is renewed.
+            for n in np.flatnonzero(grouped & (kind >= 2)).tolist():
+                b = int(tabs[n])
+                seeds = [int(x) for x in (i[n], j[n]) if x >= 0]
+                members = sorted({k for x in seeds for k in self._group_of(b, x)} | set(seeds))
+                clusters.append((n, members, False, False))
         extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
-        for n, seeds, every in clusters:
+        also: dict[int, list[tuple[int, int, int]]] = {}  # event -> other balls' transitions
+        quiet: set[int] = set()  # resting contacts that began: no impulse, no event
+        for n, seeds, every, own in clusters:
             b = int(tabs[n])
+            before = self.state[b].copy()
             members, moved = self._cluster(b, seeds, every)
+            if own and not moved:
+                quiet.add(n)
             more_b.append(np.full(len(members), b))
             more_i.append(np.array(members, dtype=np.int64))
-            extra[n] = [k for k in moved if k not in seeds]
+            ends = []
+            if self.record:
+                # A group renewed when one of its balls stops may stop the others with it:
+                # each such end is an event of its own.
+                self_ = int(i[n]) if kind[n] == 0 else -1  # a transition's own ball
+                ends = [(k, int(before[k]), int(self.state[b, k])) for k in members if k != self_]
+                ends = [e for e in ends if e[1:] in _TRANSITION_NAMES]
+                also.setdefault(n, []).extend(ends)
+            if kind[n] != 0:  # a group renewed by a transition moves others by rounding only
+                skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(extra.get(n, ()))
+                extra.setdefault(n, []).extend(k for k in moved if k not in skip)
         self._predict(np.concatenate(more_b), np.concatenate(more_i))
         if self.record:
-            self._log(tabs, kind, i, j, old_state, labels, extra)
+            self._log(tabs, kind, i, j, old_state, labels, extra, also, quiet)
+
+    def _grouped(self, tabs, i, j, kind):
+        """Events (by position in the pass) that involve a grouped ball, or None if no table
+        of the pass has a group (the usual case, decided without array work)."""
+        if not self._ngroup[tabs].any():
+            return None
+        out = (self.group[tabs, i] >= 0) & (kind != 1)
+        pair = kind == 3
+        out[pair] |= self.group[tabs[pair], j[pair]] >= 0
+        return out
+
+    def _group_of(self, b: int, i: int) -> list[int]:
+        """The balls of ball i's group (itself alone if it has none)."""
+        g = int(self.group[b, i])
+        if g < 0:
+            return [i]
+        return np.flatnonzero(self.group[b] == g).tolist()
 
     def _pairs(self, b, i, j, pr, busy, clusters) -> None:
         """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
-        None for none): fast ones collide, slow ones settle alone or go to `clusters`."""
+        None for none): fast ones collide, slow ones go to `clusters`."""
         n = b.size
         if n == 1 and busy is None and self._pair_one(int(b[0]), int(i[0]), int(j[0])):
             return
@@ -502,18 +554,9 @@ class Engine(SlowContacts):
         fast = ~slow
         if fast.any():
             self._collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
-        quiet = slow if busy is None else slow & ~busy
-        sl = np.flatnonzero(quiet)
-        if sl.size:
-            alone = self._alone(b[sl], i[sl], j[sl])
-            if alone.any():
-                a = sl[alone]
-                self._settle(b[a], i[a], j[a], *(x[a] for x in states))
-            sl = sl[~alone]
-        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
-        for k in late:
+        for k in np.flatnonzero(slow).tolist():
             every = busy is not None and bool(busy[k])
-            clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every))
+            clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every, True))
 
     def _transition(self, b, i) -> None:
         if b.size <= FEW:
@@ -573,15 +616,11 @@ class Engine(SlowContacts):
         if bounce.size:
             bb, ib = b[bounce], i[bounce]
             nb, pb = n[bounce], p[bounce]
-            slow = -(v[bounce] * nb).sum(axis=1) < ph.v_inelastic
             vb, wb = cushion.MODELS[ph.cushion].bounce(nb, v[bounce], w[bounce],
                                                        self.radius[bb, ib], self.mass[bb, ib], ph)
-            # Undo a resting contact's sub-micrometre sink. A ball that met the cushion slowly
-            # (pressed into it by its spin, say) is set down HOVER off it, so that it takes a
-            # third longer to come back than from touching: fewer events, no overlap.
+            # Undo a resting contact's sub-micrometre sink.
             depth = rc[bounce] - np.einsum("ij,ij->i", pb - ref[bounce], nb)
-            lift = np.maximum(depth, 0.0) + np.where(slow, HOVER, 0.0)
-            pb = pb + lift[:, None] * nb
+            pb = pb + np.maximum(depth, 0.0)[:, None] * nb
             self._set(bb, ib, t[bounce], pb, vb, wb)
         hl = np.nonzero(hole)[0]
         if hl.size:
@@ -605,12 +644,11 @@ class Engine(SlowContacts):
             d0, d1 = p[0] - ref[0], p[1] - ref[1]
             dist = float(np.hypot(d0, d1))
             n = [d0 / dist, d1 / dist]
-        slow = -(v[0] * n[0] + v[1] * n[1]) < ph.v_inelastic
         r, m = row[_RADIUS], row[_MASS]
         v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, m, ph)
-        # As _cushion: undo a sink, and set a slow ball down HOVER off the cushion.
+        # As _cushion: undo a sink.
         depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
-        lift = max0(depth) + (HOVER if slow else 0.0)
+        lift = max0(depth)
         p = [p[0] + lift * n[0], p[1] + lift * n[1]]
         self._write_few(np.array([b]), np.array([i]), [
             motion.start(ph, t, p, v, w, r, row[_RATE], bool(self.state[b, i] == POCKETED))])
@@ -694,18 +732,25 @@ class Engine(SlowContacts):
             "w": [float(x) for x in w[0]], "state": STATE_NAMES[self.state[b, i]],
         }
 
-    def _log(self, tabs, kind, i, j, old_state, labels, extra) -> None:
+    def _log(self, tabs, kind, i, j, old_state, labels, extra, also, quiet) -> None:
         """Record events; a contact solved with its cluster also names the other balls of the
-        cluster it set moving (after the contact's own one or two)."""
+        cluster it set moving (after the contact's own one or two), and transitions of other
+        balls of a group renewed by the event follow it as events of their own. A resting
+        contact that begins (`quiet`: balls start pressing together, no impulse) is not a
+        collision and is not recorded."""
         for n, b in enumerate(tabs.tolist()):
             k = int(kind[n])
-            if k == 1:
+            if k == 1 or n in quiet:
+                self._log_also(b, also.get(n, ()))
                 continue
             ib = int(i[n])
             ev: dict = {"t": float(self.tb[b])}
             if k == 0:
-                ev["type"] = _TRANSITION_NAMES.get((int(old_state[n]), int(self.state[b, ib])),
-                                                   "transition")
+                pair = (int(old_state[n]), int(self.state[b, ib]))
+                if pair[0] == pair[1]:  # a group's motion renewed, nothing ended
+                    self._log_also(b, also.get(n, ()))
+                    continue
+                ev["type"] = _TRANSITION_NAMES.get(pair, "transition")
                 ev["i"] = [ib]
             elif k == 2:
                 if self.state[b, ib] == POCKETED:
@@ -721,6 +766,12 @@ class Engine(SlowContacts):
             ev["i"] += extra.get(n, [])
             ev["balls"] = [self.ball_state(b, x) for x in ev["i"]]
             self.events[b].append(ev)
+            self._log_also(b, also.get(n, ()))
+
+    def _log_also(self, b: int, changes) -> None:
+        for x, old, new in changes:
+            self.events[b].append({"t": float(self.tb[b]), "type": _TRANSITION_NAMES[(old, new)],
+                                   "i": [x], "balls": [self.ball_state(b, x)]})
 
     # ----------------------------------------------------------------- public view and driving
     def _now(self):

@@ -18,6 +18,9 @@ TOUCH = 1e-9  # gaps below this (m) count as touching
 SINK = 4.5e-7  # a resting contact pushed together is caught after this much overlap (m):
 # with anything deeper than SINK resolved at once, no overlap can pass 2 SINK < 1 micrometre
 V_MIN = 1e-6  # closing speeds below this (m/s) are not an immediate contact
+A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but accelerates together
+# faster than this is pressed together: a contact now (a resting one, joined.py); slower is
+# rounding, and is caught by SINK if it lasts
 PIECES = 2  # straight pieces of the window in the cull
 _FRACTIONS = np.arange(PIECES, dtype=float)
 
@@ -36,8 +39,17 @@ def first_contact(
     pv = px * vx + py * vy
     r0 = np.sqrt(px * px + py * py)
     touching = r0 - dist < TOUCH
-    # Closing, or sunk deeper than SINK (left so by another contact): resolve at once.
+    # Closing, or sunk deeper than SINK (left so by another contact), or pressed together:
+    # resolve at once.
     now = touching & ((pv < -V_MIN * r0) | (r0 < dist - SINK))
+    rest = np.flatnonzero(touching & ~now & (pv <= V_MIN * r0))
+    if rest.size:
+        # The distance's second derivative, (v.v + p.a) / r - (p.v)^2 / r^3.
+        px_, py_, vx_, vy_ = px[rest], py[rest], vx[rest], vy[rest]
+        r_ = r0[rest]
+        acc = ((vx_ * vx_ + vy_ * vy_ + px_ * ax[rest] + py_ * ay[rest]) / r_
+               - pv[rest] ** 2 / r_ ** 3)
+        now[rest] = acc < -A_MIN
     target = np.where(touching, np.minimum(dist, r0) - SINK, dist)
     out = np.where(now, 0.0, np.inf)
     # First cull, cheap: the distance is at least the path's projection on the initial
@@ -203,7 +215,7 @@ def first_line_contact(
     gap = s0 - dist
     touching = (gap < TOUCH) & beside
     front = s0 > 0  # the ball's centre is on the playing side of the line
-    now = touching & ((sv < -V_MIN) | (gap < -SINK)) & front
+    now = touching & ((sv < -V_MIN) | (gap < -SINK) | ((sv <= V_MIN) & (sa < -A_MIN))) & front
     C = np.where(touching, np.maximum(gap, 0.0) + SINK, gap)  # distance still to go
     A = 0.5 * sa
     disc = sv * sv - 4 * A * C
@@ -235,7 +247,7 @@ def first_line_contact_one(s0: float, sv: float, sa: float, dist: float, horizon
     gap = s0 - dist
     touching = gap < TOUCH and beside
     front = s0 > 0
-    now = touching and (sv < -V_MIN or gap < -SINK) and front
+    now = touching and (sv < -V_MIN or gap < -SINK or (sv <= V_MIN and sa < -A_MIN)) and front
     C = ((0.0 if gap < 0.0 else gap) + SINK) if touching else gap
     A = 0.5 * sa
     disc = sv * sv - 4 * A * C

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from termpool.physics.cluster import solve_inelastic
+from termpool.physics.joined import push
 from termpool.physics.roots import V_MIN
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.state import norm as _norm
@@ -18,32 +19,22 @@ from termpool.physics.state import perp as _perp
 
 
 class SlowContacts:
-    def _squeezed(self, b, i) -> np.ndarray:
-        """True for balls (b, i) about to bounce slowly off a cushion while touching a ball.
-
-        Slowly means what it means for the bounce itself: the speed into the cushion is below
-        v_inelastic (the ball may run fast along the rail). Such a bounce lifts the ball off
-        the cushion, which would push it into the ball it touches; the cluster solve moves
-        both instead.
-        """
+    def _slow_bounce(self, b, i) -> np.ndarray:
+        """True for balls (b, i) about to meet a cushion, jaw or tip (not a pocket's hole)
+        slower than v_inelastic: they settle on it with their cluster instead of bouncing,
+        and stay pressed to it while friction drives them there."""
         t = self.tb[b]
         f = self.f_cush[b, i]
         nseg = self._nseg
-        out = f < nseg + self._npt  # a pocket is never a squeeze
-        k = np.arange(self.N)[None, :]
-        p, v, _ = self._eval(b[:, None], k, t[:, None], spin=False)
-        rows = np.arange(len(b))
-        own, vel = p[rows, i], v[rows, i]
-        gap = _norm(p - own[:, None]) - self.radius[b] - self.radius[b, i][:, None]
-        other = (self.state[b] != POCKETED) & (k != i[:, None])
-        out &= (other & (gap < CLUSTER_GAP)).any(axis=1)
+        out = f < nseg + self._npt
+        p, v, _ = self._eval(b, i, t, spin=False)
         tab = self.table
         n = tab.seg_n[np.minimum(f, nseg - 1)]
         tip = (f >= nseg) & out
         if tip.any():
-            d = own[tip] - tab.points[f[tip] - nseg]
+            d = p[tip] - tab.points[f[tip] - nseg]
             n[tip] = d / _norm(d)[:, None]
-        return out & (-(vel * n).sum(axis=1) < self.physics.v_inelastic)
+        return out & (-(v * n).sum(axis=1) < self.physics.v_inelastic)
 
     def _cushion_gaps(self, p, rc):
         """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
@@ -56,47 +47,6 @@ class SlowContacts:
         dp = p[:, None] - tab.points[None]
         dd = _norm(dp)
         return seg_gap, beside, dd - rc[:, None], dp / dd[..., None]
-
-    def _alone(self, b, i, j) -> np.ndarray:
-        """True for pairs (b, i, j) that touch no third ball and no cushion."""
-        N = self.N
-        t = self.tb[b]
-        k = np.arange(N)[None, :]
-        p, _, _ = self._eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
-        R = self.radius[b]
-        live = (self.state[b] != POCKETED) & (k != i[:, None]) & (k != j[:, None])
-        crowded = np.zeros(len(b), dtype=bool)
-        for x in (i, j):
-            px = p[np.arange(len(b)), x]
-            gap = _norm(p - px[:, None]) - R - R[np.arange(len(b)), x][:, None]
-            crowded |= (live & (gap < CLUSTER_GAP)).any(axis=1)
-            seg_gap, beside, tip_gap, _ = self._cushion_gaps(px, self.rc[b, x])
-            crowded |= ((seg_gap < CLUSTER_GAP) & beside).any(axis=1)
-            crowded |= (tip_gap < CLUSTER_GAP).any(axis=1)
-        return ~crowded
-
-    def _settle(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
-        """Slow contact of an isolated pair, balls now at (pi, vi, wi) and (pj, vj, wj):
-        perfectly inelastic along the normal, repeated with the slip completion of _set
-        until the pair no longer closes."""
-        t = self.tb[b]
-        ri, rj = self.radius[b, i], self.radius[b, j]
-        mi, mj = self.mass[b, i], self.mass[b, j]
-        d = pj - pi
-        dist = _norm(d)
-        n = d / dist[:, None]
-        for _ in range(20):
-            # Each pair stops as soon as it no longer closes, whatever the other tables do.
-            closing = ((vi - vj) * n).sum(axis=1)
-            live = closing > V_MIN
-            if not live.any():
-                break
-            jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
-            vi = vi - (jn / mi)[:, None] * n
-            vj = vj + (jn / mj)[:, None] * n
-            _, vi, wi, _ = self._snap(pi, vi, wi, ri, None, live, move=False)
-            _, vj, wj, _ = self._snap(pj, vj, wj, rj, None, live, move=False)
-        self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
 
     def _cluster(self, b: int, seeds: list[int], every: bool = False):
         """Resolve a slow contact together with every ball and cushion touching its cluster
@@ -130,22 +80,24 @@ class SlowContacts:
         ia, ic = np.nonzero(np.triu(touch[np.ix_(mem, mem)]))
         a, c = mem[ia], mem[ic]
         ra, rc_, rn, rg = [a], [c], [-d[a, c] / dist[a, c][:, None]], [np.zeros(a.size)]
+        rkind = [np.zeros(a.size, dtype=np.int64)]  # 0 ball, 1 rail or jaw, 2 jaw tip
         pm, rcm = p[mem], self.rc[b, mem]
 
-        def cushion_rows(x, normals, gaps):
+        def cushion_rows(x, normals, gaps, kind):
             ra.append(mem[x])
             rc_.append(np.full(x.size, -1))
             rn.append(normals)
             rg.append(gaps)
+            rkind.append(np.full(x.size, kind))
 
         seg_gap, beside, tip_gap, tip_dir = self._cushion_gaps(pm, rcm)
         slow = v[mem] @ tab.seg_n.T >= -cap
         x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
-        cushion_rows(x, tab.seg_n[f], seg_gap[x, f])
+        cushion_rows(x, tab.seg_n[f], seg_gap[x, f], 1)
         slow = (v[mem][:, None] * tip_dir).sum(axis=2) >= -cap
         x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
-        cushion_rows(x, tip_dir[x, f], tip_gap[x, f])
-        ra, rc_, rn, rg = (np.concatenate(z) for z in (ra, rc_, rn, rg))
+        cushion_rows(x, tip_dir[x, f], tip_gap[x, f], 2)
+        ra, rc_, rn, rg, rkind = (np.concatenate(z) for z in (ra, rc_, rn, rg, rkind))
         nc = len(ra)
         J = np.zeros((nc, N, 2))  # u = J v: separating speed along each contact normal
         rows = np.arange(nc)
@@ -184,6 +136,44 @@ class SlowContacts:
                 break
             lam = solve_inelastic(A_pos, np.minimum(gaps, 0.0))
             p = p + (inv_m * (J.T @ lam)).reshape(N, 2)
-        moved = (v[mem] != v_in[mem]).any(axis=1) | (p[mem] != p0[mem]).any(axis=1)
-        self._set(np.full(len(mem), b), mem, np.full(len(mem), t), p[mem], v[mem], w[mem])
+        # Contacts that neither close nor part are resting: friction may press them together,
+        # and then they carry a steady force (joined.py). Their curvature (balls rolling
+        # round each other, a ball round a jaw tip) would part them of itself.
+        u = J @ v.reshape(-1)
+        rest = u <= V_MIN
+        bend = np.zeros(nc)
+        rel = v[ra] - np.where(ball[:, None], v[np.maximum(rc_, 0)], 0.0)
+        tang = rel - (rel * rn).sum(axis=1)[:, None] * rn
+        reach = np.where(ball, R[ra] + R[np.maximum(rc_, 0)], self.rc[b, ra])
+        curved = ball | (rkind == 2)
+        bend[curved] = (tang[curved] ** 2).sum(axis=1) / reach[curved]
+        self._join(b, mem, t, p, v, w, ra[rest], rc_[rest], rn[rest], bend[rest])
+        # What the solves changed: velocities as the balls now start (a resting contact's
+        # last rounding of speed taken out, a ball set at rest), and positions.
+        row = self._motion[b, mem]
+        moved = (row[:, 3:5] != v_in[mem]).any(axis=1) | (row[:, 1:3] != p0[mem]).any(axis=1)
         return members, mem[moved].tolist()
+
+    def _join(self, b: int, mem, t: float, p, v, w, ra, rc_, rn, bend) -> None:
+        """Start the motion of balls `mem` of table b at time t from (p, v, w) (all N balls):
+        balls in resting contacts (rows ra, rc_, rn, bend as in _cluster) move as a group
+        held by the contacts' forces; the others move freely."""
+        held = np.unique(np.concatenate([ra, rc_[rc_ >= 0]]))
+        free = mem[~np.isin(mem, held)]
+        self.group[b, mem] = -1
+        if free.size:
+            self._set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free],
+                      w[free])
+        if held.size:
+            where = {int(x): n for n, x in enumerate(held.tolist())}
+            rows = [(where[int(x)], where.get(int(y), -1), n, bb)
+                    for x, y, n, bb in zip(ra, rc_, rn, bend, strict=True)]
+            vj, acc, alpha, state, duration, wj = push(
+                self.physics, v[held], w[held], self.radius[b, held],
+                self.mass[b, held], self.spin_rate[b, held], rows)
+            self.state[b, held] = state
+            self.t_trans[b, held] = t + duration
+            self._motion[b, held, :12] = np.concatenate(
+                [np.full((held.size, 1), t), p[held], vj, acc, wj, alpha], axis=1)
+            self.group[b, held] = int(held.min())
+        self._ngroup[b] = int((self.group[b] >= 0).sum())

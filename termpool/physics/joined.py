@@ -1,0 +1,211 @@
+"""Balls pressed together move as one body: the forces of resting contacts.
+
+When touching balls (or a ball and a cushion) neither close nor part and the cloth's friction
+pushes them together (a cue ball that stopped against a row and still spins forward, a ball
+driven into a rail by its spin), the contact carries a steady force instead of a train of tiny
+collisions. `push` finds those forces for a group of touching balls: the smallest contact
+forces lam >= 0 that leave no contact accelerating into itself (the complementarity problem of
+`cluster.py`, on accelerations instead of velocities). Each ball then moves on a quadratic with
+its cloth friction plus its contact forces.
+
+Forces through a ball's centre do not turn it, so a sliding ball keeps its friction torque and
+a rolling ball stays rolling (static friction carries it, and it answers a push as if 7/5 as
+heavy). A ball at rest that is pushed starts to roll, against its rolling resistance, or stays
+held where the push is too weak to move it. Cloth friction acts against each ball's slip (or,
+rolling, its velocity); when contact forces turn that direction, the quadratic holds it fixed
+and the motion is renewed after it has turned by TURN radians (or when the slip would pass
+its smallest), which bounds the error. A push along the slip, as in a straight line of balls,
+never turns it: then the motion is exact and ends at the exact time the slip or the speed
+runs out.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from termpool.physics.cluster import solve_inelastic
+from termpool.physics.params import Physics
+from termpool.physics.roots import A_MIN
+from termpool.physics.state import EPS_V, EPS_W, ROLLING, SLIDING, SPINNING, STATIONARY
+from termpool.physics.state import norm as _norm
+from termpool.physics.state import perp as _perp
+
+TURN = 0.01  # rad: a fixed friction direction is renewed after the true one turns this far
+ROLL_MASS = 1.4  # a rolling ball pushed through its centre answers as if 7/5 as heavy
+EPS_SLIP = 1e-7  # m/s: a slip this small is completed at once (within 50 ns here, where a
+# pressed ball slides to the end of its slip, unlike state.EPS_U for free balls)
+SETTLE = 1e-3  # s: a rolling ball in a group that would be braked to rest this soon rests
+
+
+def _renewal(x: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How long x + k t (rows) may be taken as keeping its direction: the exact time it
+    reaches zero when it runs straight to zero (inf when it never shrinks); the time it
+    passes closest to zero when it runs within TURN of straight at it (it turns fast there);
+    else the time it has turned by TURN. Returns (time, straight)."""
+    xx = (x * x).sum(axis=1)
+    kk = (k * k).sum(axis=1)
+    d = (x * k).sum(axis=1)
+    c = np.abs(x[:, 0] * k[:, 1] - x[:, 1] * k[:, 0])
+    size = np.sqrt(xx * kk)
+    live = (kk > 0) & (xx > 0)
+    straight = (c <= 1e-12 * size) | ~live
+    near = ~straight & (d < 0) & (c < math.sin(TURN) * size)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        to_zero = np.where(d < 0, np.sqrt(xx / kk), np.inf)
+        tan = math.tan(TURN)
+        den = c - d * tan
+        turn = np.where(den > 0, tan * xx / den, np.inf)
+        least = -d / kk
+    out = np.where(straight, to_zero, np.where(near, least, turn))
+    return np.where(live, out, np.inf), straight
+
+
+def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray,
+         rate: np.ndarray, rows: list) -> tuple:
+    """Motion of M balls held by resting contacts.
+
+    v, w: (M, 2), (M, 3) velocities and spins; R, m, rate: radii, masses, side-spin decay rates.
+    rows: contacts (a, c, n, bend): ball a, ball c or -1 for a cushion, the unit normal
+    pushing a away from c, and the separating acceleration the contact has without forces
+    from its curvature (|relative tangential velocity|^2 / distance).
+    Returns (v, acc, alpha, state, duration, w): the velocities (balls at rest exactly at
+    rest), the accelerations, the rates of change of (wx, wy), the motion states, how long
+    each motion holds, and the spins (rolling balls' kept exact).
+    """
+    g = ph.g
+    M = len(m)
+    a_idx = np.array([r[0] for r in rows], dtype=np.int64)
+    c_idx = np.array([r[1] for r in rows], dtype=np.int64)
+    normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
+    bend = np.array([r[3] for r in rows], dtype=float)
+    # A slip too small to slide on (state.EPS_U) is completed at once, as Engine._snap does:
+    # the ball rolls on with the speed the slide would have left it.
+    u = v + R[:, None] * _perp(w[:, :2])
+    us = _norm(u)
+    small = ((us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))[:, None]
+    v = np.where(small, v - u / 3.5, v)
+    w = w.copy()
+    w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
+    settled = np.zeros(M, dtype=bool)
+    for _ in range(M + 1):
+        v = _resting(v, np.where(settled, 0.0, 1.0 / m), a_idx, c_idx, normal)
+        u = v + R[:, None] * _perp(w[:, :2])
+        us, vs = _norm(u), _norm(v)
+        sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
+        rolling = ~sliding & (vs > EPS_V)
+        rest = ~sliding & ~rolling
+        safe_u = np.where(sliding, us, 1.0)[:, None]
+        safe_v = np.where(rolling, vs, 1.0)[:, None]
+        free = np.where(sliding[:, None], -ph.mu_slide * g * u / safe_u,
+                        np.where(rolling[:, None], -ph.mu_roll * g * v / safe_v, 0.0))
+        inv = np.where(sliding, 1.0, 1.0 / ROLL_MASS) / m
+        acc, _lam = _solve(free, inv, a_idx, c_idx, normal, bend)
+        # A slow rolling ball that the forces brake to rest within SETTLE rests now (its
+        # partners' speeds into it taken out with it): pushed off its line it would
+        # otherwise approach rest in ever shorter renewals.
+        brake = -(v * acc).sum(axis=1)
+        settle = rolling & (brake > 0) & (vs * vs < brake * SETTLE)
+        if not settle.any():
+            break
+        v = np.where(settle[:, None], 0.0, v)
+        settled |= settle
+    held = np.zeros(M, dtype=bool)
+    resisted = np.zeros(M, dtype=bool)
+    for _ in range(2 * M + 2):
+        acc, _lam = _solve(free, np.where(held, 0.0, inv), a_idx, c_idx, normal, bend)
+        # A ball at rest that is pushed rolls, against its rolling resistance; where the
+        # resistance wins (the ball would move backwards) it is held where it is.
+        start = rest & ~held & ~resisted & (_norm(acc) > A_MIN) & (ph.mu_roll > 0)
+        stop = resisted & ~held & ((free * acc).sum(axis=1) >= 0)
+        if not (start.any() or stop.any()):
+            break
+        size = np.where(start, _norm(acc), 1.0)[:, None]
+        free = np.where(start[:, None], -ph.mu_roll * g * acc / size, free)
+        resisted |= start
+        held |= stop
+        free = np.where(held[:, None], 0.0, free)
+    pushed = rest & ~held & (_norm(acc) > A_MIN)
+    acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
+    v = np.where(rest[:, None], 0.0, v)  # a ball at rest starts from rest, pushed or not
+    w = w.copy()
+    roll = rolling | pushed
+    w[:, :2] = np.where(roll[:, None], _perp(v) / R[:, None],
+                        np.where((rest & ~pushed)[:, None], 0.0, w[:, :2]))
+    uhat = u / safe_u
+    spin_acc = (2.5 * ph.mu_slide * g / R)[:, None] * _perp(uhat)  # a sliding ball's alpha
+    # How long each motion holds: the slip of a sliding ball changes at acc + R z x alpha,
+    # the velocity of a rolling one at acc.
+    slip_rate = acc + R[:, None] * _perp(spin_acc)
+    moving, rate_of = np.where(sliding[:, None], u, v), np.where(sliding[:, None], slip_rate, acc)
+    duration, straight = _renewal(moving, rate_of)
+    duration = np.where(sliding | roll, duration, np.inf)
+    # Where the friction's direction turns, it is taken at the middle of the motion's time
+    # (the direction there as first predicted), which makes the error second order in TURN.
+    turning = (sliding | rolling) & ~straight & np.isfinite(duration)
+    if turning.any():
+        mid = moving + rate_of * (0.5 * np.where(turning, duration, 0.0))[:, None]
+        size = np.where(turning, _norm(mid), 1.0)[:, None]
+        mu = np.where(sliding, ph.mu_slide, ph.mu_roll)[:, None]
+        free = np.where(turning[:, None], -mu * g * mid / size, free)
+        acc, _lam = _solve(free, np.where(held, 0.0, inv), a_idx, c_idx, normal, bend)
+        acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
+        mid_hat = mid / size
+        spin_acc = np.where(turning[:, None],
+                            (2.5 * ph.mu_slide * g / R)[:, None] * _perp(mid_hat), spin_acc)
+    alpha = np.where(sliding[:, None], spin_acc, _perp(acc) / R[:, None])
+    wz = np.abs(w[:, 2])
+    spinning = rest & ~pushed & (wz > EPS_W)
+    duration = np.where(spinning, wz / rate, duration)
+    w[:, 2] = np.where(rest & ~pushed & ~spinning, 0.0, w[:, 2])
+    state = np.where(sliding, SLIDING, np.where(roll, ROLLING,
+                                                np.where(spinning, SPINNING, STATIONARY)))
+    return v, acc, alpha, state, duration, w
+
+
+def _rows(M, a_idx, c_idx, normal) -> np.ndarray:
+    """J (rows, 2M): a contact's separating speed is J v (the rows of push)."""
+    nc = len(a_idx)
+    J = np.zeros((nc, M, 2))
+    rows = np.arange(nc)
+    J[rows, a_idx] = normal
+    ball = c_idx >= 0
+    J[rows[ball], c_idx[ball]] = -normal[ball]
+    return J.reshape(nc, 2 * M)
+
+
+def _resting(v, k, a_idx, c_idx, normal) -> np.ndarray:
+    """v with the contacts' normal speeds (a micrometre per second at most, left by the
+    solve of slow contacts) taken out by the least change weighted by inverse masses k:
+    a resting contact neither closes nor parts, else the force that holds it would hold a
+    ball creeping away for ever."""
+    if len(a_idx) == 0:
+        return v
+    J = _rows(len(k), a_idx, c_idx, normal)
+    u = J @ v.reshape(-1)
+    if not (np.abs(u) > EPS_V).any():  # slower than a ball at rest: nothing creeps
+        return v
+    kk = np.repeat(k, 2)
+    lam = np.linalg.lstsq((J * kk) @ J.T, -u, rcond=None)[0]
+    return v + (kk * (J.T @ lam)).reshape(-1, 2)
+
+
+def _solve(free, k, a_idx, c_idx, normal, bend):
+    """Accelerations of balls with free accelerations `free` and inverse masses k under the
+    contact rows: the smallest forces lam >= 0 with no contact accelerating into itself."""
+    M = len(k)
+    nc = len(a_idx)
+    if nc == 0:
+        return free, np.zeros(0)
+    J = _rows(M, a_idx, c_idx, normal)
+    kk = np.repeat(k, 2)
+    A = (J * kk) @ J.T
+    b = J @ free.reshape(-1) + bend
+    # Rows with nothing that can move (a held ball against a rail) carry no force.
+    live = np.abs(A).sum(axis=1) > 0
+    lam = np.zeros(nc)
+    if live.any():
+        lam[live] = solve_inelastic(A[np.ix_(live, live)], b[live])
+    acc = free + (kk * (J.T @ lam)).reshape(M, 2)
+    return acc, lam
