@@ -158,9 +158,9 @@ def test_contacts_handled_one_by_one_match_a_batch_bit_for_bit(seed):
         with np.errstate(all="ignore"):
             if path == "one by one":
                 for n in range(k):
-                    eng._pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None, [])
+                    eng._pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None, [], set())
             else:
-                eng._pairs(b, i, j, b, None, [])
+                eng._pairs(b, i, j, b, None, [], set())
         engines.append(eng)
     one, together = engines
     assert np.array_equal(one.state, together.state)

@@ -19,7 +19,12 @@ import numpy as np
 from termpool.physics import contact, cushion, motion
 from termpool.physics.motion import max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
-from termpool.physics.roots import first_contact, first_line_contact, first_line_contact_one
+from termpool.physics.roots import (
+    V_MIN,
+    first_contact,
+    first_line_contact,
+    first_line_contact_one,
+)
 from termpool.physics.slow import SlowContacts
 from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
     CLUSTER_GAP,
@@ -451,6 +456,7 @@ class Engine(SlowContacts):
         labels: dict = {}
         # (event, seed balls, every contact inelastic, the event's own slow contact)
         clusters: list[tuple[int, list[int], bool, bool]] = []
+        quiet: set[int] = set()  # resting contacts that began: no impulse, no event
         # Balls held in a group by resting contacts (joined.py): any event of one of them
         # renews the whole group's motion, since its contact forces change with it.
         grouped = self._grouped(tabs, i, j, kind)
@@ -465,33 +471,58 @@ class Engine(SlowContacts):
             # A slow bounce (or any bounce over the work bound) is solved with its cluster:
             # the ball settles on the cushion, and stays pressed to it while friction drives
             # it there.
-            slow = self._slow_bounce(tabs[cu], i[cu])
+            approach = self._approach(tabs[cu], i[cu])
+            slow = approach < self.physics.v_inelastic
+            # Slowly, touching a ball (pressed into the rail by it) or grouped: with the
+            # cluster; over the work bound: with the cluster, inelastically.
+            crowd = np.zeros(cu.size, dtype=bool)
+            if slow.any():
+                crowd[slow] = self._crowded(tabs[cu[slow]], i[cu[slow]])
             if any_busy:
-                slow |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self._nseg + self._npt)
+                crowd |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self._nseg + self._npt)
             if self.record:
                 labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
                                   strict=True))
-            if slow.any():
-                for n in cu[slow].tolist():
-                    clusters.append((n, [int(i[n])], bool(busy[n]), True))
-                cu = cu[~slow]
-            if cu.size:
-                self._cushion(tabs[cu], i[cu])
+            for n in cu[crowd].tolist():
+                clusters.append((n, [int(i[n])], bool(busy[n]), True))
+            alone = ~crowd
+            if alone.any():
+                self._cushion(tabs[cu[alone]], i[cu[alone]])
+                # A slow ball left pressed to the cushion by its friction stays on it, held
+                # by the cushion's force (a group); one that met it with no speed at all was
+                # no impact.
+                calm = alone & slow
+                if calm.any():
+                    pressed = np.zeros(cu.size, dtype=bool)
+                    pressed[calm] = self._pressed_on(tabs[cu[calm]], i[cu[calm]])
+                    for n in cu[pressed].tolist():
+                        clusters.append((n, [int(i[n])], False, True))
+                    quiet.update(cu[calm & ~pressed & (approach <= V_MIN)].tolist())
         more_b, more_i = [tabs], [i]
         if pr.size:
             more_b.append(tabs[pr])
             more_i.append(j[pr])
-            self._pairs(tabs[pr], i[pr], j[pr], pr, busy[pr] if any_busy else None, clusters)
+            self._pairs(tabs[pr], i[pr], j[pr], pr, busy[pr] if any_busy else None, clusters,
+                        quiet)
         if grouped is not None:
-            # A fast contact or bounce of a grouped ball: the rest of its group is renewed.
+            # A fast contact or bounce of a grouped ball breaks its group: the others move
+            # freely again, and those still pressed together are joined again as their
+            # predictions find them (a cheap step where a break's impacts cross a group).
             for n in np.flatnonzero(grouped & (kind >= 2)).tolist():
                 b = int(tabs[n])
-                seeds = [int(x) for x in (i[n], j[n]) if x >= 0]
-                members = sorted({k for x in seeds for k in self._group_of(b, x)} | set(seeds))
-                clusters.append((n, members, False, False))
+                own = {int(x) for x in (i[n], j[n]) if x >= 0}
+                members = {k for x in own for k in self._group_of(b, x)}
+                rest = sorted(members - own)
+                self.group[b, sorted(members)] = -1
+                self._ngroup[b] = int((self.group[b] >= 0).sum())
+                if rest:
+                    k = np.array(rest)
+                    bb, tt = np.full(k.size, b), np.full(k.size, self.tb[b])
+                    self._set(bb, k, tt, *self._eval(bb, k, tt))
+                    more_b.append(bb)
+                    more_i.append(k)
         extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
         also: dict[int, list[tuple[int, int, int]]] = {}  # event -> other balls' transitions
-        quiet: set[int] = set()  # resting contacts that began: no impulse, no event
         for n, seeds, every, own in clusters:
             b = int(tabs[n])
             before = self.state[b].copy()
@@ -518,7 +549,7 @@ class Engine(SlowContacts):
     def _grouped(self, tabs, i, j, kind):
         """Events (by position in the pass) that involve a grouped ball, or None if no table
         of the pass has a group (the usual case, decided without array work)."""
-        if not self._ngroup[tabs].any():
+        if (not self._ngroup[int(tabs[0])]) if tabs.size == 1 else not self._ngroup[tabs].any():
             return None
         out = (self.group[tabs, i] >= 0) & (kind != 1)
         pair = kind == 3
@@ -532,9 +563,10 @@ class Engine(SlowContacts):
             return [i]
         return np.flatnonzero(self.group[b] == g).tolist()
 
-    def _pairs(self, b, i, j, pr, busy, clusters) -> None:
+    def _pairs(self, b, i, j, pr, busy, clusters, quiet) -> None:
         """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
-        None for none): fast ones collide, slow ones go to `clusters`."""
+        None for none): fast ones collide; slow ones of a pair that touches nothing else
+        settle here (events that change nothing go to `quiet`), the rest go to `clusters`."""
         n = b.size
         if n == 1 and busy is None and self._pair_one(int(b[0]), int(i[0]), int(j[0])):
             return
@@ -554,7 +586,22 @@ class Engine(SlowContacts):
         fast = ~slow
         if fast.any():
             self._collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
-        for k in np.flatnonzero(slow).tolist():
+        calm = slow if busy is None else slow & ~busy
+        sl = np.flatnonzero(calm)
+        if sl.size:
+            # A pair alone, neither ball grouped: settled here, unless it stays pressed
+            # together, which the cluster's solve makes a group.
+            bs, is_, js = b[sl], i[sl], j[sl]
+            alone = self._alone(bs, is_, js) & (self.group[bs, is_] < 0) & (self.group[bs, js] < 0)
+            if alone.any():
+                a = sl[alone]
+                changed = self._settle(b[a], i[a], j[a], *(x[a] for x in states))
+                pressed = self._pressed(b[a], i[a], j[a])
+                quiet.update(int(pr[k]) for k in a[~changed & ~pressed].tolist())
+                alone[alone] = ~pressed
+            sl = sl[~alone]
+        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
+        for k in late:
             every = busy is not None and bool(busy[k])
             clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every, True))
 

@@ -126,21 +126,18 @@ def first_contact(
     if not hit.any():
         return out
     t = np.minimum(np.maximum(s, 0.0), 1.0) * T
-    # One Newton step on the unscaled quartic polishes the eigenvalue (or quadratic) root.
-    f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
-    df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
-    t = np.minimum(np.maximum(t - np.where(hit & (df < 0), f / df, 0.0), 0.0), T)
     # Accept only a clear crossing: the pair touches at t (the gap within TOUCH), closes
     # faster than V_MIN, and would go on to overlap by more than TOUCH (the local parabola's
-    # minimum, f - f'^2 / 2f'', is below -4 tg TOUCH). A tangent path (a double root, where
-    # the Newton step divides one rounding-level value by another, or lands just short of the
-    # tangent point) or a root the eigenvalues placed badly fails this and is decided by
-    # `_first_crossing`, which is exact but slow, and rarely needed.
+    # minimum, f - f'^2 / 2f'', is below -4 tg TOUCH); one Newton step on the unscaled
+    # quartic then polishes it. A tangent path (a double root, where a Newton step divides
+    # one rounding-level value by another) or a root the eigenvalues placed badly fails this
+    # and is decided by `_first_crossing`, which is exact but slow, and rarely needed.
     f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
     df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
     d2 = (12 * c4 * t + 6 * c3) * t + 2 * c2
     band = 2 * tg * TOUCH  # f is about 2 tg times the gap
     clear = (np.abs(f) <= band) & (df < -2 * tg * V_MIN) & ((d2 <= 0) | (df * df > 8 * d2 * band))
+    t = np.minimum(np.maximum(t - np.where(clear, f / df, 0.0), 0.0), T)
     for k in np.flatnonzero(hit & ~clear).tolist():
         t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
                                float(c0[k]), float(T[k]), float(tg[k]))

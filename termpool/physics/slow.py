@@ -8,33 +8,133 @@ Engine: it works on the engine's arrays.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from termpool.physics.cluster import solve_inelastic
 from termpool.physics.joined import push
-from termpool.physics.roots import V_MIN
+from termpool.physics.roots import A_MIN, V_MIN
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
 
 
 class SlowContacts:
-    def _slow_bounce(self, b, i) -> np.ndarray:
-        """True for balls (b, i) about to meet a cushion, jaw or tip (not a pocket's hole)
-        slower than v_inelastic: they settle on it with their cluster instead of bouncing,
-        and stay pressed to it while friction drives them there."""
-        t = self.tb[b]
-        f = self.f_cush[b, i]
+    def _normals(self, b, i, p):
+        """Unit normals (into the table) of the cushion features balls (b, i) at p are about
+        to meet: a rail's or jaw's, or from a jaw tip to the ball (not for pocket holes)."""
         nseg = self._nseg
-        out = f < nseg + self._npt
-        p, v, _ = self._eval(b, i, t, spin=False)
-        tab = self.table
-        n = tab.seg_n[np.minimum(f, nseg - 1)]
-        tip = (f >= nseg) & out
+        f = self.f_cush[b, i]
+        n = self.table.seg_n[np.minimum(f, nseg - 1)]
+        tip = (f >= nseg) & (f < nseg + self._npt)
         if tip.any():
-            d = p[tip] - tab.points[f[tip] - nseg]
+            d = p[tip] - self.table.points[f[tip] - nseg]
             n[tip] = d / _norm(d)[:, None]
-        return out & (-(v * n).sum(axis=1) < self.physics.v_inelastic)
+        return n
+
+    def _approach(self, b, i) -> np.ndarray:
+        """Speeds into the cushion, jaw or tip that balls (b, i) are about to meet (inf for
+        a pocket's hole: never a slow contact)."""
+        nseg = self._nseg
+        if b.size == 1:  # one ball (the usual case), in plain floats
+            bb, ib = int(b[0]), int(i[0])
+            f = int(self.f_cush[bb, ib])
+            if f >= nseg + self._npt:
+                return np.array([math.inf])
+            row = self._motion[bb, ib].tolist()
+            d = float(self.tb[bb]) - row[0]
+            vx, vy = row[3] + row[5] * d, row[4] + row[6] * d
+            if f < nseg:
+                nx, ny = self.table.seg_n[f].tolist()
+            else:
+                px = row[1] + (row[3] + 0.5 * row[5] * d) * d
+                py = row[2] + (row[4] + 0.5 * row[6] * d) * d
+                tx, ty = self.table.points[f - nseg].tolist()
+                r = math.hypot(px - tx, py - ty)
+                nx, ny = (px - tx) / r, (py - ty) / r
+            return np.array([-(vx * nx + vy * ny)])
+        p, v, _ = self._eval(b, i, self.tb[b], spin=False)
+        out = -(v * self._normals(b, i, p)).sum(axis=1)
+        return np.where(self.f_cush[b, i] < nseg + self._npt, out, np.inf)
+
+    def _crowded(self, b, i) -> np.ndarray:
+        """True for balls (b, i) that touch another ball or belong to a group."""
+        k = np.arange(self.N)[None, :]
+        p, _, _ = self._eval(b[:, None], k, self.tb[b][:, None], spin=False)
+        own = p[np.arange(len(b)), i]
+        gap = _norm(p - own[:, None]) - self.radius[b] - self.radius[b, i][:, None]
+        other = (self.state[b] != POCKETED) & (k != i[:, None])
+        return (other & (gap < CLUSTER_GAP)).any(axis=1) | (self.group[b, i] >= 0)
+
+    def _pressed_on(self, b, i) -> np.ndarray:
+        """True for balls (b, i), just bounced slowly off a cushion feature, that do not
+        leave it: still moving into it (a tiny slide completed into it), or neither moving
+        off nor into it but accelerating into it."""
+        p, v, _ = self._eval(b, i, self.tb[b], spin=False)
+        n = self._normals(b, i, p)
+        vn = (v * n).sum(axis=1)
+        an = (self.acc[b, i] * n).sum(axis=1)
+        tip = self.f_cush[b, i] >= self._nseg
+        bend = np.where(tip, ((v - vn[:, None] * n) ** 2).sum(axis=1) / self.rc[b, i], 0.0)
+        return (vn < 0) | ((vn <= V_MIN) & (an + bend < -A_MIN))
+
+    def _alone(self, b, i, j) -> np.ndarray:
+        """True for pairs (b, i, j) that touch no third ball and no cushion."""
+        N = self.N
+        t = self.tb[b]
+        k = np.arange(N)[None, :]
+        p, _, _ = self._eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
+        R = self.radius[b]
+        live = (self.state[b] != POCKETED) & (k != i[:, None]) & (k != j[:, None])
+        crowded = np.zeros(len(b), dtype=bool)
+        for x in (i, j):
+            px = p[np.arange(len(b)), x]
+            gap = _norm(p - px[:, None]) - R - R[np.arange(len(b)), x][:, None]
+            crowded |= (live & (gap < CLUSTER_GAP)).any(axis=1)
+            seg_gap, beside, tip_gap, _ = self._cushion_gaps(px, self.rc[b, x])
+            crowded |= ((seg_gap < CLUSTER_GAP) & beside).any(axis=1)
+            crowded |= (tip_gap < CLUSTER_GAP).any(axis=1)
+        return ~crowded
+
+    def _settle(self, b, i, j, pi, vi, wi, pj, vj, wj) -> np.ndarray:
+        """Slow contact of an isolated pair, balls now at (pi, vi, wi) and (pj, vj, wj):
+        perfectly inelastic along the normal, repeated with the slip completion of _set
+        until the pair no longer closes. Returns which pairs it changed."""
+        t = self.tb[b]
+        ri, rj = self.radius[b, i], self.radius[b, j]
+        mi, mj = self.mass[b, i], self.mass[b, j]
+        d = pj - pi
+        dist = _norm(d)
+        n = d / dist[:, None]
+        changed = ri + rj - dist > 0  # a sink to undo
+        for _ in range(20):
+            # Each pair stops as soon as it no longer closes, whatever the other tables do.
+            closing = ((vi - vj) * n).sum(axis=1)
+            live = closing > V_MIN
+            if not live.any():
+                break
+            changed |= live
+            jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
+            vi = vi - (jn / mi)[:, None] * n
+            vj = vj + (jn / mj)[:, None] * n
+            _, vi, wi, _ = self._snap(pi, vi, wi, ri, None, live, move=False)
+            _, vj, wj, _ = self._snap(pj, vj, wj, rj, None, live, move=False)
+        self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
+        return changed
+
+    def _pressed(self, b, i, j) -> np.ndarray:
+        """True for touching pairs (b, i, j) that, moving as now set, neither close nor part
+        but accelerate into each other (as roots.first_contact finds them)."""
+        t = np.concatenate([self.tb[b], self.tb[b]])
+        p, v, _ = self._eval(np.concatenate([b, b]), np.concatenate([i, j]), t, spin=False)
+        n = len(b)
+        a = self.acc[b, j] - self.acc[b, i]
+        d, dv = p[n:] - p[:n], v[n:] - v[:n]
+        r = _norm(d)
+        pv = (d * dv).sum(axis=1)
+        acc = ((dv * dv).sum(axis=1) + (d * a).sum(axis=1)) / r - pv * pv / r ** 3
+        return (np.abs(pv) <= V_MIN * r) & (acc < -A_MIN)
 
     def _cushion_gaps(self, p, rc):
         """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
