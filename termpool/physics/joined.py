@@ -21,8 +21,6 @@ runs out.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from termpool.physics.cluster import solve_inelastic
@@ -33,17 +31,18 @@ from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
 
 TURN = 0.01  # rad: a fixed friction direction is renewed after the true one turns this far
+TURN_ROLL = 0.2  # rad: the same for a rolling ball's resistance, 20 times weaker
 ROLL_MASS = 1.4  # a rolling ball pushed through its centre answers as if 7/5 as heavy
 EPS_SLIP = 1e-7  # m/s: a slip this small is completed at once (within 50 ns here, where a
 # pressed ball slides to the end of its slip, unlike state.EPS_U for free balls)
 SETTLE = 1e-3  # s: a rolling ball in a group that would be braked to rest this soon rests
 
 
-def _renewal(x: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _renewal(x: np.ndarray, k: np.ndarray, turn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """How long x + k t (rows) may be taken as keeping its direction: the exact time it
     reaches zero when it runs straight to zero (inf when it never shrinks); the time it
-    passes closest to zero when it runs within TURN of straight at it (it turns fast there);
-    else the time it has turned by TURN. Returns (time, straight)."""
+    passes closest to zero when it runs within `turn` of straight at it (it turns fast
+    there); else the time it has turned by `turn` (rows). Returns (time, straight)."""
     xx = (x * x).sum(axis=1)
     kk = (k * k).sum(axis=1)
     d = (x * k).sum(axis=1)
@@ -51,10 +50,10 @@ def _renewal(x: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     size = np.sqrt(xx * kk)
     live = (kk > 0) & (xx > 0)
     straight = (c <= 1e-12 * size) | ~live
-    near = ~straight & (d < 0) & (c < math.sin(TURN) * size)
+    near = ~straight & (d < 0) & (c < np.sin(turn) * size)
     with np.errstate(divide="ignore", invalid="ignore"):
         to_zero = np.where(d < 0, np.sqrt(xx / kk), np.inf)
-        tan = math.tan(TURN)
+        tan = np.tan(turn)
         den = c - d * tan
         turn = np.where(den > 0, tan * xx / den, np.inf)
         least = -d / kk
@@ -90,8 +89,12 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     w = w.copy()
     w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
     settled = np.zeros(M, dtype=bool)
+    rolled = _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
     for _ in range(M + 1):
         v = _resting(v, np.where(settled, 0.0, 1.0 / m), J)
+        # A rolling ball whose speed the contacts trimmed rolls on (its spin follows), as
+        # a rolling ball pushed through its centre does.
+        w[:, :2] = np.where(rolled[:, None], _perp(v) / R[:, None], w[:, :2])
         u = v + R[:, None] * _perp(w[:, :2])
         us, vs = _norm(u), _norm(v)
         sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
@@ -140,7 +143,10 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     # the velocity of a rolling one at acc.
     slip_rate = acc + R[:, None] * _perp(spin_acc)
     moving, rate_of = np.where(sliding[:, None], u, v), np.where(sliding[:, None], slip_rate, acc)
-    duration, straight = _renewal(moving, rate_of)
+    # The direction of a rolling ball's resistance may err as far as a sliding ball's friction
+    # may err in force: a turn TURN x mu_s / mu_r (at most TURN_ROLL).
+    turn = np.where(sliding, TURN, TURN_ROLL)
+    duration, straight = _renewal(moving, rate_of, turn)
     duration = np.where(sliding | roll, duration, np.inf)
     # Where the friction's direction turns, it is taken at the middle of the motion's time
     # (the direction there as first predicted), which makes the error second order in TURN.
