@@ -5,13 +5,14 @@ from __future__ import annotations
 import itertools
 import json
 import math
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from termpool.physics.cue import strike
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, PHYSICS_RANGES, Physics
 from termpool.physics.table import Table
 from termpool.scene import SceneError, load_scene, loads_scene, scene_to_dict
 
@@ -200,6 +201,13 @@ ONE = {"id": "cue", "x": 0.6, "y": 0.6}
 )
 def test_values_without_physical_meaning_are_refused(scene: dict, expected: str) -> None:
     assert error(scene) == expected or error(scene).startswith(expected)
+
+
+def test_every_number_of_the_physics_has_its_range() -> None:
+    numbers = {f.name for f in fields(Physics) if "float" in str(f.type)}
+    assert numbers == set(PHYSICS_RANGES)
+    for key, (lo, hi) in PHYSICS_RANGES.items():  # and the defaults lie within them
+        assert lo <= getattr(Physics(), key) <= hi, key
 
 
 @pytest.mark.parametrize("ok", [
