@@ -23,12 +23,16 @@ def nose_reach(radius, cushion_height: float):
 
 # What a scene or a saved match may set (docs/limits.md): (low, high) for each number of
 # Physics. Values beyond them mean nothing on a pool table, and the extreme ones only overflow
-# or ask the engine for unbounded work (a friction of 5e-324 never lets a ball rest). The
-# friction coefficients in FRICTIONLESS_OK may also be 0.
+# or ask the engine for unbounded work. The friction coefficients in FRICTIONLESS_OK may also
+# be 0. The lower ends keep a run finite and the engine's tolerances true: a slip under
+# state.EPS_U is completed at once, and the path it stands for strays from the slide by
+# EPS_U^2 / (24.5 mu_slide g), under roots.SINK (0.45 um) only while mu_slide g >= 0.1 m/s^2
+# (at 1e-4 x 0.1 a ball was set 2 mm into a rail, and the run never ended); with mu_roll and
+# mu_spin at 1e-3 a ball stops or stops spinning within hours of simulated time, not weeks.
 PHYSICS_RANGES = {
-    "mu_slide": (1e-4, 1.0), "mu_roll": (1e-4, 1.0), "mu_spin": (1e-4, 1.0),
+    "mu_slide": (0.1, 1.0), "mu_roll": (1e-3, 1.0), "mu_spin": (1e-3, 1.0),
     "mu_cushion": (0.0, 1.0), "e_ball": (0.0, 1.0), "e_cushion": (0.0, 1.0),
-    "cushion_height": (0.0, 1.0), "g": (0.1, 100.0), "v_inelastic": (0.0, 1.0),
+    "cushion_height": (0.0, 1.0), "g": (1.0, 100.0), "v_inelastic": (0.0, 1.0),
 }
 FRICTIONLESS_OK = ("mu_slide", "mu_roll", "mu_spin")
 PHYSICS_UNITS = {"g": "m/s^2", "cushion_height": "m", "v_inelastic": "m/s"}
