@@ -25,7 +25,6 @@ handlers.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import platform
@@ -40,6 +39,7 @@ from typing import Any, NoReturn
 
 from termpool import cli
 from termpool.cli import _Exit
+from termpool.files import json_safe, to_json
 from termpool.text import say as _say
 
 PROG = "termpool bench"
@@ -393,7 +393,7 @@ def speed(argv: list[str]) -> int:
         _say(f"bench speed: {e}")
         return 1
     if args.json:
-        sys.stdout.write(json.dumps(result) + "\n")
+        sys.stdout.write(to_json(json_safe(result)) + "\n")
     else:
         sys.stdout.write(format_speed(result))
     sys.stdout.flush()

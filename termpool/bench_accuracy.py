@@ -38,7 +38,6 @@ answer is derived on paper from the model's equations (closed_form.py, closed_ca
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import statistics
@@ -49,6 +48,7 @@ import numpy as np
 
 from termpool import closed_cases
 from termpool.bench import PROG, _engine, _Parser, _say, _seconds, machine_info, machine_lines
+from termpool.files import json_safe, to_json
 from termpool.physics.naive import EulerSim, NaiveSim
 from termpool.scene import SceneError, load_scene
 
@@ -579,7 +579,7 @@ def main(argv: list[str]) -> int:
         if result["png"] is None:
             result["png_note"] = "matplotlib is not installed"
     if args.json:
-        sys.stdout.write(json.dumps(result) + "\n")
+        sys.stdout.write(to_json(json_safe(result)) + "\n")
     else:
         sys.stdout.write(format_accuracy(result))
     sys.stdout.flush()

@@ -14,11 +14,11 @@ seconds. The exit status is 1 when any case fails.
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 
 from termpool.bench import PROG, _Parser, _say, machine_info, machine_lines
+from termpool.files import json_safe, to_json
 from termpool.stability_cases import (
     CASES,
     ENERGY_TOL,
@@ -78,17 +78,6 @@ def stability_figures(cases: list[Case], quick: bool) -> dict:
         "looks": sum(r["looks"] for r in rows),
         "machine": machine_info(),
     }
-
-
-def _json_safe(x):
-    """Non-finite floats as strings, so the output is strict JSON."""
-    if isinstance(x, float):
-        return x if x == x and abs(x) != float("inf") else str(x)
-    if isinstance(x, dict):
-        return {k: _json_safe(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_json_safe(v) for v in x]
-    return x
 
 
 def format_stability(r: dict) -> str:
@@ -155,7 +144,7 @@ def main(argv: list[str]) -> int:
         return 2
     result = stability_figures(cases, args.quick)
     if args.json:
-        sys.stdout.write(json.dumps(_json_safe(result), allow_nan=False) + "\n")
+        sys.stdout.write(to_json(json_safe(result)) + "\n")
     else:
         sys.stdout.write(format_stability(result))
     sys.stdout.flush()

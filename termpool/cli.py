@@ -8,7 +8,6 @@ Kept light: numpy, the scene loader and the engine are imported only inside the 
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 import time
@@ -251,18 +250,20 @@ def _samples(samples: list, ids: list[str], pocketed: int) -> list[dict]:
 
 
 def dump_json(result: dict) -> str:
-    """JSON with one line per top-level scalar and per item of a top-level list."""
+    """JSON with one line per top-level scalar and per item of a top-level list. Raises
+    ValueError naming a NaN or an infinity (files.to_json)."""
+    from termpool.files import to_json
 
-    def one(v: Any) -> str:
-        return json.dumps(v, separators=(", ", ": "))
+    def one(v: Any, where: str = "") -> str:
+        return to_json(v, where, separators=(", ", ": "))
 
     parts = []
     for key, val in result.items():
         if isinstance(val, list) and val:
-            items = ",\n".join("  " + one(v) for v in val)
+            items = ",\n".join("  " + one(v, f"{key}[{k}]") for k, v in enumerate(val))
             parts.append(f" {one(key)}: [\n{items}\n ]")
         else:
-            parts.append(f" {one(key)}: {one(val)}")
+            parts.append(f" {one(key)}: {one(val, key)}")
     return "{\n" + ",\n".join(parts) + "\n}\n"
 
 
@@ -312,7 +313,11 @@ def _sim(args: argparse.Namespace) -> int:
         from termpool.rules.referee import referee
 
         result["outcome"] = referee(scene.game, scene.ids, eng.events[0])
-    sys.stdout.write(dump_json(result))
+    try:
+        text = dump_json(result)
+    except ValueError as e:
+        return _fail(f"sim: the result cannot be written: {e}")
+    sys.stdout.write(text)
     sys.stdout.flush()
     return 0
 
@@ -333,7 +338,13 @@ def _replay(args: argparse.Namespace) -> int:
     bad = [s for s in shots if not s["ok"]]
     players = data.get("match", {}).get("players")  # checked by read_replay
     if args.json:
-        sys.stdout.write(json.dumps({"identical": not bad, "shots": shots}, indent=1) + "\n")
+        from termpool.files import to_json
+
+        try:
+            text = to_json({"identical": not bad, "shots": shots}, indent=1)
+        except ValueError as e:
+            return _fail(f"replay: the result cannot be written: {e}")
+        sys.stdout.write(text + "\n")
     else:
         for s in shots:
             who = (players[s["player"]] if players and s["player"] in (0, 1)

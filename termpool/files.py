@@ -2,7 +2,8 @@
 
 Every file the game reads goes through `read_text` (a size limit, so `/dev/zero` is refused
 instead of filling memory; UTF-8 with or without a byte order mark) and every JSON file through
-`parse_json` (integers of at most `MAX_INT_DIGITS` digits, nesting at most `MAX_DEPTH` deep).
+`parse_json` (integers of at most `MAX_INT_DIGITS` digits, nesting at most `MAX_DEPTH` deep, no
+NaN or Infinity). All JSON it writes is made by `to_json`, which refuses NaN and Infinity.
 Every file it writes goes through `write_atomic`: a temporary file in the same directory,
 flushed to disk, then renamed over the target, so a kill or a full disk never leaves a partial
 file. Errors are `FileError`s with one line naming the file.
@@ -73,6 +74,10 @@ def _int(text: str) -> int:
     return int(text)
 
 
+def _constant(name: str) -> float:
+    raise FileError(f"{name} is not JSON (a number must be finite)")
+
+
 def depth(obj: Any) -> int:
     """How deep lists and objects nest in a parsed JSON value (a scalar is 0)."""
     deepest = 0
@@ -93,7 +98,8 @@ def parse_json(text: str, where: str,
     """Parse JSON text, refusing what no termpool file holds: integers longer than
     MAX_INT_DIGITS digits and nesting deeper than MAX_DEPTH. Raises FileError."""
     try:
-        data = json.loads(text, parse_int=_int, object_pairs_hook=pairs_hook)
+        data = json.loads(text, parse_int=_int, parse_constant=_constant,
+                          object_pairs_hook=pairs_hook)
     except json.JSONDecodeError as e:
         raise FileError(f"{where}: invalid JSON at line {e.lineno} column {e.colno}: "
                         f"{e.msg}") from None
@@ -110,6 +116,50 @@ def parse_json(text: str, where: str,
 
 
 # -------------------------------------------------------------------------------- writing
+
+
+def _nonfinite(value: Any, path: str = "") -> tuple[str, float] | None:
+    """The place and value of the first NaN or infinity in a JSON-able value, if any."""
+    if isinstance(value, float) and not (value == value and abs(value) != float("inf")):
+        return path or "the value", value
+    if isinstance(value, dict):
+        items = ((f"{path}.{k}" if path else str(k), v) for k, v in value.items())
+    elif isinstance(value, (list, tuple)):
+        items = ((f"{path}[{k}]", v) for k, v in enumerate(value))
+    else:
+        return None
+    for where, v in items:
+        found = _nonfinite(v, where)
+        if found:
+            return found
+    return None
+
+
+def to_json(value: Any, where: str = "", **options: Any) -> str:
+    """JSON text of `value` (with json.dumps's options) for every file and output termpool
+    writes. NaN and the infinities are refused (json.dumps would write bare NaN and Infinity,
+    which are not JSON): ValueError naming the first one's place, e.g. `balls[0].x is nan`
+    (`where`: the place of `value` itself, when it is part of something larger)."""
+    try:
+        return json.dumps(value, allow_nan=False, **options)
+    except ValueError:
+        found = _nonfinite(value, where)
+        if found is None:
+            raise
+        raise ValueError(f"{found[0]} is {found[1]!r}, not a finite number (JSON has no "
+                         "NaN or Infinity)") from None
+
+
+def json_safe(value: Any) -> Any:
+    """`value` with NaN and the infinities as strings ("nan", "inf"), for reports whose
+    figures may be undefined (benchmarks): strict JSON through to_json."""
+    if isinstance(value, float):
+        return value if value == value and abs(value) != float("inf") else str(value)
+    if isinstance(value, dict):
+        return {k: json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(v) for v in value]
+    return value
 
 
 def write_problem(path: str | os.PathLike, force: bool = False) -> str | None:

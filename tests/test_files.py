@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import io
+import json
+import math
 import os
 import shutil
 import stat
@@ -79,6 +81,23 @@ def test_parse_json_accepts_nesting_up_to_the_limit() -> None:
     assert files.depth(parse_json("[" * n + "]" * n, "f")) == n
     assert files.depth(parse_json('{"a": [1, {"b": []}], "c": "[[[[["}', "f")) == 4
     assert files.depth(7) == 0
+
+
+@pytest.mark.parametrize("token", ["NaN", "Infinity", "-Infinity"])
+def test_parse_json_refuses_nan_and_infinity(token) -> None:
+    with pytest.raises(FileError, match=f"^f: invalid JSON: {token} is not JSON"):
+        parse_json(f'{{"balls": [{{"x": {token}}}]}}', "f")
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_to_json_refuses_what_json_cannot_hold_and_names_its_place(bad) -> None:
+    value = {"time": 1.0, "balls": [{"x": 0.5, "w": [0.0, 1.0]}, {"x": 0.5, "w": [0.0, bad]}]}
+    with pytest.raises(ValueError, match=rf"^balls\[1\]\.w\[1\] is {bad!r}, not a finite"):
+        files.to_json(value)
+    assert files.to_json({"x": [1.5, -0.0]}, indent=1) == json.dumps({"x": [1.5, -0.0]},
+                                                                      indent=1)
+    safe = files.json_safe(value)  # for reports: the undefined figure as text
+    assert safe["balls"][1]["w"][1] == str(bad) and json.loads(files.to_json(safe))
 
 
 def test_write_atomic_writes_and_replaces_keeping_the_mode(tmp_path) -> None:

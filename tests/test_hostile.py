@@ -96,6 +96,8 @@ SIM_CASES = {
     "non-UTF-8": (b'{"description": "caf\xe9"}', "not UTF-8 text"),
     "10,000 balls": (json.dumps({"balls": [{"x": 0.1, "y": 0.1}] * 10_000}),
                      "more than the limit of 1000"),
+    "NaN token": ('{"balls": [{"x": NaN, "y": 0.5}]}', "invalid JSON: NaN is not JSON"),
+    "mu_slide 1e308": ('{"physics": {"mu_slide": 1e308}}', "physics.mu_slide: must be at most 1"),
 }
 
 
@@ -111,6 +113,22 @@ def test_sim_from_stdin_is_bounded_and_checked(capsys, monkeypatch) -> None:
     rc, _, err = main(capsys, "sim", "-", stdin=('{"x": ' + VAST + "}").encode(),
                       monkeypatch=monkeypatch)
     one_line(rc, err, "stdin: invalid JSON: an integer with more than 100 digits")
+
+
+def test_a_non_finite_result_is_one_line_never_a_nan_token(capsys, monkeypatch) -> None:
+    """JSON has no NaN or Infinity: should a result ever hold one, sim says where, in one
+    line, instead of printing a token no JSON reader takes."""
+    real = cli.sim_result
+
+    def broken(*args, **kw):
+        res = real(*args, **kw)
+        res["balls"][2]["vy"] = float("-inf")
+        return res
+
+    monkeypatch.setattr(cli, "sim_result", broken)
+    rc, out, err = main(capsys, "sim", cli.bundled_example())
+    one_line(rc, err, "sim: the result cannot be written: balls[2].vy is -inf, not a finite")
+    assert out == ""
 
 
 @pytest.mark.parametrize("argv", [["sim"], ["replay"]])

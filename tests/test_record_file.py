@@ -201,3 +201,26 @@ def test_leaving_from_the_menu_says_there_is_nothing_to_save(capsys, tmp_path) -
     assert rc == 0 and not rec.exists()
     assert capsys.readouterr().err == "termpool: no match was played, so there is no record " \
                                       "to save\n"
+
+
+def test_a_record_holding_a_nan_is_not_written_as_bad_json(capsys, tmp_path,
+                                                           monkeypatch) -> None:
+    """JSON has no NaN: should a match ever hold one, the record says so in one line and no
+    file with a NaN token is left for a replay to choke on."""
+    from termpool.game import Match
+
+    real = Match.to_json
+
+    def with_nan(self):
+        d = real(self)
+        d["current"]["balls"][0]["x"] = float("nan")
+        return d
+
+    monkeypatch.setattr(Match, "to_json", with_nan)
+    rec = tmp_path / "x.json"
+    rc = cli.main([*PLAY, "--keys", keys(tmp_path, "enter space-hold 1.0 wait 1"), "--record",
+                   str(rec)])
+    err = capsys.readouterr().err
+    assert rc == 1 and not rec.exists()
+    assert err == ("termpool: cannot write the record: current.balls[0].x is nan, not a finite "
+                   "number (JSON has no NaN or Infinity)\n")

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import signal
 import sys
@@ -123,7 +122,7 @@ def save_record(app, path: str | None, force: bool = False) -> int:
     """Write the match (--record) after play, however it ended; a shot still rolling is played
     out in simulation first. Says where the record went. Returns 0, or 1 when it could not go
     to `path` (it then goes to a new file in the data directory, if it can)."""
-    from termpool.files import write_atomic, write_fallback, write_problem
+    from termpool.files import to_json, write_atomic, write_fallback, write_problem
     from termpool.text import say
     from termpool.ui.term import signals_held
 
@@ -136,7 +135,11 @@ def save_record(app, path: str | None, force: bool = False) -> int:
         if match is None:
             say("no match was played, so there is no record to save")
             return 0
-        text = json.dumps(match.to_json(), indent=1) + "\n"
+        try:
+            text = to_json(match.to_json(), indent=1) + "\n"
+        except ValueError as e:
+            say(f"cannot write the record: {e}")
+            return 1
         n = len(match.history)
         what = f"{n} {'shot' if n == 1 else 'shots'}"
         if path == "-":
