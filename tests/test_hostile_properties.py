@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from termpool import cli, files
 from termpool.game import Match, Shot
 from termpool.physics.cue import MISCUE_OFFSET, clamp_tip, strike
+from termpool.physics.engine import WORK_LIMIT
 from termpool.physics.params import FRICTIONLESS_OK, PHYSICS_RANGES
 from termpool.scene import (
     MASS_RANGE,
@@ -165,6 +166,52 @@ def test_a_physical_value_loads_exactly_when_it_is_within_its_documented_limits(
             loaded = False
             assert key in str(e)
     assert loaded == inside, (slot, value)
+
+
+def within(lo: float, hi: float, zero: bool = False) -> st.SearchStrategy[float]:
+    """Values of a documented range, its ends most often (0 too where it is allowed)."""
+    ends = [lo, hi, 0.0] if zero else [lo, hi]
+    return st.one_of(st.sampled_from(ends), st.floats(lo, hi))
+
+
+# Any physics a scene may give: each number at its limits or between, any cushion model.
+valid_physics = st.fixed_dictionaries(
+    {"cushion": st.sampled_from(["simple", "han", "mathavan"]),
+     "ball_ball": st.sampled_from(["frictional", "frictionless"])},
+    optional={k: within(lo, hi, k in FRICTIONLESS_OK) for k, (lo, hi) in PHYSICS_RANGES.items()})
+
+
+TENTH = WORK_LIMIT // 10
+
+
+@settings(max_examples=30, **SETTINGS)
+@given(physics=valid_physics, radius=within(*RADIUS_RANGE), mass=within(*MASS_RANGE),
+       speed=within(0.0, MAX_SPEED), angle=st.floats(-180.0, 180.0),
+       tip=st.tuples(st.floats(-0.35, 0.35), st.floats(-0.35, 0.35)))
+def test_any_valid_physics_runs_to_strict_json_within_the_work_limit(
+        capsys, tmp_path, monkeypatch, physics, radius, mass, speed, angle, tip) -> None:
+    """The extremes of every physical limit together, with a ball of any size and weight
+    frozen to a rail beside a standard one, struck at any speed: `sim` finishes (well inside
+    the work limit: a tenth of it here) and prints strict JSON with every number finite."""
+    from termpool.physics import engine
+
+    monkeypatch.setattr(engine, "WORK_LIMIT", TENTH)
+    r = min(radius, 0.2)
+    scene = {"table": "9ft", "physics": physics,
+             "balls": [{"id": "cue", "x": 0.8, "y": 0.7},
+                       {"id": "1", "x": 1.6, "y": r, "radius": r, "mass": mass},
+                       {"id": "2", "x": 1.6 + r + 0.028575, "y": 0.028575}],
+             "shot": {"speed": speed, "angle": angle, "side": tip[0], "top": tip[1]}}
+    p = tmp_path / "s.json"
+    p.write_text(json.dumps(scene))
+    rc, out, err = run(capsys, "sim", str(p), "--duration", "20")
+    assert rc == 0, err
+
+    def refuse(token: str) -> float:
+        raise AssertionError(f"{token} in the output")
+
+    result = json.loads(out, parse_constant=refuse)
+    assert all(math.isfinite(b[k]) for b in result["balls"] for k in ("x", "y", "vx", "vy"))
 
 
 @settings(max_examples=100, **SETTINGS)
