@@ -551,6 +551,28 @@ def test_a_ball_in_a_pocket_mouth_is_on_the_table_but_not_over_the_hole() -> Non
         load_scene(one_ball(0.7, t.width + 0.01))  # in the rail, far from any pocket
 
 
+def test_a_ball_over_a_corner_hole_is_off_the_table_though_within_the_rail_lines() -> None:
+    """A corner hole reaches past the rail lines into the corner of the bed: a ball there,
+    touching both rail lines, is 12 mm over the hole's edge (the engine would pocket it at
+    once)."""
+    t = Table.preset("9ft")
+    k = t.hole_names.index("head_right")
+    assert math.hypot(BALL_RADIUS - t.hole_c[k, 0], BALL_RADIUS - t.hole_c[k, 1]) < t.hole_r[k]
+    with pytest.raises(SceneError, match="off the table"):
+        load_scene(one_ball(BALL_RADIUS, BALL_RADIUS))
+
+
+@pytest.mark.parametrize("table, x, y", [
+    ("9ft", -0.06, 1.30),  # beside the head-left corner, outside its jaws
+    ({"length": 0.5, "width": 0.34375}, 0.0811, 0.4549),  # found by tests/test_pockets.py
+])
+def test_a_ball_beside_a_pocket_but_outside_its_jaws_is_off_the_table(table, x, y) -> None:
+    """Clear of every rail, jaw and hole, yet off the slate: past the rail lines a ball is on
+    the table only between a pocket's jaws."""
+    with pytest.raises(SceneError, match="off the table"):
+        load_scene({"table": table, "balls": [{"id": "cue", "x": x, "y": y}]})
+
+
 def test_every_layout_the_engine_leaves_loads_as_a_scene() -> None:
     # Balls come to rest against rails and in pocket mouths; the next shot's scene must load.
     from termpool.physics.engine import POCKETED, Engine

@@ -325,13 +325,17 @@ class Engine(SlowContacts):
         dist = [(R + R[rows, i][:, None])[valid]]
         horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
-        # noses within their window (a ball in open felt costs nothing here); tips and holes
-        # are the same quartic as a pair.
+        # noses or a hole within their window (a ball in open felt costs nothing here); tips
+        # and holes are the same quartic as a pair. A corner hole may reach into the table
+        # past the rail lines, up to its mouth.
         T = end - t
         reach = _norm(v) * T + 0.5 * _norm(a) * T * T + self.rc[b, i]
         tab = self.table
         x, y = p[:, 0], p[:, 1]
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
+        if len(tab.hole_r):
+            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
+            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
         mv = np.flatnonzero(moving & near)
         nc = len(self._circles)
         if mv.size and nc:

@@ -140,24 +140,39 @@ class Table:
             kinds.append("rail")
         self._finish(segs, kinds, points, holes, names)
 
+    def channels(self) -> list[np.ndarray]:
+        """Each pocket's channel, the polygon between its jaws: from one jaw tip along its
+        jaw to the jaw's end, across to the other jaw's end and back to its tip (where the
+        jaws cross, only up to the crossing). Beyond the cushion noses a ball is on the table
+        only here."""
+        jaws = [k for k, kind in enumerate(self.seg_kind) if kind == "jaw"]
+        out = []
+        for a, b in zip(jaws[0::2], jaws[1::2], strict=True):
+            t1, e1, t2, e2 = self.seg_a[a], self.seg_b[a], self.seg_a[b], self.seg_b[b]
+            x = _crossing(t1, e1, t2, e2)
+            out.append(np.array([t1, e1, e2, t2] if x is None else [t1, x, t2]))
+        return out
+
     def inside(self, x: float, y: float, r: float) -> bool:
         """True when a ball of radius r at (x, y) lies within the cushion noses."""
         return r <= x <= self.length - r and r <= y <= self.width - r
 
     def on_bed(self, x: float, y: float, r: float, tol: float = 1e-6) -> bool:
-        """True when a ball of radius r at (x, y) is in play: within the cushion noses, or in
-        a pocket's mouth (a ball can stop there, past the line of the rail noses) clear of the
-        rails and jaws by `tol` and not yet over the hole."""
-        if self.inside(x, y, r):
-            return True
-        if not self.hole_r.size or not (math.isfinite(x) and math.isfinite(y)):
+        """True when a ball of radius r at (x, y) is in play: not over a hole, and within the
+        cushion noses, or in a pocket's mouth or between its jaws (a ball can stop there, past
+        the line of the rail noses) clear of the rails, jaws and jaw tips by `tol`."""
+        if not (math.isfinite(x) and math.isfinite(y)):
             return False
         p = np.array([x, y], float)
-        mouth = max(self.corner_mouth, self.side_mouth)
-        if np.hypot(*(self.points - p).T).min() > mouth:
-            return False  # nowhere near a pocket
         if (np.hypot(*(self.hole_c - p).T) <= self.hole_r).any():
-            return False  # over a hole: pocketed
+            return False  # over a hole (a corner hole may reach past the rail lines): pocketed
+        if self.inside(x, y, r):
+            return True
+        if not self.hole_r.size:
+            return False
+        if not (0 <= x <= self.length and 0 <= y <= self.width) and not any(
+                _within(p, c) for c in self.channels()):
+            return False  # past the rail lines but not between a pocket's jaws: off the slate
         d = self.seg_b - self.seg_a
         rel = p - self.seg_a
         t = (rel * d).sum(axis=1) / (d * d).sum(axis=1)
@@ -167,3 +182,25 @@ class Table:
         near = self.seg_a + np.clip(t, 0, 1)[:, None] * d
         gap = min(np.hypot(*(near - p).T).min(), np.hypot(*(self.points - p).T).min())
         return bool(gap >= r - tol)
+
+
+def _crossing(p1: np.ndarray, p2: np.ndarray, q1: np.ndarray, q2: np.ndarray):
+    """Where segments p1p2 and q1q2 cross, or None."""
+    d, e, w = p2 - p1, q2 - q1, q1 - p1
+    den = d[0] * e[1] - d[1] * e[0]
+    if den == 0:
+        return None
+    s = (w[0] * e[1] - w[1] * e[0]) / den
+    u = (w[0] * d[1] - w[1] * d[0]) / den
+    return p1 + s * d if 0 <= s <= 1 and 0 <= u <= 1 else None
+
+
+def _within(p: np.ndarray, poly: np.ndarray) -> bool:
+    """Whether point p lies within the simple polygon poly (the even-odd rule)."""
+    x, y = p
+    inside = False
+    for k in range(len(poly)):
+        (x1, y1), (x2, y2) = poly[k], poly[k - 1]
+        if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
+            inside = not inside
+    return inside
