@@ -508,6 +508,11 @@ class Engine(SlowContacts):
                 crowd[slow] = self._crowded(tabs[cu[slow]], i[cu[slow]])
             if any_busy:
                 crowd |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self._nseg + self._npt)
+            if crowd.any():
+                # A cluster's solve leaves out a contact sunk deeper than CLUSTER_GAP, and
+                # the ball would meet it again at once, for ever: it bounces (and is lifted).
+                k = np.flatnonzero(crowd)
+                crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
             if self.record:
                 labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
                                   strict=True))
@@ -728,6 +733,18 @@ class Engine(SlowContacts):
         p = [p[0] + lift * n[0], p[1] + lift * n[1]]
         self._write_few(np.array([b]), np.array([i]), [
             motion.start(ph, t, p, v, w, r, row[_RATE], bool(self.state[b, i] == POCKETED))])
+
+    def _sunk(self, b, i) -> np.ndarray:
+        """True for balls (b, i) sunk deeper than CLUSTER_GAP into the rail, jaw or jaw tip
+        they are about to meet."""
+        p, _, _ = self._eval(b, i, self.tb[b], spin=False)
+        f = self.f_cush[b, i]
+        seg = (f < self._nseg)[:, None]
+        ref = np.where(seg, self.table.seg_a[np.minimum(f, self._nseg - 1)],
+                       self.table.points[np.clip(f - self._nseg, 0, max(self._npt - 1, 0))]
+                       if self._npt else 0.0)
+        depth = self.rc[b, i] - ((p - ref) * self._normals(b, i, p)).sum(axis=1)
+        return depth > CLUSTER_GAP
 
     def _features(self, f) -> list[str]:
         """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
