@@ -207,6 +207,29 @@ def test_values_without_physical_meaning_are_refused(scene: dict, expected: str)
     assert error(scene) == expected or error(scene).startswith(expected)
 
 
+def test_the_limits_doc_states_the_limits_the_code_holds() -> None:
+    from termpool import files
+    from termpool.physics.engine import WORK_LIMIT
+    from termpool.scene import MASS_RANGE, MAX_BALLS, MAX_SPEED, MAX_SURFACE_SPEED, RADIUS_RANGE
+
+    doc = (ROOT / "docs" / "limits.md").read_text()
+    rows = {}
+    for line in doc.splitlines():
+        if line.startswith("| `"):
+            for key in line.split("|")[1].replace("`", "").replace(",", " ").split():
+                rows.setdefault(key, line)
+    for key, (lo, hi) in PHYSICS_RANGES.items():
+        assert f"{lo:g} to {hi:g}" in rows[key], key
+    assert f"{RADIUS_RANGE[0]:g} to {RADIUS_RANGE[1]:g} m" in rows["radius"]
+    assert f"{MASS_RANGE[0]:g} to {MASS_RANGE[1]:g} kg" in rows["mass"]
+    for text in (f"1 to {MAX_BALLS} |", f"at most {MAX_SPEED:g} m/s",
+                 f"at most {MAX_SURFACE_SPEED:g} m/s", f"{WORK_LIMIT:,} units",
+                 f"| {files.MAX_SCENE_BYTES // files.MiB} MiB |",
+                 f"| {files.MAX_REPLAY_BYTES // files.MiB} MiB |",
+                 f"at most {files.MAX_INT_DIGITS} digits", f"at most {files.MAX_DEPTH} levels"):
+        assert text in doc, text
+
+
 def test_every_number_of_the_physics_has_its_range() -> None:
     numbers = {f.name for f in fields(Physics) if "float" in str(f.type)}
     assert numbers == set(PHYSICS_RANGES)
