@@ -50,8 +50,9 @@ def test_held_space_on_a_legacy_terminal_is_inferred_from_auto_repeat() -> None:
     run_script(app, "enter wait 0.2 space-hold 0.9 wait 1", legacy=True)
     (shot,) = shots(app)
     full = PowerCharge("repeat").full_time
-    # The inferred release is one repeat interval after the last repeat: within 0.05 s.
-    lo, hi = power_to_speed((0.9 - 0.05) / full), power_to_speed((0.9 + 0.05) / full)
+    # The charge runs from the first repeat (0.3 s after the press in scripts); the inferred
+    # release is one repeat interval after the last repeat: within 0.05 s.
+    lo, hi = power_to_speed((0.6 - 0.05) / full), power_to_speed((0.6 + 0.05) / full)
     assert lo <= shot["speed"] <= hi
 
 
@@ -207,7 +208,7 @@ def test_help_lists_the_key_bindings() -> None:
     assert isinstance(app.keymap, KeyMap)
     app.key(Key("enter"), 0.0)
     text = screen_text(app.cells(120, 40)[0])
-    assert "Z shoot" in text and "hold z, release to shoot" in text
+    assert "Z: hold (key repeat)" in text and "hold z, release to shoot" in text
     app.key(Key("h"), 1.0)
     assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
 
@@ -750,3 +751,52 @@ def test_the_eight_on_the_break_variant_reaches_the_match():
     assert app_for(mode="8ball").match.eight_break == "respot"
     p = cli("play", "--headless", "--keys", "-", "--eight-break", "sometimes", stdin="q y")
     assert p.returncode == 2 and "--eight-break" in p.stderr
+
+
+# ------------------------------------------------------------ power without key releases
+
+@pytest.mark.parametrize("delay", [0.25, 0.5, 0.66])
+def test_legacy_terminal_softest_hold_is_gentle_and_strikes_within_100_ms(delay) -> None:
+    # A terminal without key releases (tmux, most terminals), emulated by the script's
+    # `repeat` token: the softest hold is the press and its first repeat.
+    for hold, most in ((delay + 0.01, 0.15), (delay + 0.5, 1.0)):
+        app = app_for(input_mode="repeat")
+        events = legacy_events(parse_script(f"repeat {delay} 0.033 enter wait 0.2 "
+                                            f"space-hold {hold} wait 1"))
+        play(app, events, 100, 32)
+        (shot,) = shots(app)
+        assert shot["speed"] <= power_to_speed(most)
+        last = max(t for t, k in events if k.name == "space")
+        assert 0.0 < app.struck_at - last <= 0.1
+
+
+def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() -> None:
+    for mode in ("release", "repeat", "classic"):
+        app = app_for(input_mode=mode)
+        run_script(app, "enter wait 0.2", legacy=mode != "release")
+        hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+        assert {"release": "Space: hold, let go", "repeat": "Space: hold (key repeat)",
+                "classic": "Space: meter"}[mode] in hint
+        play(app, [(1.0, Key("3")), (1.1, Key("space"))] if mode != "release" else
+             [(1.0, Key("3")), (1.1, Key("space")), (1.15, Key("space", "release"))], 100, 32)
+        (shot,) = shots(app)
+        assert shot["speed"] == power_to_speed(0.3)
+        hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+        assert "Space: strike at 30%" in hint and "Esc hold" in hint
+        app.key(Key("esc"), 100.0)  # back to holding
+        assert "Space: strike" not in screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2 0 space wait 5", legacy=True)
+    assert shots(app)[0]["speed"] == power_to_speed(1.0)
+
+
+def test_headless_repeat_input_is_a_legacy_terminal_with_the_script_s_repeat(tmp_path) -> None:
+    rec = tmp_path / "m.json"
+    p = cli("play", "--headless", "--mode", "practice", "--input", "repeat", "--keys", "-",
+            "--record", str(rec), "--colors", "mono",
+            stdin="repeat 0.66 0.04 enter wait 0.2 space-hold 0.68 wait 5 7 space wait 5")
+    assert p.returncode == 0, p.stderr
+    first, second = (s["shot"]["speed"] for s in json.loads(rec.read_text())["shots"])
+    assert first <= power_to_speed(0.15) and second == power_to_speed(0.7)
+    p = cli("play", "--headless", "--keys", "-", stdin="repeat 0.5")
+    assert p.returncode == 2 and "repeat needs" in p.stderr

@@ -100,6 +100,7 @@ class App:
         self.notes: list[str] = []  # for the terminal after the game (see `record`)
         self._geom = None  # (cols, rows, layout, view)
         self._aim_cache = None
+        self.last_power = 0.5  # the power of the last shot: the aid's until another is set
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -232,6 +233,7 @@ class App:
             self.phase = "aim"
             self.dirty = True
             return
+        self.struck_at = self.now  # the clock at the strike
         self.frames = self._simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
         self.fast = False  # fast-forward is for one shot
@@ -242,6 +244,7 @@ class App:
         self.dirty = True
 
     def _shoot_human(self, level: float) -> None:
+        self.last_power = level
         called = None
         if self.match.needs_call():
             called = self._called()
@@ -288,8 +291,11 @@ class App:
         """Seconds until the app needs a tick (None: only on a key)."""
         if self.overlay is not None:
             return None
-        if self.phase in ("run", "cpu") or self.charge.active:
+        if self.phase in ("run", "cpu"):
             return 0.0
+        if self.charge.active:  # the meter moves; an inferred release is due at its time
+            due = self.charge.release_due()
+            return 0.0 if due is None else max(0.0, due - t)
         return None
 
     def tick(self, t: float) -> None:
@@ -524,7 +530,13 @@ class App:
         elif action == "spin_reset":
             self.side = self.top = 0.0
         elif action == "cancel":
-            self.charge.cancel()
+            if self.charge.active:
+                self.charge.cancel()
+            elif self.charge.preset_level is not None:
+                self.charge.preset(None)
+                self.message = [(f"power: hold {self.charge.key_label} again", "dim")]
+        elif action is None and _power_digit(key) is not None:
+            self.charge.preset(_power_digit(key))
         elif action == "aim_aid":
             self.opts.aid = not self.opts.aid
             self.message = [("aim line on" if self.opts.aid else "aim line off (G)", "dim")]
@@ -596,7 +608,9 @@ class App:
         return [min(right, max(r, x)), min(W - r, max(r, y))]
 
     def _key_run(self, key, action, t) -> None:
-        if action == "fast_forward" and key.kind == "press":
+        if action == "shoot":
+            self.charge.observe(key, t)  # a key still held after the strike: its repeats
+        elif action == "fast_forward" and key.kind == "press":
             self.fast = not self.fast
 
     def _key_cpu(self, key, action, t) -> None:
@@ -695,6 +709,14 @@ class App:
         if m is not None and m.history:
             return m
         return self.played[-1] if self.played else m
+
+
+def _power_digit(key) -> float | None:
+    """The power a digit key sets (1-9: 10-90%, 0: 100%), or None for any other key."""
+    if key.kind != "press" or key.ctrl or key.alt or len(key.name) != 1 \
+            or key.name not in "0123456789":
+        return None
+    return (int(key.name) or 10) / 10
 
 
 OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",

@@ -145,7 +145,7 @@ def panel_info(app) -> PanelInfo:
     now = _status(app)
     # While charging, the power reading comes before the last verdict.
     status = now + app.message if app.charge.active else app.message + now
-    help_line, help_short = hint_lines(app)
+    hint = hint_lines(app)
     widgets = []
     if app.phase in ("aim", "cpu") and app.depth != "mono":
         from termpool.ui.overlay import power_meter_cells, spin_face_cells
@@ -157,8 +157,8 @@ def panel_info(app) -> PanelInfo:
     title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
-    return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
-                     widgets=widgets, theme=app.opts.theme, help_short=help_short)
+    return PanelInfo(f"termpool · {title}", players, status, hint, m.ids,
+                     widgets=widgets, theme=app.opts.theme)
 
 
 def _status(app) -> list[tuple[str, str]]:
@@ -204,33 +204,46 @@ def _status(app) -> list[tuple[str, str]]:
     return out
 
 
-def hint_lines(app) -> tuple[str, str]:
-    """The panel's one line of key help for this phase (full, and short for narrow panels),
-    with the keys the key map really binds."""
+def power_hint(app) -> tuple[str, str]:
+    """How Space gives power now, in the hint line's long and short forms."""
+    ch = app.charge
+    k = pretty(ch.key_label)
+    if ch.preset_level is not None:
+        pct = f"{round(100 * ch.preset_level)}%"
+        return f"{k}: strike at {pct}", f"{k}:{pct}"
+    return {"release": (f"{k}: hold, let go", f"{k}:hold"),
+            "repeat": (f"{k}: hold (key repeat)", f"{k}:hold/rep"),
+            "classic": (f"{k}: meter, {k} strikes", f"{k}:meter")}[ch.mode]
+
+
+def hint_lines(app) -> list[tuple]:
+    """The panel's line of key help for this phase, as `panel.fit_hint` parts (text or
+    (long, short), rank), with the keys the key map really binds."""
     def k(action: str) -> str:
         keys = app.keymap.keys_for(action)
         return pretty(keys[0]) if keys else "?"
 
-    quit_, help_ = f"{k('quit')} quit", f"{k('help')} help"
+    quit_, help_ = (f"{k('quit')} quit", 0), (f"{k('help')} help", 1)
     if app.phase == "place":
-        return (f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move "
-                f"(⇧ fine)  {k('confirm')} place  mouse: click  {help_}  {quit_}",
-                f"arrows move  {k('confirm')} place  {help_}  {quit_}")
+        return [(f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move", 0),
+                ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), ("mouse: click", 4), help_,
+                quit_]
     if app.phase == "aim" and app.charge.active:
-        return (f"{app.charge.label}  {k('cancel')} cancel", f"{k('cancel')} cancel")
+        return [(app.charge.label, 0), (f"{k('cancel')} cancel", 0)]
     if app.phase == "aim":
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
-        return (f"{k('aim_ccw')}{k('aim_cw')} aim  {k('aim_fine_ccw')}{k('aim_fine_cw')} fine  "
-                f"{k('shoot')} shoot  {spin} spin  {k('aim_aid')} aid  {help_}  "
-                f"{k('pause')} pause  {quit_}",
-                f"{k('aim_ccw')}{k('aim_cw')} aim  {k('shoot')} shoot  {spin} spin  {help_}  "
-                f"{quit_}")
+        cancel = [(f"{k('cancel')} hold", 1)] if app.charge.preset_level is not None else []
+        return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
+                (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
+                (power_hint(app), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
+                (f"{k('aim_aid')} aid", 3), help_, (f"{k('pause')} pause", 4), quit_]
     if app.phase == "option":
-        return (f"answer with a letter in the box  {help_}  {quit_}", f"a letter  {quit_}")
+        return [("answer with a letter in the box", 0), help_, quit_]
     if app.phase == "over":
-        return f"N new game  M menu  {quit_}", f"N new  M menu  {quit_}"
-    return (f"{k('fast_forward')} fast forward  {k('pause')} pause  {help_}  {quit_}",
-            f"{k('fast_forward')} fast  {k('pause')} pause  {quit_}")
+        return [("N new game", 0), ("M menu", 0), quit_]
+    if app.phase == "cpu":
+        return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
+    return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
 
 
 def _menu_cells(app, cols: int, rows: int, mono: bool):

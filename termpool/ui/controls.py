@@ -317,24 +317,31 @@ class PowerCharge:
     meter goes up and down (period 2 * full_time). A fired shot has power in [MIN_POWER, 1].
 
     Repeat mode: after the press, a legacy terminal auto-repeats after an initial delay
-    (0.2-0.7 s), then every 20-50 ms. The repeat interval is the median of the gaps seen so
-    far; the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
-    GAP_MIN..GAP_MAX s; GAP_MAX until an interval is known) and placed one interval after the
-    last repeat, so the power does not depend on when `poll` is called. A press with no repeat
-    within INITIAL_DELAY_MAX s was a tap (or the terminal does not repeat): that shot falls
-    back to the classic meter (press again to strike), and `label` says so. A press, one more
-    press and then DOUBLE_TAP_GAP s of silence was a quick tap, tap: it strikes at the level
-    of the second tap.
+    (0.2-0.7 s), then every 20-50 ms. A hold can only be told from a tap at its first repeat,
+    so the charge starts there: however long the terminal's delay, the softest hold is a soft
+    shot. The repeat interval is the median of the gaps seen so far (kept from hold to hold:
+    it is the terminal's, and `observe` learns it from repeats that go on after a strike too);
+    the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
+    GAP_MIN..GAP_MAX s) and placed one interval after the last repeat, so the power does not
+    depend on when `poll` is called. A press with no repeat within INITIAL_DELAY_MAX s was a
+    tap (or the terminal does not repeat): that shot falls back to the classic meter (press
+    again to strike), and `label` says so.
+
+    Set power (any mode): `preset(level)` (the digit keys) makes the next press strike at
+    once at that level, until `preset(None)`.
     """
 
     MIN_POWER = 0.02
     INITIAL_DELAY_MAX = 0.75
-    GAP_MIN = 0.1
+    # The release is inferred after GAP_INTERVALS repeat intervals of silence (within
+    # GAP_MIN..GAP_MAX s): 67 ms at 30 repeats a second, 80 ms at 25, so the strike follows
+    # the last repeat within 0.1 s even polled at 60 frames a second; the price is that a
+    # repeat late by a whole interval reads as a release.
+    GAP_MIN = 0.05
     GAP_MAX = 0.3
-    GAP_INTERVALS = 4.0
+    GAP_INTERVALS = 2.0
     DEFAULT_INTERVAL = 0.033
     INTERVAL_SAMPLES = 16
-    DOUBLE_TAP_GAP = 0.15  # s of silence after a single repeat that makes it a second tap
 
     def __init__(self, mode: str, full_time: float = 1.2, key_label: str = "space") -> None:
         if mode not in POWER_MODES:
@@ -344,6 +351,10 @@ class PowerCharge:
         self.mode = mode
         self.full_time = float(full_time)
         self.key_label = key_label
+        self.preset_level: float | None = None
+        self._gaps: list[float] = []  # repeat intervals seen, from hold to hold
+        self._tail: float | None = None  # the last repeat of a hold that has struck
+        self._kinds = False  # repeat mode: the terminal has sent a repeat or release event
         self.cancel()
 
     # -- state
@@ -354,8 +365,12 @@ class PowerCharge:
         self._t0 = 0.0
         self._last = 0.0
         self._repeats = 0
-        self._gaps: list[float] = []
         self.fallback = False  # repeat mode: this shot fell back to the classic meter
+
+    def preset(self, level: float | None) -> None:
+        """Set power: the next press strikes at once at `level` (0..1); None: hold again."""
+        self.cancel()
+        self.preset_level = None if level is None else min(1.0, max(self.MIN_POWER, level))
 
     @property
     def active(self) -> bool:
@@ -363,9 +378,20 @@ class PowerCharge:
         return self._phase != "idle"
 
     @property
+    def mode_name(self) -> str:
+        """How power is given now, in words: "set 30%", "hold (key releases)", "hold (key
+        repeat)", "meter"."""
+        if self.preset_level is not None:
+            return f"set {round(100 * self.preset_level)}%"
+        return {"release": "hold (key releases)", "repeat": "hold (key repeat)",
+                "classic": "meter"}[self.mode]
+
+    @property
     def label(self) -> str:
         """What to show on screen."""
         k = self.key_label
+        if self.preset_level is not None:
+            return f"{k} strikes at {round(100 * self.preset_level)}%"
         if self._phase == "meter":
             if self.fallback:
                 return f"no key repeat seen: {k} again to strike"
@@ -380,6 +406,9 @@ class PowerCharge:
         """The meter's level in [0, 1] at time t (0 when idle)."""
         if self._phase == "idle":
             return 0.0
+        if (self.mode == "repeat" and self._phase == "charge" and self._repeats == 0
+                and not self._kinds):
+            return 0.0  # the charge starts at the first repeat
         x = max(0.0, t - self._t0) / self.full_time
         if self._phase == "charge":
             return min(1.0, x)
@@ -400,8 +429,30 @@ class PowerCharge:
 
     def _fire(self, t: float) -> float:
         power = min(1.0, max(self.MIN_POWER, self.level(t)))
+        self._tail = self._last if self.mode == "repeat" and self._repeats else None
         self.cancel()
         return power
+
+    def observe(self, key: Key, t: float) -> None:
+        """A shoot-key event after the strike (the balls are running): repeats that go on
+        are the key still held, and their spacing is the terminal's repeat interval (a
+        terminal that repeats more slowly than the release gap assumed is learnt this way)."""
+        if self._tail is None or key.kind == "release":
+            self._tail = None
+            return
+        if 0.0 < t - self._tail <= self.GAP_MAX:
+            self._gaps.append(t - self._tail)
+            del self._gaps[:-self.INTERVAL_SAMPLES]
+            self._tail = t
+        else:
+            self._tail = None
+
+    def release_due(self) -> float | None:
+        """Repeat mode: the time at which silence will mean a release (None: no such time),
+        so a driver can wake then rather than at its next frame."""
+        if self.mode != "repeat" or self._phase != "charge" or self._repeats == 0:
+            return None
+        return self._last + self._release_gap() + 1e-6
 
     def _start(self, phase: str, t: float) -> None:
         self.cancel()
@@ -415,8 +466,6 @@ class PowerCharge:
         return recent[mid] if len(recent) % 2 else 0.5 * (recent[mid - 1] + recent[mid])
 
     def _release_gap(self) -> float:
-        if not self._gaps:
-            return self.GAP_MAX
         return min(self.GAP_MAX, max(self.GAP_MIN, self.GAP_INTERVALS * self._interval()))
 
     def _advance(self, t: float) -> float | None:
@@ -427,15 +476,13 @@ class PowerCharge:
             if t - self._t0 > self.INITIAL_DELAY_MAX:
                 self._phase, self.fallback = "meter", True
             return None
-        if self._repeats == 1 and t - self._last > self.DOUBLE_TAP_GAP:
-            # One more press and then silence: no auto-repeat stream stops after one repeat,
-            # so it was a second tap (the meter's "tap, tap"): strike at that tap's level.
-            return self._fire(self._last)
         if t - self._last > self._release_gap():
             return self._fire(self._last + self._interval())
         return None
 
     def _event(self, key: Key, t: float) -> float | None:
+        if self.preset_level is not None:
+            return self.preset_level if key.kind == "press" else None
         if self.mode == "release":
             if key.kind == "press":
                 self._start("charge", t)  # a press while charging: the release was lost
@@ -450,6 +497,8 @@ class PowerCharge:
                 return None
             return self._fire(t)
         # repeat mode: every press or repeat is part of the stream; a real release also counts
+        if key.kind != "press":
+            self._kinds = True  # this terminal tells events apart: charge from the press
         if key.kind == "release":
             return self._fire(t) if self._phase == "charge" else None
         if self._phase == "idle":
@@ -459,6 +508,9 @@ class PowerCharge:
         else:
             if self._repeats > 0:
                 self._gaps.append(t - self._last)
+                del self._gaps[:-self.INTERVAL_SAMPLES]
+            elif not self._kinds:
+                self._t0 = t  # the first repeat: a hold, and the charge starts now
             self._repeats += 1
             self._last = t
         return None

@@ -52,6 +52,10 @@ def play(app, events: Sequence[tuple[float, object]], cols: int, rows: int,
             break
         if t > last_key + SETTLE_S:
             break
+        wake = app.wake_in(t)
+        if wake is not None and 0.0 < wake and t + wake < (n + 1) * frame:
+            t += wake  # a wake the app asked for between frames (an inferred key release),
+            continue  # as a terminal's loop honours it
         n += 1
         t = n * frame  # no drift from adding frame times
     return screen_text(cells[0])

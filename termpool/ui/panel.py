@@ -6,6 +6,7 @@ Everything here writes text into (chars, fg, bg) cells; the app decides what to 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -40,11 +41,12 @@ class PanelInfo:
     title: str
     players: list[PlayerLine]
     status: list[tuple[str, str]]  # (text, tone) lines, most important first
-    help: str  # one line of key help
+    help: Sequence[tuple]  # key help: (text, rank) in screen order, text a string or
+    # (long, short) forms; rank 0 must show, higher ranks are left out first where the line
+    # is too narrow (see fit_hint)
     ids: Sequence[str] = ()
     widgets: list = field(default_factory=list)  # (cells, name) blocks: spin face, power meter
     theme: str = "standard"
-    help_short: str = ""  # the key help for narrow panels
 
 
 def _tone(t: str):
@@ -173,17 +175,32 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
         if r + block[0].shape[0] < end - 1:
             _paste(cells, block, r, c0)
             r += block[0].shape[0] + 1
-    for s in _wrap(_fit_help(info, width), width)[::-1]:
+    for s in _wrap(fit_hint(info.help, 3 * width - 6), width)[::-1]:
         end -= 1
         if end <= r:
             break
         put_text(cells, end, c0, s, DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
+def fit_hint(parts: Sequence[tuple], width: int) -> str:
+    """The key help for a line of `width` cells: every part in its long form if they fit
+    (two spaces apart, else one), then in their short forms, then without the highest ranks,
+    one rank at a time. Parts are never cut; only the rank-0 parts' short forms, should even
+    they not fit, are cut at the end."""
+    forms = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
+    limits = [math.inf, *sorted({r for _, r in forms if r > 0}, reverse=True)]
+    for limit in limits:
+        for v in (0, 1):
+            keep = [f[min(v, len(f) - 1)] for f, r in forms if r < limit]
+            for sep in ("  ", " "):
+                line = sep.join(keep)
+                if len(line) <= width:
+                    return line
+    return " ".join(f[-1] for f, r in forms if r == 0)[:width]
+
+
 def _fit_help(info: PanelInfo, width: int) -> str:
-    if len(info.help) <= width or not info.help_short:
-        return info.help[:width]
-    return info.help_short[:width]
+    return fit_hint(info.help, width)
 
 
 def _paste(cells, block, r: int, c: int) -> None:
