@@ -36,6 +36,10 @@ CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds
 # computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
 CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
 CPU_THINK_FRAME_S = 0.05  # show "thinking" for at least this long before blocking on the plan
+AID_STEP = 8  # event times of the aid's prediction run per frame (about 3 ms on the project's
+# machine, benchmarks/aid.py): a long prediction fills in over a few frames
+AID_WORDS = {"full": "aim aid: every path (G: ghost ball only)",
+             "ghost": "aim aid: the ghost ball only (G: off)", "off": "aim aid off (G: on)"}
 
 MENU = [
     ("8-ball vs computer", ("8ball", "cpu")),
@@ -57,7 +61,7 @@ class Options:
     frames: int = 1
     seed: int = 0
     level: str = "normal"
-    aid: bool = True
+    aid: str = "full"  # the aim aid: "full", "ghost" (the ghost ball only) or "off"
     bell: bool = False
     theme: str = "standard"
     three_foul: bool = False  # 9-ball: three fouls in a row lose the frame
@@ -100,6 +104,8 @@ class App:
         self.notes: list[str] = []  # for the terminal after the game (see `record`)
         self._geom = None  # (cols, rows, layout, view)
         self._aim_cache = None
+        self._predictor = None  # (layout key, ui.predict.Predictor) for the table now
+        self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
         self.last_power = 0.5  # the power of the last shot: the aid's until another is set
         if self.opts.mode is None:
             self.phase = "menu"
@@ -161,14 +167,25 @@ class App:
         return [m.ids.index(b) for b in legal or objects]
 
     def _aim_at_nearest(self) -> None:
+        """Aim at the nearest ball the shooter may hit first whose path from the cue ball is
+        clear (the straight line meets that ball before any other); the nearest one if none
+        is clear."""
+        from termpool.ui.aim import aim_trace
+
         m = self.match
         c = self.cue_index()
         t = self._targets()
         if not t or not m.on_table[c]:
             return
         d = m.pos[t] - m.pos[c]
-        k = int(np.argmin(np.hypot(d[:, 0], d[:, 1])))
-        self.angle = math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0
+        order = np.argsort(np.hypot(d[:, 0], d[:, 1]), kind="stable")
+        angles = [math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0 for k in order]
+        for k, angle in zip(order, angles, strict=True):
+            a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, angle)
+            if a.hit == "ball" and a.ball == t[k]:
+                self.angle = angle
+                return
+        self.angle = angles[0]
 
     def names(self, text: str) -> str:
         """The referee's words with the players' names (see rules.words)."""
@@ -252,23 +269,28 @@ class App:
                     self.push_out)
 
     def _called(self) -> tuple[str, str]:
-        """The call for this shot: the pocket the aim sends the object ball to, unless the
-        player picked one with C."""
-        aim = self.aim()
-        ball = "8"
-        if aim is not None and aim.ball is not None:
-            ball = self.match.ids[aim.ball]
+        """The call for this shot (the 8, which is the only ball ever called): the pocket the
+        aim sends it to, unless the player picked one with C."""
         k = self.called_k if self.call_picked else self._aimed_pocket()
-        return ball, POCKET_NAMES[k % len(POCKET_NAMES)]
+        return "8", POCKET_NAMES[k % len(POCKET_NAMES)]
 
     def _aimed_pocket(self) -> int:
-        """Index of the pocket the object ball heads for along the aim (0 with no ball hit)."""
-        aim = self.aim()
-        if aim is None or aim.ball is None or aim.object_dir is None:
-            return 0
-        p = self.match.pos[aim.ball]
+        """Index of the pocket the aid sees the first ball go into; else the one it heads
+        for (0 with no ball hit)."""
+        pred = self.prediction()
+        names = list(self.table.hole_names)
+        if pred is not None and pred.object is not None and len(pred.object.points) > 1:
+            if pred.object.end == "pocket" and pred.object.pocket in names:
+                return names.index(pred.object.pocket)
+            p, q = pred.object.points[0], pred.object.points[1]
+        else:
+            aim = self.aim()
+            if aim is None or aim.ball is None or aim.object_dir is None:
+                return 0
+            p = self.match.pos[aim.ball]
+            q = p + np.asarray(aim.object_dir)
         d = self.table.hole_c.reshape(-1, 2) - p
-        u = np.asarray(aim.object_dir)
+        u = (q - p) / max(float(np.hypot(*(q - p))), 1e-12)
         score = (d @ u) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-9)
         return int(np.argmax(score))
 
@@ -291,7 +313,7 @@ class App:
         """Seconds until the app needs a tick (None: only on a key)."""
         if self.overlay is not None:
             return None
-        if self.phase in ("run", "cpu"):
+        if self.phase in ("run", "cpu") or (self._aid is not None and not self._aid[1].done):
             return 0.0
         if self.charge.active:  # the meter moves; an inferred release is due at its time
             due = self.charge.release_due()
@@ -300,6 +322,10 @@ class App:
 
     def tick(self, t: float) -> None:
         self.now = t
+        if self._aid is not None and not self._aid[1].done:  # the aid fills in
+            self._aid[1].run(AID_STEP)
+            self._aid = (*self._aid[:2], None)
+            self.dirty = True
         if self.overlay is not None:
             self._last = None  # paused or asking: the shot waits
             return
@@ -538,8 +564,10 @@ class App:
         elif action is None and _power_digit(key) is not None:
             self.charge.preset(_power_digit(key))
         elif action == "aim_aid":
-            self.opts.aid = not self.opts.aid
-            self.message = [("aim line on" if self.opts.aid else "aim line off (G)", "dim")]
+            from termpool.ui.predict import LEVELS
+
+            self.opts.aid = LEVELS[(LEVELS.index(self.opts.aid) - 1) % len(LEVELS)]
+            self.message = [(AID_WORDS[self.opts.aid], "dim")]
         elif action == "call_pocket":
             if self.match.needs_call():
                 start = self.called_k if self.call_picked else self._aimed_pocket()
@@ -656,6 +684,54 @@ class App:
             a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, self.angle)
             self._aim_cache = (key, a)
         return self._aim_cache[1]
+
+    def aid_level(self) -> str:
+        """What the aid shows now: the player's choice; on the computer's turn at least the
+        ghost ball, so that its aim can be followed."""
+        if self.phase == "cpu" and self.opts.aid == "off":
+            return "ghost"
+        return self.opts.aid
+
+    def aid_shot(self):
+        """The shot the aid predicts: the shooter's aim and spin at the power they would
+        shoot with now (set, charging, or their last), or the computer's plan as its stick
+        turns; None when no shot is being aimed."""
+        from termpool.game import Shot
+
+        if self.phase == "aim":
+            ch = self.charge
+            level = ch.preset_level if ch.preset_level is not None else (
+                round(ch.level(self.now), 2) if ch.active else self.last_power)
+            return Shot(power_to_speed(level), self.angle, self.side, self.top)
+        plan = getattr(self, "_cpu_plan", None)
+        if self.phase == "cpu" and plan is not None and not isinstance(plan, str):
+            return Shot(plan.speed, self.angle, self.side, self.top)
+        return None
+
+    def prediction(self):
+        """The engine's prediction of `aid_shot()` (ui.predict), as far as it has run: the
+        first share of it at once, the rest a share a frame (see `tick`); None with the aid
+        off or nothing aimed. Computed again only when the aim, power, spin or table change."""
+        from termpool.ui.predict import Predictor
+
+        m = self.match
+        shot = self.aid_shot() if m is not None and self.aid_level() != "off" else None
+        if shot is None or not m.on_table[self.cue_index()]:
+            return None
+        where = (len(m.history), m.frame, m.pos.tobytes(), m.on_table.tobytes())
+        if self._predictor is None or self._predictor[0] != where:
+            self._predictor = (where, Predictor(m))
+            self._aid = None
+        key = (where, shot)
+        if self._aid is None or self._aid[0] != key:
+            job = self._predictor[1].start(shot)
+            if job is None:
+                return None
+            job.run(AID_STEP)
+            self._aid = (key, job, None)
+        if self._aid[2] is None:
+            self._aid = (*self._aid[:2], self._aid[1].result())
+        return self._aid[2]
 
     def _geometry(self, cols: int, rows: int):
         if self._geom is None or self._geom[:2] != (cols, rows):

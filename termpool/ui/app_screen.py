@@ -89,16 +89,17 @@ def _table_cells(app, lay, view, mono: bool):
     c = app.cue_index()
     aiming = app.phase == "aim" or (app.phase == "cpu" and app._cpu_plan not in (None,
                                                                                   "done"))
-    aim = app.aim() if aiming and m.on_table[c] else None
+    pred = app.prediction() if aiming and m.on_table[c] else None
+    level = app.aid_level()
     if mono:
         chars = view.mono(m.ids, pos, state, m.radius)
-        if aim is not None and app.opts.aid:
-            ov.mono_aim(chars, lay, aim, m.pos[c])
+        if pred is not None:
+            ov.mono_prediction(chars, lay, pred, level, float(m.radius[c]))
         return chars, None, None
     cv = view.draw(m.ids, pos, state, m.radius)
-    if aim is not None:
-        if app.opts.aid and not app.shooter_is_cpu():
-            ov.draw_aim(cv, lay, aim, m.pos[c], m.radius[c])
+    if aiming and m.on_table[c]:
+        if pred is not None:
+            ov.draw_prediction(cv, lay, pred, m.radius[c], level)
         pull = app.charge.level(app.now) if app.charge.active else 0.0
         ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], app.angle, pull)
     if app.phase == "place":
@@ -188,7 +189,7 @@ def _status(app) -> list[tuple[str, str]]:
             out.append((s, "dim"))
         else:
             out.append((s, "turn"))
-            out.append(("power: " + app.charge.label, "dim"))
+            out.append((_power_line(app), "dim"))
         if app.side or app.top:
             out.append((f"tip {app.side:+.1f} side {app.top:+.1f} top", "dim"))
     elif app.phase == "place":
@@ -214,6 +215,21 @@ def power_hint(app) -> tuple[str, str]:
     return {"release": (f"{k}: hold, let go", f"{k}:hold"),
             "repeat": (f"{k}: hold (key repeat)", f"{k}:hold/rep"),
             "classic": (f"{k}: meter, {k} strikes", f"{k}:meter")}[ch.mode]
+
+
+def _power_line(app) -> str:
+    """The power the next shot (and the aid) has, and the first ball the aid sees hit."""
+    ch = app.charge
+    if ch.preset_level is not None:
+        line = f"power {round(100 * ch.preset_level)}%"
+    elif app.aid_level() != "off":
+        line = f"aid at {round(100 * app.last_power)}% power (the last shot's)"
+    else:
+        line = "power: " + ch.label
+    pred = app.prediction()
+    if pred is not None and pred.ball is not None:
+        line += f" · first ball: the {app.match.ids[pred.ball]}"
+    return line
 
 
 def hint_lines(app) -> list[tuple]:

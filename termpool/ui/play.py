@@ -53,7 +53,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--eight-break", choices=("respot", "rerack"), default="respot",
                    help="8-ball: the 8 pocketed on the break is re-spotted (default) or the "
                         "balls are re-racked for the same breaker")
-    p.add_argument("--no-aid", action="store_true", help="start with the aim line off (G)")
+    p.add_argument("--aid", choices=("full", "ghost", "off"), default="full",
+                   help="the aim aid: every predicted path, the ghost ball only, or none (G "
+                        "cycles them)")
+    p.add_argument("--no-aid", action="store_true", help="start with the aim aid off (--aid off)")
     p.add_argument("--bell", action="store_true", help="ring the bell on a foul (N toggles)")
     p.add_argument("--input", choices=INPUTS, default="auto",
                    help="how Space charges: kitty (key releases), repeat (hold inferred from "
@@ -92,7 +95,8 @@ def _options(args: argparse.Namespace):
     from termpool.ui.app import Options
 
     return Options(mode=args.mode, opponent=args.opponent, table=args.table, colors=args.colors,
-                   frames=args.frames, seed=args.seed, level=args.level, aid=not args.no_aid,
+                   frames=args.frames, seed=args.seed, level=args.level,
+                   aid="off" if args.no_aid else args.aid,
                    bell=args.bell, theme=args.theme, three_foul=args.three_foul,
                    eight_break=args.eight_break)
 
