@@ -802,3 +802,24 @@ def test_headless_repeat_input_is_a_legacy_terminal_with_the_script_s_repeat(tmp
     assert first <= power_to_speed(0.15) and second == power_to_speed(0.7)
     p = cli("play", "--headless", "--keys", "-", stdin="repeat 0.5")
     assert p.returncode == 2 and "repeat needs" in p.stderr
+
+
+def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> None:
+    from dataclasses import replace
+
+    app = app_for(mode="8ball", opponent="human")
+    m = app.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    m.on_table[:] = False
+    place = {"cue": (0.5, 0.6), "1": (1.0, 0.6), "9": (0.75, 0.6), "2": (1.1, 1.0),
+             "8": (2.2, 0.3)}
+    for b, p in place.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    app._turn_start()
+    # The 1 is nearer, but the 9 (not the shooter's) is in its way: the aim goes to the 2.
+    assert app.angle == pytest.approx(math.degrees(math.atan2(0.4, 0.6)))
+    m.pos[m.ids.index("9")] = (0.75, 0.2)  # out of the way: the nearest again
+    app._turn_start()
+    assert app.angle == pytest.approx(0.0)
