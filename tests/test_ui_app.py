@@ -823,3 +823,78 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
     m.pos[m.ids.index("9")] = (0.75, 0.2)  # out of the way: the nearest again
     app._turn_start()
     assert app.angle == pytest.approx(0.0)
+
+
+# -------------------------------------------------------------------- the computer's turn
+
+def cpu_to_shoot(monkeypatch, note="3 in the foot_left pocket"):
+    """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
+    from termpool import ai
+
+    plan = ai.Plan(1.5, 20.0, 0.0, 0.2, None, 1.0, note)
+    monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
+    monkeypatch.setattr(ai, "with_error", lambda p, *a, **k: p)
+    app = app_for(mode="8ball", opponent="cpu")
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
+                                                        is_break=False)
+    app.match.ball_in_hand = None
+    app._turn_start()
+    assert app.phase == "cpu"
+    return app, plan
+
+
+def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monkeypatch):
+    app, plan = cpu_to_shoot(monkeypatch)
+    t, aimed = 0.0, None
+    while app.phase == "cpu":
+        app.tick(t)
+        screen = screen_text(app.cells(120, 40)[0])
+        if app._cpu_plan not in (None, "done"):
+            assert "Computer: 3 in the foot left pocket" in screen
+            assert app.prediction() is not None and "o" in screen  # its ghost ball
+            if aimed is None and app.angle == plan.angle:
+                aimed = t
+        t += 1 / 60
+    assert aimed is not None and app.struck_at - aimed >= 1.2
+    while app.phase == "run":  # its words stay up while the shot runs ...
+        assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+        app.tick(t)
+        t += 1 / 60
+    # ... and when it is over, beside the verdict, until the next shot
+    assert app.message[0][0] == "Computer: 3 in the foot left pocket" and len(app.message) == 2
+    assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+
+
+def test_a_key_skips_the_computer_s_wait(monkeypatch):
+    app, plan = cpu_to_shoot(monkeypatch)
+    app.tick(0.0)
+    app.tick(0.1)  # it has its plan, and starts turning its stick
+    assert app._cpu_plan not in (None, "done")
+    app.key(Key("x"), 0.2)
+    app.tick(0.2)
+    assert app.phase == "run" and app.struck_at == 0.2
+    assert shots(app) == [] and app.match.running.shot.angle == plan.angle
+
+
+def test_the_computer_says_what_it_chose(monkeypatch):
+    # After the human's push-out, the computer shoots or passes, and says which.
+    app = app_for(mode="9ball", opponent="cpu")
+    app.match.option = "shoot_or_pass"
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
+                                                        is_break=False)
+    app.match.ball_in_hand = None
+    app._turn_start()
+    for k in range(5):
+        app.tick(k / 60)
+    assert app.match.option is None
+    words = screen_text(app.cells(120, 40)[0])
+    assert "Computer chose to shoot" in words
+    # After an illegal break the computer accepts the table, in words too.
+    app = app_for(mode="8ball", opponent="cpu")
+    app.match.option = "rerack_or_accept"
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
+                                                        is_break=False)
+    app._turn_start()
+    for k in range(5):
+        app.tick(k / 60)
+    assert "Computer chose to accept the table" in screen_text(app.cells(120, 40)[0])

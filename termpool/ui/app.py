@@ -34,7 +34,9 @@ PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fi
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
 # computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
-CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
+CPU_AIM_S = 0.6  # the computer turns its stick onto its aim over this long ...
+CPU_SHOW_S = 1.2  # ... then holds it there, its aid and plan on show, this long before it
+# shoots (a key shoots at once)
 CPU_THINK_FRAME_S = 0.05  # show "thinking" for at least this long before blocking on the plan
 AID_STEP = 8  # event times of the aid's prediction run per frame (about 3 ms on the project's
 # machine, benchmarks/aid.py): a long prediction fills in over a few frames
@@ -107,6 +109,8 @@ class App:
         self._predictor = None  # (layout key, ui.predict.Predictor) for the table now
         self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
         self.last_power = 0.5  # the power of the last shot: the aid's until another is set
+        self._cpu_note: list = []  # the computer's plan, in words, for the panel
+        self._shot_note: list = []  # ... kept for the shot it is playing
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -205,6 +209,7 @@ class App:
         self.push_out = False
         self.call_picked = False
         self._aim_cache = None
+        self._cpu_skip = False
         if m.frame_over and m.winner is None:
             won = m.players[m.frame_winner]
             m.new_frame()
@@ -235,7 +240,7 @@ class App:
         self.dirty = True
 
     def _shoot(self, speed: float, angle: float, side: float, top: float, called=None,
-               push_out: bool = False) -> None:
+               push_out: bool = False, keep_message: bool = False) -> None:
         from termpool.game import Shot
 
         side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
@@ -257,7 +262,9 @@ class App:
         self.phase = "run"
         self._last = None
         self._acc = 0.0
-        self.message = []
+        # The computer's plan stays in view while its shot runs, and then beside the verdict.
+        self._shot_note = self._cpu_note if keep_message else []
+        self.message = list(self._shot_note)
         self.dirty = True
 
     def _shoot_human(self, level: float) -> None:
@@ -301,9 +308,9 @@ class App:
             out = self.run.finish()
         reason = self.names(out.reason)
         if out.foul:
-            self.message = [(f"Foul: {reason}", "foul")]
+            self.message = [*self._shot_note, (f"Foul: {reason}", "foul")]
         else:
-            self.message = [(reason, "good" if out.continue_turn else "plain")]
+            self.message = [*self._shot_note, (reason, "good" if out.continue_turn else "plain")]
         if self.opts.bell and (out.foul or int(m.on_table.sum()) < before):
             self.bells += 1  # a pocketed ball or a foul
         self._turn_start()
@@ -388,19 +395,23 @@ class App:
         plan = self._cpu_plan
         if plan == "done":
             return
-        if isinstance(plan, str):  # an answer to an option
+        if isinstance(plan, str):  # an answer to an option, said in words
+            who = m.players[m.shooter]
             m.choose(plan)
             self._cpu_plan = "done"
+            self.message = [(f"{who} chose to {OPTION_WORDS[plan]}", "turn")]
             self._turn_start()
             return
-        f = min(1.0, (t - self._cpu_t0) / CPU_AIM_S)
+        elapsed = t - self._cpu_t0
+        f = 1.0 if self._cpu_skip else min(1.0, elapsed / CPU_AIM_S)
         turn = (plan.angle - self._cpu_from + 180.0) % 360.0 - 180.0
-        self.angle = (self._cpu_from + f * turn) % 360.0
+        self.angle = plan.angle if f >= 1.0 else (self._cpu_from + f * turn) % 360.0
         self.side, self.top = plan.side * f, plan.top * f
         self.dirty = True
-        if f >= 1.0:
+        if self._cpu_skip or elapsed >= CPU_AIM_S + CPU_SHOW_S:
             self._cpu_plan = "done"
-            self._shoot(plan.speed, plan.angle, plan.side, plan.top, plan.called)
+            self._shoot(plan.speed, plan.angle, plan.side, plan.top, plan.called,
+                        keep_message=True)
 
     def _plan(self):
         """The computer's decision: an option's answer, a placement, then a shot."""
@@ -421,8 +432,9 @@ class App:
         if not m.state.is_break:
             plan = ai.with_error(plan, aim_sd, speed_sd, seed)
         foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
-        note = [(self.names(f"Computer: {plan.note}"), "dim")] if plan.note and not foresees \
+        note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
+        self._cpu_note = note
         self.message = self.message[:2] + note  # the last verdict stays in view
         return plan
 
@@ -642,6 +654,8 @@ class App:
             self.fast = not self.fast
 
     def _key_cpu(self, key, action, t) -> None:
+        if key.kind == "press":  # any key: no more waiting for the computer's shot
+            self._cpu_skip = True
         self._key_run(key, action, t)
 
     def _answer(self, key) -> bool:

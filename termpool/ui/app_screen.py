@@ -200,8 +200,9 @@ def _status(app) -> list[tuple[str, str]]:
     elif app.phase == "run":
         out.append(("fast ×4 (F)" if app.fast else "F: fast forward", "dim"))
     elif app.phase == "cpu":
-        out.append(("Computer is thinking…" if app._cpu_plan is None else
-                    "Computer is shooting", "turn"))
+        name = m.players[m.shooter]
+        out.append((f"{name} is thinking…" if app._cpu_plan is None else
+                    f"{name} is aiming", "dim"))
     return out
 
 
