@@ -21,6 +21,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def app_for(mode="practice", opponent="human", colors="mono", input_mode="release", **kw) -> App:
+    kw.setdefault("seed", 0)  # the same rack every time, for tests
     return App(Options(mode=mode, opponent=opponent, colors=colors, **kw), input_mode=input_mode)
 
 
@@ -898,3 +899,33 @@ def test_the_computer_says_what_it_chose(monkeypatch):
     for k in range(5):
         app.tick(k / 60)
     assert "Computer chose to accept the table" in screen_text(app.cells(120, 40)[0])
+
+
+# ------------------------------------------------------------------------------ the table
+
+def test_racks_differ_from_game_to_game_unless_a_seed_is_given(tmp_path) -> None:
+    racks = set()
+    seeds = set()
+    for _ in range(3):
+        app = App(Options(mode="8ball", opponent="human", colors="mono"))
+        racks.add(app.match.pos.round(9).tobytes())
+        seeds.add(app.match.seed)
+    assert len(racks) == 3 and len(seeds) == 3
+    app = App(Options(mode="8ball", opponent="human", colors="mono"))
+    first = app.match.pos.copy()
+    app.new_match("8ball", "human")  # a new game (N on the game-over screen) deals anew
+    assert not np.array_equal(app.match.pos, first)
+    same = [App(Options(mode="9ball", colors="mono", seed=7)).match.pos for _ in range(2)]
+    assert np.array_equal(*same)
+    # The seed goes into the record, and deals the same rack again.
+    rec = tmp_path / "m.json"
+    p = cli("play", "--headless", "--mode", "8ball", "--opponent", "human", "--keys", "-",
+            "--record", str(rec), stdin="enter space wait 20")
+    assert p.returncode == 0, p.stderr
+    data = json.loads(rec.read_text())
+    from termpool.game import Match
+
+    again = Match("8ball", seed=data["match"]["seed"])
+    first_scene = {b["id"]: (b["x"], b["y"]) for b in data["shots"][0]["scene"]["balls"]}
+    assert all(first_scene[b] == tuple(again.pos[k]) for k, b in enumerate(again.ids)
+               if b != "cue")

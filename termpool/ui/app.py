@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import re
+import secrets
 from dataclasses import dataclass
 
 import numpy as np
@@ -61,7 +62,7 @@ class Options:
     table: str = "9ft"
     colors: str = "auto"
     frames: int = 1
-    seed: int = 0
+    seed: int | None = None  # racks and the computer's choices; None: a new seed each game
     level: str = "normal"
     aid: str = "full"  # the aim aid: "full", "ghost" (the ghost ball only) or "off"
     bell: bool = False
@@ -136,8 +137,10 @@ class App:
         if mode == "practice":
             names = ("You", "You")
         self.cpu = (False, opponent == "cpu" and mode != "practice")
+        # Without a seed every game deals a new rack; the seed is in the record either way.
+        seed = self.opts.seed if self.opts.seed is not None else secrets.randbits(63)
         self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
-                           seed=self.opts.seed, theme=self.opts.theme,
+                           seed=seed, theme=self.opts.theme,
                            three_foul=self.opts.three_foul and mode == "9ball",
                            eight_break=self.opts.eight_break)
         self._geom = None
@@ -421,7 +424,7 @@ class App:
         if m.option is not None:
             return _cpu_option(m.option)
         args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
-        seed = self.opts.seed * 1000 + len(m.history)
+        seed = m.seed * 1000 + len(m.history)
         if m.ball_in_hand:
             x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
             if m.placement_error(x, y):  # never expected; where a scratched cue ball waits

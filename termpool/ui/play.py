@@ -43,8 +43,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="colour depth (default: from the terminal; NO_COLOR gives mono)")
     p.add_argument("--frames", type=_whole(1, MAX_FRAMES), default=1,
                    help="play a match to N frames (default 1)")
-    p.add_argument("--seed", type=_whole(0, MAX_SEED), default=0,
-                   help=f"racks and the computer's choices (0 to {MAX_SEED})")
+    p.add_argument("--seed", type=_whole(0, MAX_SEED), default=None,
+                   help=f"racks and the computer's choices (0 to {MAX_SEED}); without it "
+                        "every game deals a new rack (its seed is in the --record)")
     p.add_argument("--level", choices=LEVELS, default="normal", help="the computer's skill")
     p.add_argument("--theme", choices=("standard", "classic"), default="standard",
                    help="ball colours: numbered solids and stripes, or reds and yellows")
