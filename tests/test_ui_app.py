@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from termpool.physics.cue import MISCUE_OFFSET, strike
+from termpool.physics.params import BALL_RADIUS
 from termpool.ui.app import App, Options, power_to_speed
 from termpool.ui.controls import PowerCharge
 from termpool.ui.headless import play, screen_text
@@ -649,6 +650,7 @@ def eight_on_the_8(app: App):
     m.pos[0] = (L - 0.9, W - 0.8)  # cue, 8 and the foot_left corner in line
     app.phase, app.angle, app._aim_cache = "aim", 45.0, None
     assert m.needs_call()
+    return app
 
 
 def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
@@ -929,3 +931,76 @@ def test_racks_differ_from_game_to_game_unless_a_seed_is_given(tmp_path) -> None
     first_scene = {b["id"]: (b["x"], b["y"]) for b in data["shots"][0]["scene"]["balls"]}
     assert all(first_scene[b] == tuple(again.pos[k]) for k, b in enumerate(again.ids)
                if b != "cue")
+
+
+@pytest.mark.parametrize("cols, rows, numbered", [(200, 60, True), (160, 50, True),
+                                                  (120, 40, False)])
+def test_balls_three_cells_wide_carry_their_numbers(cols, rows, numbered) -> None:
+    from termpool.ui.palette import ball_style
+
+    app = app_for(mode="9ball", opponent="human", colors="truecolor")
+    # Spread the rack out so that no two balls share a cell row and column span.
+    for k in range(1, len(app.match.ids)):
+        app.match.pos[k] = (0.4 + 0.2 * k, 0.3 + 0.07 * k)
+    chars, fg, bg = app.cells(cols, rows)
+    lay, _ = app._geometry(cols, rows)
+    wide = 2 * BALL_RADIUS * lay.scale >= 3
+    assert wide == numbered
+    for k, b in enumerate(app.match.ids):
+        if b == "cue":
+            continue
+        x, y = lay.to_pixels(*app.match.pos[k])
+        r = int(y) // 2
+        line = "".join(chars[r])
+        at = line.find(b, int(x) - 2)
+        if not numbered:
+            assert at < 0 or abs(at - x) > 3  # no number on a two-cell ball
+            continue
+        assert 0 <= at and abs(at + len(b) / 2 - x) <= 1.0, (b, line)
+        assert (bg[r, at] == ball_style(b).colour.rgb).all()  # on the ball's own colour
+
+
+def test_the_called_pocket_is_marked_on_the_table_and_follows_c() -> None:
+    from termpool.ui.palette import CALL_C
+
+    app = eight_on_the_8(app_for(mode="8ball", opponent="human", colors="truecolor"))
+    lay, _ = app._geometry(120, 40)
+
+    def marked():
+        _, fg, bg = app.cells(120, 40)
+        hits = (fg == CALL_C.rgb).all(axis=2) | (bg == CALL_C.rgb).all(axis=2)
+        rr, cc = np.nonzero(hits)
+        holes = app.table.hole_c.reshape(-1, 2)
+        px = np.array([lay.to_pixels(*h) for h in holes])
+        near = [np.hypot(cc + 0.5 - px[k, 0], 2 * rr + 1 - px[k, 1]).min() for k in range(6)]
+        return int(np.argmin(near)), len(rr)
+
+    k, n = marked()
+    assert n > 0 and app.table.hole_names[k] == app._called()[1]
+    app.key(Key("c"), 1.0)
+    k2, _ = marked()
+    assert k2 != k and app.table.hole_names[k2] == app._called()[1]
+    mono = eight_on_the_8(app_for(mode="8ball", opponent="human"))
+    assert "*" in screen_text(mono.cells(120, 40)[0])
+
+
+def test_the_head_string_shows_while_the_ball_in_hand_must_stay_behind_it() -> None:
+    from termpool.ui.palette import GUIDE_C
+
+    for mode, kitchen in (("8ball", True), ("practice", False)):
+        app = app_for(mode=mode, opponent="human", colors="truecolor")
+        assert app.phase == "place"
+        lay, _ = app._geometry(120, 40)
+        chars, fg, bg = app.cells(120, 40)
+        guide = (fg == GUIDE_C.rgb).all(axis=2) | (bg == GUIDE_C.rgb).all(axis=2)
+        col = int(lay.to_pixels(app.table.length / 4, 0.0)[0])
+        rows = np.nonzero(guide[:, col])[0]
+        if kitchen:
+            assert len(rows) >= 0.4 * lay.ph / 2  # dotted, from rail to rail
+            assert guide.sum() == guide[:, col].sum()  # one straight column
+        else:
+            assert not guide.any()
+    mono = app_for(mode="8ball", opponent="human")
+    text = screen_text(mono.cells(120, 40)[0]).splitlines()
+    col = int(mono._geometry(120, 40)[0].to_pixels(mono.table.length / 4, 0.0)[0])
+    assert sum(line[col:col + 1] == ":" for line in text) >= 10

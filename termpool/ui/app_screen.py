@@ -91,12 +91,23 @@ def _table_cells(app, lay, view, mono: bool):
                                                                                   "done"))
     pred = app.prediction() if aiming and m.on_table[c] else None
     level = app.aid_level()
+    called = _called_pocket(app) if aiming else None
+    kitchen = app.phase == "place" and m.ball_in_hand == "kitchen"
     if mono:
         chars = view.mono(m.ids, pos, state, m.radius)
+        if kitchen:
+            ov.mono_head_string(chars, lay, m.table.length / 4)
         if pred is not None:
             ov.mono_prediction(chars, lay, pred, level, float(m.radius[c]))
+        if called is not None:
+            ov.mono_called_pocket(chars, lay, m.table.hole_c.reshape(-1, 2)[called])
         return chars, None, None
     cv = view.draw(m.ids, pos, state, m.radius)
+    if kitchen:
+        ov.draw_head_string(cv, lay, m.table.length / 4)
+    if called is not None:
+        ov.draw_called_pocket(cv, lay, m.table.hole_c.reshape(-1, 2)[called],
+                              m.table.hole_r[called])
     if aiming and m.on_table[c]:
         if pred is not None:
             ov.draw_prediction(cv, lay, pred, m.radius[c], level)
@@ -105,7 +116,21 @@ def _table_cells(app, lay, view, mono: bool):
     if app.phase == "place":
         ok = app.match.placement_error(*app.cursor) is None
         ov.draw_placement(cv, lay, app.cursor, m.radius[c], ok)
-    return to_cells(cv)
+    cells = to_cells(cv)
+    view.numbers(cells, m.ids, pos, state, m.radius)
+    return cells
+
+
+def _called_pocket(app) -> int | None:
+    """The index of the pocket called for the 8 on this shot (the human's call, or the
+    computer's plan), None when no call is needed."""
+    names = list(app.match.table.hole_names)
+    if app.phase == "aim" and app.match.needs_call():
+        return names.index(app._called()[1])
+    plan = getattr(app, "_cpu_plan", None)
+    if app.phase == "cpu" and getattr(plan, "called", None):
+        return names.index(plan.called[1])
+    return None
 
 
 def _question(app, cells) -> None:

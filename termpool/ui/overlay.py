@@ -22,6 +22,7 @@ from termpool.ui.palette import (
     AIM_C,
     BACKDROP_C,
     BUTT_C,
+    CALL_C,
     CUE,
     CUE_C,
     DIM_TEXT_C,
@@ -145,6 +146,37 @@ def draw_prediction(canvas: Canvas, lay: Layout, pred: Prediction, radius: float
                                   dotted), colour)
         if ring and (k == 0 or len(leg.points) > 1):
             _paint(canvas, *_ring(lay, w, h, leg.points[-1], r_px), colour)
+
+
+def draw_called_pocket(canvas: Canvas, lay: Layout, centre, hole_r: float) -> None:
+    """A ring round the pocket called for the 8 (centre, radius in table metres), over the
+    rail and cushions about it."""
+    r_px = float(hole_r) * lay.scale + 1.0
+    _paint(canvas, *_ring(lay, canvas.width, canvas.height, centre, r_px, 0.75), CALL_C)
+
+
+def mono_called_pocket(chars: np.ndarray, lay: Layout, centre) -> None:
+    """The called pocket in the monochrome mode: a '*' in the cell of its centre."""
+    x, y = lay.to_pixels(centre[0], centre[1])
+    r, c = int(math.floor(float(y))) // 2, int(math.floor(float(x)))
+    rows, cols = chars.shape
+    chars[min(max(r, 0), rows - 1), min(max(c, 0), cols - 1)] = "*"
+
+
+def draw_head_string(canvas: Canvas, lay: Layout, x: float) -> None:
+    """The head string (the kitchen's edge, x metres from the head rail): a dotted line
+    across the cloth, for a ball in hand that must stay behind it."""
+    _paint(canvas, *_polyline(lay, canvas.width, canvas.height, [(x, 0.0), (x, lay.width)],
+                              dotted=True), GUIDE_C)
+
+
+def mono_head_string(chars: np.ndarray, lay: Layout, x: float) -> None:
+    """The head string in the monochrome mode: ':' down the blank cells of its column."""
+    rows, cols = chars.shape
+    ix, iy = _polyline(lay, cols, 2 * rows, [(x, 0.0), (x, lay.width)])
+    r = iy // 2
+    blank = chars[r, ix] == " "
+    chars[r[blank], ix[blank]] = ":"
 
 
 def draw_cue_stick(canvas: Canvas, lay: Layout, cue_pos, radius: float, angle_deg: float,

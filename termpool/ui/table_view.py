@@ -39,6 +39,7 @@ from termpool.ui.palette import (
     STRIPE_WHITE_C,
     ball_style,
     mono_glyph,
+    number_colour,
 )
 
 MIN_COLS, MIN_ROWS = 40, 12
@@ -49,6 +50,7 @@ CUSHION_M = 0.05  # cushion width, nose to rail (m)
 RAIL_M = 0.10  # visible wooden rail width (m)
 DIAMOND_M = 0.014  # half diagonal of a sight diamond (m)
 MIN_BALL_PX = 1.0  # a ball is drawn at least this radius (pixels), so it never vanishes
+NUMBER_MIN_CELLS = 3  # a ball this many cells wide, or wider, carries its number
 
 
 @dataclass(frozen=True)
@@ -362,6 +364,25 @@ class TableView:
         for x, y, rr, style in self._balls(ids, pos, state, radius):
             draw_ball(cv, x, y, rr, style)
         return cv
+
+    def numbers(self, cells, ids, pos, state=None, radius=None) -> None:
+        """Write each numbered ball's number on it, in the cells (chars, fg, bg) of `draw`'s
+        canvas, where the ball is NUMBER_MIN_CELLS cells wide or more: centred on the cell row
+        of its centre, on the ball's colour (a stripe's band)."""
+        chars, fg, bg = cells
+        rows, cols = chars.shape
+        for x, y, rr, style in self._balls(ids, pos, state, radius):
+            if style.tag == CUE or int(round(2 * rr)) < NUMBER_MIN_CELLS or not style.number:
+                continue
+            text = style.number
+            r = int(math.floor(y)) // 2
+            c0 = int(math.floor(x - len(text) / 2 + 0.5))
+            if not (0 <= r < rows and 0 <= c0 and c0 + len(text) <= cols):
+                continue
+            chars[r, c0:c0 + len(text)] = list(text)
+            if fg is not None:
+                fg[r, c0:c0 + len(text)] = number_colour(style.colour).rgb
+                bg[r, c0:c0 + len(text)] = style.colour.rgb
 
     def mono(self, ids, pos, state=None, radius=None) -> np.ndarray:
         """Glyph cells for the monochrome mode: the table's glyphs, and each ball as one glyph
