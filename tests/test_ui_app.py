@@ -1004,3 +1004,93 @@ def test_the_head_string_shows_while_the_ball_in_hand_must_stay_behind_it() -> N
     text = screen_text(mono.cells(120, 40)[0]).splitlines()
     col = int(mono._geometry(120, 40)[0].to_pixels(mono.table.length / 4, 0.0)[0])
     assert sum(line[col:col + 1] == ":" for line in text) >= 10
+
+
+# ------------------------------------------------------------------- the panel and words
+
+def grouped(app: App, frames_won=(0, 0)) -> App:
+    from dataclasses import replace
+
+    m = app.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    m.scores = list(frames_won)
+    app.phase = "aim"
+    return app
+
+
+def panel_text(app: App, cols: int, rows: int) -> list[str]:
+    lay, _ = app._geometry(cols, rows)
+    text = screen_text(app.cells(cols, rows)[0]).split("\n")
+    c, r, w, _ = lay.panel_rect
+    return [line[c:c + w] for line in text[r:]]
+
+
+@pytest.mark.parametrize("colors", ["mono", "256"])
+@pytest.mark.parametrize("frames", [1, 3])
+def test_at_80x24_both_players_groups_are_listed_whole(colors, frames) -> None:
+    for names in ("cpu", "human"):
+        app = grouped(app_for(mode="8ball", opponent=names, colors=colors, frames=frames))
+        app.side, app.top = 0.1, -0.2
+        panel = panel_text(app, 80, 24)
+        rows = " ".join(panel)
+        for k in range(1, 16):
+            if k != 8:
+                assert f"{k}" in rows.replace("10", " ").replace("11", " ") or k > 9
+        for p in (0, 1):  # each player's row holds all their balls, in order
+            row = next(line for line in panel if app.match.players[p] in line)
+            want = "1 2 3 4 5 6 7" if p == 0 else "9 10 11 12 13 14 15"
+            got = " ".join(row.replace("●", " ").replace("◐", " ").split())
+            assert want in got, row
+            if frames > 1:
+                assert "0/3" in row
+        assert any(line.strip().startswith(f"{app.match.players[0]} to shoot") for line in panel)
+        # the spin, in words where no face fits
+        assert "tip +0.1 side -0.2 top" in " ".join(rows.split())
+
+
+def test_at_200x60_the_spin_readout_shows() -> None:
+    for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
+                         ("mono", ("tip +0.3 side -0.1 top",))):
+        app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
+        app.message = [("Computer: 12 in the head right pocket", "dim"),
+                       ("legal break: the 6 and the 7 pocketed; the table is open", "plain")]
+        app.side, app.top = 0.3, -0.1
+        for size in ((200, 60), (120, 40), (100, 32)):
+            text = " ".join(" ".join(panel_text(app, *size)).split())
+            for w in want:
+                assert w in text, (size, colors)
+
+
+@pytest.mark.parametrize("size", [(40, 12), (45, 14), (60, 16)])
+@pytest.mark.parametrize("mode", ["release", "repeat", "classic"])
+def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
+    from termpool.ui.app_screen import hint_lines
+    from termpool.ui.panel import fit_hint
+
+    app = grouped(app_for(mode="8ball", opponent="human", input_mode=mode))
+    hint = panel_text(app, *size)[-1].strip()
+    parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app)]
+    assert hint == fit_hint(hint_lines(app), size[0] - 3)  # the panel's text width
+    assert hint.endswith("Q quit") and hint.startswith("←→ aim")
+    assert {"release": "Space:hold", "repeat": "Space:hold/rep",
+            "classic": "Space:meter"}[mode] in hint.replace(": ", ":").replace(", let go", "")
+    assert parts  # every piece shown is whole: the line is pieces joined, none cut
+    for piece in hint.split("  ") if "  " in hint else [hint]:
+        assert piece
+
+
+def test_game_over_says_you_win_and_q_quits_at_once() -> None:
+    app = app_for(mode="8ball", opponent="cpu")
+    app.match.winner = 0
+    app.message = [("the 8 went into the foot left pocket: You win", "good")]
+    app._turn_start()
+    assert app.phase == "over"
+    text = screen_text(app.cells(120, 40)[0])
+    assert "You win!" in text and "You wins" not in text
+    app.key(Key("q"), 1.0)
+    assert app.done and app.overlay is None  # no second "Quit termpool?" on top
+    app = app_for(mode="8ball", opponent="human")
+    app.match.winner = 1
+    app._turn_start()
+    assert "Player 2 wins!" in screen_text(app.cells(120, 40)[0])

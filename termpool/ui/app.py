@@ -214,10 +214,11 @@ class App:
         self._aim_cache = None
         self._cpu_skip = False
         if m.frame_over and m.winner is None:
-            won = m.players[m.frame_winner]
+            won = m.frame_winner
             m.new_frame()
-            self.message.append((f"{won} wins the frame ({m.scores[0]}-{m.scores[1]}); "
-                                 f"{m.players[m.shooter]} breaks", "good"))
+            self.message.append((self.names(f"player {won} wins the frame ({m.scores[0]}-"
+                                            f"{m.scores[1]}); player {m.shooter} breaks"),
+                                 "good"))
         if m.winner is not None:
             self.phase = "over"
         elif m.option is not None:
@@ -677,6 +678,8 @@ class App:
         elif key.name == "m":
             self.phase = "menu"
             self.match = None
+        elif key.name == "q" or self.keymap.action(key) == "quit":
+            self.done = True  # the box says "q: quit": no second question on top of it
         else:
             return False
         return True

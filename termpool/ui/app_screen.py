@@ -17,6 +17,7 @@ from termpool.ui.panel import (
     blank_cells,
     draw_box,
     draw_panel,
+    widget_fits,
 )
 
 OPTION_TEXT = {
@@ -39,7 +40,7 @@ def cells(app, cols: int, rows: int):
             out = message_cells(cols, rows, too_small_lines(cols, rows), mono)
         else:
             out = _table_cells(app, lay, view, mono)
-            draw_panel(out, lay, panel_info(app), mono)
+            draw_panel(out, lay, panel_info(app, lay), mono)
             _question(app, out)
     if app.overlay == "help":
         draw_box(out, help_box_lines(app.keymap, rows, cols), "keys", wrap=False)
@@ -138,13 +139,13 @@ def _question(app, cells) -> None:
         draw_box(cells, OPTION_TEXT.get(app.match.option, [app.match.option]), "your call")
     elif app.phase == "over":
         m = app.match
-        name = m.players[m.winner]
-        why = app.message[0][0] if app.message else ""
-        draw_box(cells, [f"{name} wins!", why, "", "n: new game   m: menu   q: quit"],
+        why = app.message[-1][0] if app.message else ""
+        draw_box(cells, [app.names(f"player {m.winner} wins!"), why, "",
+                         "n: new game   m: menu   q: quit"],
                  "game over", "good")
 
 
-def panel_info(app) -> PanelInfo:
+def panel_info(app, lay=None) -> PanelInfo:
     from termpool.rules.common import GROUPS
 
     m = app.match
@@ -168,18 +169,22 @@ def panel_info(app) -> PanelInfo:
                                   p == m.shooter and app.phase != "over", fouls))
     if st.mode == "practice":
         players = players[:1]
-    now = _status(app)
-    # While charging, the power reading comes before the last verdict.
-    status = now + app.message if app.charge.active else app.message + now
-    hint = hint_lines(app)
     widgets = []
+    spin_words = True  # the tip offset goes in words unless the spin face shows it
     if app.phase in ("aim", "cpu") and app.depth != "mono":
-        from termpool.ui.overlay import power_meter_cells, spin_face_cells
+        from termpool.ui.overlay import power_meter_cells
 
-        widgets.append((spin_face_cells(app.side, app.top), "spin"))
+        block = _spin_block(app.side, app.top)
+        if lay is None or widget_fits(lay, block):
+            widgets.append((block, "spin"))
+            spin_words = False
         if app.charge.active:
             widgets.append((power_meter_cells(app.charge.level(app.now), 14,
                                               "power"), "power"))
+    now = _status(app, spin_words)
+    # What to do now first, the last verdicts next, then the power, the aid and the spin.
+    status = now[:1] + app.message + now[1:]
+    hint = hint_lines(app)
     title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
@@ -187,7 +192,34 @@ def panel_info(app) -> PanelInfo:
                      widgets=widgets, theme=app.opts.theme)
 
 
-def _status(app) -> list[tuple[str, str]]:
+def _tip_words(app) -> str | None:
+    """The cue tip's offset in words (None when it is centred)."""
+    if not (app.side or app.top):
+        return None
+    return f"tip {app.side:+.1f} side {app.top:+.1f} top"
+
+
+SPIN_TEXT_COLS = 10  # the spin readout beside the face
+
+
+def _spin_block(side: float, top: float):
+    """The spin face with its readout to the left: "spin", the side and top offsets."""
+    import numpy as np
+
+    from termpool.ui.overlay import spin_face_cells
+
+    face = spin_face_cells(side, top)
+    rows = face[0].shape[0]
+    text = blank_cells(SPIN_TEXT_COLS, rows, False)
+    for r, (line, colour) in enumerate((("spin", DIM_TEXT_C.rgb),
+                                        (f"side {side:+.1f}", TEXT_C.rgb),
+                                        (f"top  {top:+.1f}", TEXT_C.rgb))):
+        if r < rows:
+            put_text(text, r, 0, line, colour, (0, 0, 0))
+    return tuple(np.concatenate([a, b], axis=1) for a, b in zip(text, face, strict=True))
+
+
+def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
     m = app.match
     name = m.players[m.shooter]
     out = []
@@ -213,10 +245,9 @@ def _status(app) -> list[tuple[str, str]]:
             out.insert(0, (f"power {level}% · {app.charge.label}", "turn"))
             out.append((s, "dim"))
         else:
-            out.append((s, "turn"))
+            tip = _tip_words(app) if spin_words else None
+            out.append((s + (f" · {tip}" if tip else ""), "turn"))
             out.append((_power_line(app), "dim"))
-        if app.side or app.top:
-            out.append((f"tip {app.side:+.1f} side {app.top:+.1f} top", "dim"))
     elif app.phase == "place":
         where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
         what = "break" if m.state.is_break else "shoot"

@@ -44,7 +44,9 @@ from termpool.ui.palette import (
 
 MIN_COLS, MIN_ROWS = 40, 12
 PANEL_COLS = 26  # width of a side panel, in cells
-PANEL_ROWS = 4  # minimum height of a bottom panel, in cells
+PANEL_ROWS = 4  # minimum height of a bottom panel, in cells ...
+PANEL_ROWS_TALL = 5  # ... on terminals of TALL_ROWS rows or more: a row for each player's
+TALL_ROWS = 20  # balls when they do not fit side by side, the status, the key help
 MIN_PLAY_PX = 8  # the playing area must be at least this many pixels high
 CUSHION_M = 0.05  # cushion width, nose to rail (m)
 RAIL_M = 0.10  # visible wooden rail width (m)
@@ -125,7 +127,7 @@ def _fit(aw: int, ah: int, length: float, width: float):
 
 
 def layout(cols: int, rows: int, table: Table | None = None, *, panel_cols: int = PANEL_COLS,
-           panel_rows: int = PANEL_ROWS) -> Layout | None:
+           panel_rows: int | None = None) -> Layout | None:
     """Place the table (as large as it goes, true proportions) and a side or bottom panel.
 
     Tries a panel of `panel_cols` on the right and one of at least `panel_rows` below, keeps the
@@ -134,6 +136,8 @@ def layout(cols: int, rows: int, table: Table | None = None, *, panel_cols: int 
     """
     if cols < MIN_COLS or rows < MIN_ROWS:
         return None
+    if panel_rows is None:
+        panel_rows = PANEL_ROWS_TALL if rows >= TALL_ROWS else PANEL_ROWS
     L, W = (table.length, table.width) if table is not None else (2.54, 1.27)
     best = None
     side = _fit(cols - panel_cols, 2 * rows, L, W) if cols - panel_cols >= MIN_COLS // 2 else None
