@@ -313,3 +313,17 @@ def test_leaving_while_the_balls_roll_keeps_the_record(game, tmp_path, capsys, h
     assert f"record saved to {rec} (1 shot)".encode() in g.raw
     assert cli.main(["replay", str(rec)]) == 0  # the shot, played out, replays identically
     assert capsys.readouterr().out.endswith("1 shot: all identical\n")
+
+
+def test_a_terminal_without_an_alternate_screen_is_left_clean(game) -> None:
+    # The Linux console (TERM=linux) has no alternate screen: the game's last frame, quit box
+    # and all, would stay under the shell's prompt unless leaving clears it.
+    g = game("play", "--mode", "practice", cols=100, rows=32, env={"TERM": "linux"})
+    assert g.wait_for("You to break"), g.text()
+    assert b"\x1b[?1049h" not in g.raw  # no alternate screen was asked for
+    g.send("q", pause=0.3)
+    assert "Quit termpool?" in g.text()
+    g.send("y")
+    assert g.wait() == 0
+    assert g.text().strip() == "", g.text()
+    assert b"\x1b[?25h" in g.raw[-16:] and cooked(g.fd)  # the cursor is back
