@@ -868,6 +868,30 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
     assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
 
 
+def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monkeypatch):
+    app, plan = cpu_to_shoot(monkeypatch)
+    t = 0.0
+    while app.phase in ("cpu", "run"):
+        app.tick(t)
+        t += 1 / 60
+    verdict = app.message[-1]
+    m = app.match
+    m.state = __import__("dataclasses").replace(m.state, shooter=1)
+    m.ball_in_hand = None
+    m.on_table[:] = False
+    for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (2.0, 1.0)}.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    app.angle = 0.0
+    monkeypatch.setattr(__import__("termpool").ai, "choose_shot",
+                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
+    app._turn_start()
+    app.tick(t)
+    app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
+    assert app.message == [verdict, ("Computer: 3 in the side", "turn")]
+    assert "Computer is aiming at the 3" in screen_text(app.cells(120, 40)[0])
+
+
 def test_a_key_skips_the_computer_s_wait(monkeypatch):
     app, plan = cpu_to_shoot(monkeypatch)
     app.tick(0.0)

@@ -446,3 +446,23 @@ def test_every_ball_stands_out_from_the_felt_cushions_and_rails_in_16_colours(pa
                                - _lab(rgb[HAND16[pack(ground.rgb)]]))
             assert d >= 35, (ball, ground, d)
     assert HAND16[pack(FELT_C.rgb)] == 2  # and the felt is green
+
+
+def _contrast(a, b) -> float:
+    """WCAG contrast ratio of two sRGB colours (1 to 21)."""
+    def lum(rgb) -> float:
+        c = np.asarray(rgb, float) / 255
+        c = np.where(c > 0.04045, ((c + 0.055) / 1.055) ** 2.4, c / 12.92)
+        return float(c @ [0.2126, 0.7152, 0.0722])
+    hi, lo = sorted((lum(a), lum(b)), reverse=True)
+    return (hi + 0.05) / (lo + 0.05)
+
+
+def test_ball_numbers_take_the_ink_that_reads_best_on_their_ball():
+    from termpool.ui.palette import NUMBER_DARK_C, NUMBER_LIGHT_C, number_colour
+
+    # Light ink on the mid-green 6 read at 2.2:1; dark ink reads at 8:1.
+    for ball in BALL_C.values():
+        ink = number_colour(ball)
+        other = NUMBER_LIGHT_C if ink == NUMBER_DARK_C else NUMBER_DARK_C
+        assert _contrast(ball.rgb, ink.rgb) >= max(4.5, _contrast(ball.rgb, other.rgb)), ball

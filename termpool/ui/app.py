@@ -438,8 +438,9 @@ class App:
         foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
         note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
+        # The last verdict stays in view (without the plan of the shot it was about).
+        self.message = [x for x in self.message if x not in self._shot_note][:2] + note
         self._cpu_note = note
-        self.message = self.message[:2] + note  # the last verdict stays in view
         return plan
 
     # ------------------------------------------------------------------------------ keys

@@ -251,14 +251,15 @@ def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
     elif app.phase == "place":
         where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
         what = "break" if m.state.is_break else "shoot"
-        out.append((f"{name} to {what} · ball in hand {where}: arrows move, Enter places",
+        out.append((f"{name} to {what} · ball in hand {where}",
                     "turn"))
     elif app.phase == "run":
         out.append(("fast ×4 (F)" if app.fast else "F: fast forward", "dim"))
     elif app.phase == "cpu":
-        name = m.players[m.shooter]
+        pred = app.prediction() if app._cpu_plan is not None else None
+        at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
         out.append((f"{name} is thinking…" if app._cpu_plan is None else
-                    f"{name} is aiming", "dim"))
+                    f"{name} is aiming{at}", "dim"))
     return out
 
 

@@ -135,7 +135,7 @@ def number_colour(ball: Colour) -> Colour:
     """The colour a number is written in on a ball of colour `ball`: dark on light balls,
     light on dark ones (by the colour's luma at the depth it is shown in)."""
     r, g, b = ball.rgb
-    return NUMBER_DARK_C if 0.299 * r + 0.587 * g + 0.114 * b > 140 else NUMBER_LIGHT_C
+    return NUMBER_DARK_C if 0.299 * r + 0.587 * g + 0.114 * b > 130 else NUMBER_LIGHT_C
 
 
 def mono_glyph(style: BallStyle) -> str:
