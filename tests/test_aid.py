@@ -183,33 +183,29 @@ def test_a_kick_is_followed_through_the_cushions_to_its_first_ball():
 
 # --------------------------------------------------------------------- aiming along the aid
 
-def pot_layouts(n: int, seed: int = 11):
-    """Makeable pots: one object ball, a pocket, the cue ball behind the ghost ball at a cut
-    of up to 45 degrees, nothing in the way, the ball not frozen to a cushion; and the tip
-    offset (follow or draw) to play it with."""
-    rng = np.random.default_rng(seed)
+def pot_layouts():
+    """Makeable pots, laid out on purpose: the object ball near and far from a corner and a
+    side pocket (on a line into it the jaws let through), the cue ball near and far behind
+    the ghost ball, at cuts of 0 (straight in), 20 and 40 degrees either way, played with
+    follow, stun or draw in turn; nothing else on the table."""
     table = Match("practice").table
-    names = table.hole_names
-    holes = table.hole_c.reshape(-1, 2)
+    holes = dict(zip(table.hole_names, table.hole_c.reshape(-1, 2), strict=True))
     out = []
-    while len(out) < n:
-        k = int(rng.integers(len(names)))
-        obj = np.array([rng.uniform(0.25, table.length - 0.25), rng.uniform(0.2, 1.07)])
-        to_hole = holes[k] - obj
-        dist = float(np.hypot(*to_hole))
-        if not 0.3 < dist < 1.4:
-            continue
-        u = to_hole / dist
-        if k in (2, 3) and abs(u[1]) < 0.7:  # side pockets take only steep entries
-            continue
-        ghost = obj - 2 * R * u
-        cut = math.radians(rng.uniform(-45, 45))
-        back = -np.array([u[0] * math.cos(cut) - u[1] * math.sin(cut),
-                          u[0] * math.sin(cut) + u[1] * math.cos(cut)])
-        cue = ghost + back * rng.uniform(0.3, 1.0)
-        if not (0.1 < cue[0] < table.length - 0.1 and 0.1 < cue[1] < table.width - 0.1):
-            continue
-        out.append((cue, obj, names[k], float(rng.choice([-0.3, 0.0, 0.3]))))
+    # (pocket, the object ball's way into it in degrees, its distances from the pocket)
+    for pocket, into, far in (("foot_left", 35.0, (0.35, 0.9)), ("foot_left", 55.0, (0.6,)),
+                              ("side_left", 80.0, (0.3, 0.6))):
+        u = np.array([math.cos(math.radians(into)), math.sin(math.radians(into))])
+        for d_obj in far:
+            obj = holes[pocket] - u * d_obj
+            ghost = obj - 2 * R * u
+            for cut in (0.0, 20.0, -20.0, 40.0, -40.0):
+                c = math.radians(cut)
+                back = -np.array([u[0] * math.cos(c) - u[1] * math.sin(c),
+                                  u[0] * math.sin(c) + u[1] * math.cos(c)])
+                for d_cue in (0.45, 1.0):
+                    cue = ghost + back * d_cue
+                    if 0.1 < cue[0] < table.length - 0.1 and 0.1 < cue[1] < table.width - 0.1:
+                        out.append((cue, obj, pocket, (0.3, 0.0, -0.3)[len(out) % 3]))
     return out
 
 
@@ -221,57 +217,105 @@ def finish(app: App):
     return app.prediction()
 
 
-def side_of(app: App, obj: int, hole) -> float | None:
-    """Which side of the pocket the aid shows the first ball heading (the sign of the cross
-    product of its heading and the way to the pocket), None if it is not the ball hit."""
-    pred = finish(app)
-    if pred is None or pred.ball != obj or len(pred.object.points) < 2:
-        return None
-    p, q = pred.object.points[0], pred.object.points[1]
-    u, v = q - p, np.asarray(hole) - p
+def _cross(u, v) -> float:
     return float(u[0] * v[1] - u[1] * v[0])
 
 
-def pocket_of(app: App):
-    pred = finish(app)
-    if pred is None or pred.object is None or pred.object.end != "pocket":
-        return None
-    return pred.object.pocket
+class FullAid:
+    """What a player reads off the full aid: the first ball's path, and where it ends."""
+
+    @staticmethod
+    def side(app: App, obj: int, hole) -> float | None:
+        """Which side of the pocket the first ball is shown heading (the sign of the cross
+        product of its heading and the way to the pocket); None if it is not the ball hit."""
+        pred = finish(app)
+        if pred is None or pred.ball != obj or len(pred.object.points) < 2:
+            return None
+        p, q = pred.object.points[0], pred.object.points[1]
+        return _cross(q - p, np.asarray(hole) - p)
+
+    @staticmethod
+    def pocket(app: App, obj: int, hole) -> str | None:
+        pred = finish(app)
+        if pred is None or pred.ball != obj or pred.object.end != "pocket":
+            return None
+        return pred.object.pocket
 
 
-def test_aiming_along_the_full_aid_pots_at_least_95_percent_of_makeable_shots():
+class LineOfCentres:
+    """The aid termpool had before: a fixed line from the ghost ball through the object
+    ball's centre (no throw, no cushions), which a player extends to the pocket by eye."""
+
+    @staticmethod
+    def _line(app: App, obj: int):
+        m = app.match
+        cue, o = m.pos[m.ids.index("cue")], m.pos[obj]
+        a = math.radians(app.angle)
+        d = np.array([math.cos(a), math.sin(a)])
+        along = float((o - cue) @ d)
+        off = _cross(d, o - cue)
+        if along <= 0 or abs(off) >= 2 * R:
+            return None
+        ghost = cue + d * (along - math.sqrt((2 * R) ** 2 - off ** 2))
+        return o, o - ghost
+
+    @classmethod
+    def side(cls, app: App, obj: int, hole) -> float | None:
+        line = cls._line(app, obj)
+        return None if line is None else _cross(line[1], np.asarray(hole) - line[0])
+
+    @classmethod
+    def pocket(cls, app: App, obj: int, hole) -> str | None:
+        line = cls._line(app, obj)
+        if line is None:
+            return None
+        o, u = line
+        u = u / np.linalg.norm(u)
+        to = np.asarray(hole) - o
+        table = app.match.table
+        k = int(np.argmin(np.linalg.norm(table.hole_c.reshape(-1, 2) - hole, axis=1)))
+        # the extended line passes over the hole (its centre within the hole's radius)
+        inside = to @ u > 0 and abs(_cross(u, to)) < table.hole_r[k]
+        return table.hole_names[k] if inside else None
+
+
+def pots_along(aid) -> tuple[int, int]:
+    """Plays every layout as a player trusting `aid` would, on the keys: power for the
+    distance, spin, then the aim turned in half-degree taps until the aid's line for the
+    object ball swings past the pocket, and back in tenths until the aid shows it going in;
+    the shot is struck there, at the edge of the window the aid shows, where an aid that is
+    off by a little misses. Returns (pots, shots)."""
     made = tried = 0
-    for cue, obj, pocket, top in pot_layouts(24):
-        app = App(Options(mode="practice", opponent="human", colors="mono"))
+    for cue, obj, pocket, top in pot_layouts():
+        app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
         m = app.match
         m.on_table[:] = False
         c, o = m.ids.index("cue"), m.ids.index("3")
         m.on_table[[c, o]] = True
         m.pos[c], m.pos[o] = cue, obj
         m.ball_in_hand = None
-        app._turn_start()  # the opening aim: straight at the 3
+        app._turn_start()
         hole = m.table.hole_c.reshape(-1, 2)[list(m.table.hole_names).index(pocket)]
         reach = math.dist(cue, obj) + math.dist(obj, hole)
         power = "4" if reach < 1.2 else "6"
         t = 1.0
-        app.key(Key(power), t)  # power for the distance, and the spin the layout asks for
+        app.key(Key(power), t)
         for _ in range(round(abs(top) / 0.1)):
             t += 0.2
             app.key(Key("w" if top > 0 else "s"), t)
-        # Turn the aim as a player would: half-degree taps until the aid's line for the 3
-        # swings past the pocket, then tenths back until it shows the 3 going in.
         tried += 1
         found = None
+        start = math.degrees(math.atan2(*(obj - cue)[::-1])) % 360  # straight at the 3
         for key, back in (("left", "down"), ("right", "up")):
-            app.angle = math.degrees(math.atan2(*(obj - cue)[::-1])) % 360
-            before = side_of(app, o, hole)
+            app.angle = start
+            before = aid.side(app, o, hole)
             for _ in range(40):
                 t += 0.2
                 app.key(Key(key), t)
-                now = side_of(app, o, hole)
+                now = aid.side(app, o, hole)
                 if before is not None and now is not None and (before > 0) != (now > 0):
                     for _ in range(6):
-                        if pocket_of(app) == pocket:
+                        if aid.pocket(app, o, hole) == pocket:
                             found = app.angle
                             break
                         t += 0.2
@@ -281,11 +325,7 @@ def test_aiming_along_the_full_aid_pots_at_least_95_percent_of_makeable_shots():
             if found is not None:
                 break
         if found is None:
-            continue
-        # Shoot at the first angle the aid shows potting: the edge of the window, where an
-        # aid that is off by a little would miss.
-        app.angle = found
-        assert pocket_of(app) == pocket
+            continue  # the aid never showed the pot: a miss
         t += 0.2
         app.key(Key("space"), t)
         assert app.phase == "run"
@@ -296,5 +336,33 @@ def test_aiming_along_the_full_aid_pots_at_least_95_percent_of_makeable_shots():
         pots = [ev.get("pocket") for ev in app.match.history[-1]["events"]
                 if ev["type"] == "pocket" and "3" in ev["ids"]]
         made += pots == [pocket]
-    assert tried == 24
+    return made, tried
+
+
+def test_the_layouts_are_the_pots_they_say():
+    layouts = pot_layouts()
+    assert len(layouts) >= 30
+    table = Match("practice").table
+    holes = dict(zip(table.hole_names, table.hole_c.reshape(-1, 2), strict=True))
+    cuts = set()
+    for cue, obj, pocket, _ in layouts:
+        u = (holes[pocket] - obj) / np.linalg.norm(holes[pocket] - obj)
+        ghost = obj - 2 * R * u
+        v = (ghost - cue) / np.linalg.norm(ghost - cue)
+        cuts.add(round(math.degrees(math.atan2(_cross(v, u), float(v @ u)))))
+        # nothing between: the cue ball's path to the ghost ball clears the object ball
+        assert abs(_cross(v, obj - cue)) >= 2 * R - 1e-9 or float((obj - cue) @ v) > \
+            math.dist(cue, ghost)
+    assert cuts == {0, 20, -20, 40, -40}  # straight in, and cuts either way
+
+
+def test_aiming_along_the_full_aid_pots_at_least_95_percent_of_makeable_shots():
+    made, tried = pots_along(FullAid)
     assert made >= 0.95 * tried
+
+
+def test_aiming_along_the_line_of_centres_misses_the_same_pots():
+    # The same player and the same pots, with the fixed line the aid drew before: throw and
+    # the jaws send many of them wide, so the 95% above is the aid's doing.
+    made, tried = pots_along(LineOfCentres)
+    assert made < 0.95 * tried
