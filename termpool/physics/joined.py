@@ -21,8 +21,6 @@ runs out.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from termpool.physics.cluster import solve_inelastic
@@ -33,17 +31,18 @@ from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
 
 TURN = 0.01  # rad: a fixed friction direction is renewed after the true one turns this far
+TURN_ROLL = 0.2  # rad: the same for a rolling ball's resistance, 20 times weaker
 ROLL_MASS = 1.4  # a rolling ball pushed through its centre answers as if 7/5 as heavy
 EPS_SLIP = 1e-7  # m/s: a slip this small is completed at once (within 50 ns here, where a
 # pressed ball slides to the end of its slip, unlike state.EPS_U for free balls)
 SETTLE = 1e-3  # s: a rolling ball in a group that would be braked to rest this soon rests
 
 
-def _renewal(x: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _renewal(x: np.ndarray, k: np.ndarray, turn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """How long x + k t (rows) may be taken as keeping its direction: the exact time it
     reaches zero when it runs straight to zero (inf when it never shrinks); the time it
-    passes closest to zero when it runs within TURN of straight at it (it turns fast there);
-    else the time it has turned by TURN. Returns (time, straight)."""
+    passes closest to zero when it runs within `turn` of straight at it (it turns fast
+    there); else the time it has turned by `turn` (rows). Returns (time, straight)."""
     xx = (x * x).sum(axis=1)
     kk = (k * k).sum(axis=1)
     d = (x * k).sum(axis=1)
@@ -51,10 +50,10 @@ def _renewal(x: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     size = np.sqrt(xx * kk)
     live = (kk > 0) & (xx > 0)
     straight = (c <= 1e-12 * size) | ~live
-    near = ~straight & (d < 0) & (c < math.sin(TURN) * size)
+    near = ~straight & (d < 0) & (c < np.sin(turn) * size)
     with np.errstate(divide="ignore", invalid="ignore"):
         to_zero = np.where(d < 0, np.sqrt(xx / kk), np.inf)
-        tan = math.tan(TURN)
+        tan = np.tan(turn)
         den = c - d * tan
         turn = np.where(den > 0, tan * xx / den, np.inf)
         least = -d / kk
@@ -80,6 +79,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     c_idx = np.array([r[1] for r in rows], dtype=np.int64)
     normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
     bend = np.array([r[3] for r in rows], dtype=float)
+    J = _rows(M, a_idx, c_idx, normal)
     # A slip too small to slide on (state.EPS_U) is completed at once, as Engine._snap does:
     # the ball rolls on with the speed the slide would have left it.
     u = v + R[:, None] * _perp(w[:, :2])
@@ -89,8 +89,12 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     w = w.copy()
     w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
     settled = np.zeros(M, dtype=bool)
+    rolled = _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
     for _ in range(M + 1):
-        v = _resting(v, np.where(settled, 0.0, 1.0 / m), a_idx, c_idx, normal)
+        v = _resting(v, np.where(settled, 0.0, 1.0 / m), J)
+        # A rolling ball whose speed the contacts trimmed rolls on (its spin follows), as
+        # a rolling ball pushed through its centre does.
+        w[:, :2] = np.where(rolled[:, None], _perp(v) / R[:, None], w[:, :2])
         u = v + R[:, None] * _perp(w[:, :2])
         us, vs = _norm(u), _norm(v)
         sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
@@ -101,7 +105,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
         free = np.where(sliding[:, None], -ph.mu_slide * g * u / safe_u,
                         np.where(rolling[:, None], -ph.mu_roll * g * v / safe_v, 0.0))
         inv = np.where(sliding, 1.0, 1.0 / ROLL_MASS) / m
-        acc, _lam = _solve(free, inv, a_idx, c_idx, normal, bend)
+        acc = _solve(free, inv, J, bend)
         # A slow rolling ball that the forces brake to rest within SETTLE rests now (its
         # partners' speeds into it taken out with it): pushed off its line it would
         # otherwise approach rest in ever shorter renewals.
@@ -113,8 +117,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
         settled |= settle
     held = np.zeros(M, dtype=bool)
     resisted = np.zeros(M, dtype=bool)
-    for _ in range(2 * M + 2):
-        acc, _lam = _solve(free, np.where(held, 0.0, inv), a_idx, c_idx, normal, bend)
+    for _ in range(2 * M + 2 if rest.any() else 0):
         # A ball at rest that is pushed rolls, against its rolling resistance; where the
         # resistance wins (the ball would move backwards) it is held where it is.
         start = rest & ~held & ~resisted & (_norm(acc) > A_MIN) & (ph.mu_roll > 0)
@@ -126,6 +129,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
         resisted |= start
         held |= stop
         free = np.where(held[:, None], 0.0, free)
+        acc = _solve(free, np.where(held, 0.0, inv), J, bend)
     pushed = rest & ~held & (_norm(acc) > A_MIN)
     acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
     v = np.where(rest[:, None], 0.0, v)  # a ball at rest starts from rest, pushed or not
@@ -139,7 +143,10 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     # the velocity of a rolling one at acc.
     slip_rate = acc + R[:, None] * _perp(spin_acc)
     moving, rate_of = np.where(sliding[:, None], u, v), np.where(sliding[:, None], slip_rate, acc)
-    duration, straight = _renewal(moving, rate_of)
+    # The direction of a rolling ball's resistance may err as far as a sliding ball's friction
+    # may err in force: a turn TURN x mu_s / mu_r (at most TURN_ROLL).
+    turn = np.where(sliding, TURN, TURN_ROLL)
+    duration, straight = _renewal(moving, rate_of, turn)
     duration = np.where(sliding | roll, duration, np.inf)
     # Where the friction's direction turns, it is taken at the middle of the motion's time
     # (the direction there as first predicted), which makes the error second order in TURN.
@@ -149,7 +156,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
         size = np.where(turning, _norm(mid), 1.0)[:, None]
         mu = np.where(sliding, ph.mu_slide, ph.mu_roll)[:, None]
         free = np.where(turning[:, None], -mu * g * mid / size, free)
-        acc, _lam = _solve(free, np.where(held, 0.0, inv), a_idx, c_idx, normal, bend)
+        acc = _solve(free, np.where(held, 0.0, inv), J, bend)
         acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
         mid_hat = mid / size
         spin_acc = np.where(turning[:, None],
@@ -175,14 +182,13 @@ def _rows(M, a_idx, c_idx, normal) -> np.ndarray:
     return J.reshape(nc, 2 * M)
 
 
-def _resting(v, k, a_idx, c_idx, normal) -> np.ndarray:
+def _resting(v, k, J) -> np.ndarray:
     """v with the contacts' normal speeds (a micrometre per second at most, left by the
     solve of slow contacts) taken out by the least change weighted by inverse masses k:
     a resting contact neither closes nor parts, else the force that holds it would hold a
     ball creeping away for ever."""
-    if len(a_idx) == 0:
+    if len(J) == 0:
         return v
-    J = _rows(len(k), a_idx, c_idx, normal)
     u = J @ v.reshape(-1)
     if not (np.abs(u) > EPS_V).any():  # slower than a ball at rest: nothing creeps
         return v
@@ -191,21 +197,17 @@ def _resting(v, k, a_idx, c_idx, normal) -> np.ndarray:
     return v + (kk * (J.T @ lam)).reshape(-1, 2)
 
 
-def _solve(free, k, a_idx, c_idx, normal, bend):
+def _solve(free, k, J, bend):
     """Accelerations of balls with free accelerations `free` and inverse masses k under the
-    contact rows: the smallest forces lam >= 0 with no contact accelerating into itself."""
-    M = len(k)
-    nc = len(a_idx)
-    if nc == 0:
-        return free, np.zeros(0)
-    J = _rows(M, a_idx, c_idx, normal)
+    contact rows J: the smallest forces lam >= 0 with no contact accelerating into itself."""
+    if len(J) == 0:
+        return free
     kk = np.repeat(k, 2)
     A = (J * kk) @ J.T
     b = J @ free.reshape(-1) + bend
     # Rows with nothing that can move (a held ball against a rail) carry no force.
     live = np.abs(A).sum(axis=1) > 0
-    lam = np.zeros(nc)
+    lam = np.zeros(len(J))
     if live.any():
         lam[live] = solve_inelastic(A[np.ix_(live, live)], b[live])
-    acc = free + (kk * (J.T @ lam)).reshape(M, 2)
-    return acc, lam
+    return free + (kk * (J.T @ lam)).reshape(-1, 2)
