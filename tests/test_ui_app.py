@@ -879,17 +879,21 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
     m.state = __import__("dataclasses").replace(m.state, shooter=1)
     m.ball_in_hand = None
     m.on_table[:] = False
-    for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (2.0, 1.0)}.items():
+    for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
-    app.angle = 0.0
     monkeypatch.setattr(__import__("termpool").ai, "choose_shot",
                         lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
     app._turn_start()
+    app.angle = 90.0  # its stick starts away from its aim, on the 8
     app.tick(t)
     app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
     assert app.message == [verdict, ("Computer: 3 in the side", "turn")]
-    assert "Computer is aiming at the 3" in screen_text(app.cells(120, 40)[0])
+    # While its stick turns it names no ball (the stick sweeps past others); on its aim, the 3.
+    assert app.angle != 0.0 and "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
+    app.tick(t + 0.1 + 0.7)
+    assert app.angle == 0.0 and "Computer is aiming at the 3" in \
+        screen_text(app.cells(120, 40)[0])
 
 
 def test_a_key_skips_the_computer_s_wait(monkeypatch):

@@ -256,7 +256,9 @@ def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
     elif app.phase == "run":
         out.append(("fast ×4 (F)" if app.fast else "F: fast forward", "dim"))
     elif app.phase == "cpu":
-        pred = app.prediction() if app._cpu_plan is not None else None
+        plan = app._cpu_plan
+        on_aim = plan is not None and not isinstance(plan, str) and app.angle == plan.angle
+        pred = app.prediction() if on_aim else None  # not the balls its stick turns past
         at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
         out.append((f"{name} is thinking…" if app._cpu_plan is None else
                     f"{name} is aiming{at}", "dim"))
