@@ -1122,3 +1122,19 @@ def test_game_over_says_you_win_and_q_quits_at_once() -> None:
     app.match.winner = 1
     app._turn_start()
     assert "Player 2 wins!" in screen_text(app.cells(120, 40)[0])
+
+
+@pytest.mark.parametrize("cols, rows", [(80, 24), (45, 14)])
+def test_a_verdict_too_long_for_the_panel_ends_in_an_ellipsis(cols, rows) -> None:
+    # A foul from a real game, three lines at 80 columns, under "ball in hand anywhere".
+    words = ("Foul: the cue ball hit the 14 first; with the solids cleared it must be the 8; "
+             "no ball reached a cushion after contact and nothing was pocketed; you have ball "
+             "in hand")
+    app = app_for(mode="8ball")
+    app.message = [(words, "foul")]
+    text = screen_text(app.cells(cols, rows)[0])
+    assert any(s.rstrip().endswith("…") for s in text.splitlines())
+    assert "ball in hand" in text  # the status still says it
+    if cols == 80:  # the verdict's first two lines, the second cut at a word
+        shown = [s.strip() for s in text.splitlines() if s.strip().rstrip("…") in words]
+        assert len(shown) == 2 and words.startswith(shown[0]) and shown[1].endswith("…")

@@ -68,6 +68,18 @@ def _wrap(text: str, width: int) -> list[str]:
     return [s[:width] for s in out] or [""]
 
 
+def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str, str]]:
+    """The first `room` of the wrapped lines; when some are left out, the last line kept ends
+    in an ellipsis, so a cut sentence reads as cut."""
+    if len(lines) <= room:
+        return lines
+    if room <= 0:
+        return []
+    text, tone = lines[room - 1]
+    text = text if len(text) < width else text[:width - 1].rsplit(" ", 1)[0]
+    return [*lines[:room - 1], (text + "…", tone)]
+
+
 def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
     chars, fg, bg = cells
     chars[row:row + nrows, col:col + ncols] = " "
@@ -182,8 +194,7 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     lines = []
     for text, tone in info.status:
         lines += [(s, tone) for s in _wrap(text, w)]
-    room = r0 + nrows - 1 - r
-    for s, tone in lines[:max(0, room)]:
+    for s, tone in _cut(lines, r0 + nrows - 1 - r, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
     put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb, BACKDROP_C.rgb)
@@ -203,12 +214,10 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
             _put_line(cells, r, c0, player_line(balls, info, mono, width)[1:])
             r += 1
         r += 1
-    for text, tone in info.status:
-        for s in _wrap(text, width):
-            if r >= end - 1:
-                break
-            put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
-            r += 1
+    lines = [(s, tone) for text, tone in info.status for s in _wrap(text, width)]
+    for s, tone in _cut(lines, end - 1 - r, width):
+        put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
+        r += 1
     r += 1
     for block, _where in info.widgets:
         if r + block[0].shape[0] < end - 1 and block[0].shape[1] <= width:
