@@ -366,3 +366,24 @@ def test_aiming_along_the_line_of_centres_misses_the_same_pots():
     # the jaws send many of them wide, so the 95% above is the aid's doing.
     made, tried = pots_along(LineOfCentres)
     assert made < 0.95 * tried
+
+
+def test_the_status_line_names_the_pocket_the_aid_shows():
+    from termpool.ui.app_screen import _power_line
+
+    cue, obj, pocket, _ = pot_layouts()[1]  # straight in, from 1 m
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
+    m = app.match
+    m.on_table[:] = False
+    c, o = m.ids.index("cue"), m.ids.index("3")
+    m.on_table[[c, o]] = True
+    m.pos[c], m.pos[o] = cue, obj
+    m.ball_in_hand = None
+    app._turn_start()
+    app.angle = math.degrees(math.atan2(*(obj - cue)[::-1])) % 360
+    app.key(Key("4"), 1.0)
+    assert FullAid.pocket(app, o, None) == pocket
+    assert _power_line(app).endswith(f"the 3, into the {pocket.replace('_', ' ')} pocket")
+    app.angle += 20.0  # off the 3: it names no pocket
+    finish(app)
+    assert "into the" not in _power_line(app)

@@ -289,6 +289,8 @@ def _power_line(app) -> str:
     pred = app.prediction()
     if pred is not None and pred.ball is not None:
         line += f" · first ball: the {app.match.ids[pred.ball]}"
+        if pred.object is not None and pred.object.end == "pocket":
+            line += f", into the {pred.object.pocket.replace('_', ' ')} pocket"
     return line
 
 
