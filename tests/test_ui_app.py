@@ -13,7 +13,7 @@ import pytest
 
 from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.params import BALL_RADIUS
-from termpool.ui.app import App, Options, power_to_speed
+from termpool.ui.app import CPU_AIM_S, CPU_SHOW_S, App, Options, power_to_speed
 from termpool.ui.controls import PowerCharge
 from termpool.ui.headless import play, screen_text
 from termpool.ui.keys import Key, legacy_events, parse_script
@@ -891,9 +891,26 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
     assert app.message == [verdict, ("Computer: 3 in the side", "turn")]
     # While its stick turns it names no ball (the stick sweeps past others); on its aim, the 3.
     assert app.angle != 0.0 and "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
-    app.tick(t + 0.1 + 0.7)
+    app.tick(t + 0.2)  # the first frame with its plan: the stick starts to turn
+    app.tick(t + 0.2 + 0.7)
     assert app.angle == 0.0 and "Computer is aiming at the 3" in \
         screen_text(app.cells(120, 40)[0])
+
+
+def test_the_computer_s_thinking_time_does_not_eat_its_aim(monkeypatch):
+    # Its plan takes a second of wall time, so the next frame comes a second after the last:
+    # the turn and the 1.2 s hold are timed from the first frame that shows the plan.
+    app, plan = cpu_to_shoot(monkeypatch)
+    app.tick(0.0)
+    app.tick(0.1)  # it plans (here at once; in play this tick blocks for about a second)
+    shown = 1.1
+    t, aimed = shown, None
+    while app.phase == "cpu":
+        app.tick(t)
+        if aimed is None and app.angle == plan.angle:
+            aimed = t
+        t += 1 / 60
+    assert aimed - shown >= CPU_AIM_S - 1e-9 and app.struck_at - aimed >= CPU_SHOW_S - 1e-9
 
 
 def test_a_key_skips_the_computer_s_wait(monkeypatch):

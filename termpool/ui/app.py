@@ -393,8 +393,8 @@ class App:
                 return
             self._cpu_plan = self._plan()
             self._cpu_from = self.angle
-            self._cpu_t0 = t
-            self.dirty = True
+            self._cpu_t0 = None  # timed from the first frame that shows it: `t` is from
+            self.dirty = True  # before the plan, which takes a second of its own
             return
         plan = self._cpu_plan
         if plan == "done":
@@ -406,6 +406,8 @@ class App:
             self.message = [(f"{who} chose to {OPTION_WORDS[plan]}", "turn")]
             self._turn_start()
             return
+        if self._cpu_t0 is None:
+            self._cpu_t0 = t
         elapsed = t - self._cpu_t0
         f = 1.0 if self._cpu_skip else min(1.0, elapsed / CPU_AIM_S)
         turn = (plan.angle - self._cpu_from + 180.0) % 360.0 - 180.0
