@@ -1,6 +1,6 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
 prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
-checks it bit for bit.
+checks it bit for bit; `termpool rules` prints the rules.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -143,6 +143,14 @@ def _parser() -> _Parser:
     )
     r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
     r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
+    ru = sub.add_parser(
+        "rules",
+        help="print the rules of 8-ball, 9-ball or practice (the page H shows in the game)",
+        description="Print the rules the referee plays by, in plain words: the page the "
+                    "game's help (H) shows. Without a game, all three.",
+    )
+    ru.add_argument("game", nargs="?", choices=("8ball", "9ball", "practice"),
+                    help="the game (default: all)")
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -351,6 +359,18 @@ def _replay(args: argparse.Namespace) -> int:
     return 1 if bad else 0
 
 
+# -------------------------------------------------------------------------------- rules
+
+
+def _rules(args: argparse.Namespace) -> int:
+    from termpool.rules.words import MODE_NAMES, rules_text
+
+    pages = [rules_text(m) for m in ([args.game] if args.game else MODE_NAMES)]
+    sys.stdout.write("\n\n".join("\n".join(p) for p in pages) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
 # -------------------------------------------------------------------------------- bench
 
 
@@ -398,6 +418,8 @@ def main(argv: list[str] | None = None) -> int:
             return _play(args)
         if args.command == "replay":
             return _replay(args)
+        if args.command == "rules":
+            return _rules(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

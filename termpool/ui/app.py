@@ -92,6 +92,7 @@ class App:
         self.dirty = True
         self.bells = 0  # bells to ring (the driver writes BEL and resets this)
         self.overlay: str | None = None  # "help", "pause", "quit"
+        self.help_page, self.help_count = 0, 1  # the help box's page on show, of how many
         self.menu_index = 0
         self._swallow = None  # (key, time, repeating): the key that placed the ball, held
         # Ball in hand: 1 cm a tap; held, from 0.25 to 1 m/s over a second from the press.
@@ -459,7 +460,7 @@ class App:
             self.dirty = True
             return  # their letters (P: pass, N: new game) come before the global keys
         if action == "help" and key.kind == "press":
-            self.overlay = "help"
+            self.overlay, self.help_page = "help", 0
         elif action == "quit" and key.kind == "press":
             self.overlay = "quit" if self.phase != "menu" else None
             self.done = self.phase == "menu"
@@ -507,11 +508,15 @@ class App:
                 self.done = True
             elif key.name == "n" or action in ("cancel", "confirm"):
                 self.overlay = None
-        elif self.overlay == "help" and self.phase == "menu" and self._menu_help:
-            self.overlay = None
-            self._menu_help = False
+        elif self.overlay == "help":
+            from termpool.ui.help import page_key
+
+            self.help_page, close = page_key(key.name, self.help_page, self.help_count)
+            if close:
+                self.overlay = None
+                self._menu_help = False
         else:
-            self.overlay = None  # any key closes help and ends the pause
+            self.overlay = None  # any key ends the pause
         self.dirty = True
 
     _menu_help = False
@@ -535,7 +540,7 @@ class App:
         if what == "quit":
             self.done = True
         elif what == "help":
-            self.overlay = "help"
+            self.overlay, self.help_page = "help", 0
             self._menu_help = True
         else:
             self.new_match(*what)
