@@ -138,7 +138,7 @@ def _question(app, cells) -> None:
         m = app.match
         why = app.message[-1][0] if app.message else ""
         draw_box(cells, [app.names(f"player {m.winner} wins!"), why, "",
-                         "n: new game   m: menu   q: quit"],
+                         "n: new game   m: menu   q: quit", "w: watch this match"],
                  "game over", "good")
 
 
@@ -310,7 +310,7 @@ def hint_lines(app) -> list[tuple]:
     if app.phase == "option":
         return [("answer with a letter in the box", 0), help_, quit_]
     if app.phase == "over":
-        return [("N new game", 0), ("M menu", 0), quit_]
+        return [("N new game", 0), ("M menu", 0), ("W watch", 0), quit_]
     if app.phase == "cpu":
         return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
     return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
