@@ -1,6 +1,6 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
 prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
-checks it bit for bit.
+checks it bit for bit (`--watch`: plays it on screen); `termpool rules` prints the rules.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -122,7 +122,7 @@ def _parser() -> _Parser:
         metavar="N",
         help="also output ball positions sampled N times per simulated second",
     )
-    from termpool.ui.play import add_arguments
+    from termpool.ui.play import COLORS, add_arguments
 
     pl = sub.add_parser(
         "play",
@@ -143,6 +143,25 @@ def _parser() -> _Parser:
     )
     r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
     r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
+    r.add_argument("--watch", action="store_true",
+                   help="play the match on screen as it was played (Space pauses, ← → step "
+                        "a shot, F ×4, H help, Q quits)")
+    r.add_argument("--colors", choices=COLORS,
+                   default=None, help="--watch: colour depth (default: from the terminal)")
+    r.add_argument("--headless", action="store_true",
+                   help="--watch without a terminal: play --keys on a virtual screen, print "
+                        "the last screen")
+    r.add_argument("--size", help="--headless: screen size (default 100x32)")
+    r.add_argument("--keys", metavar="KEYS", help="--headless: key script ('-' for stdin), "
+                   "e.g. 'wait 5 right space'")
+    ru = sub.add_parser(
+        "rules",
+        help="print the rules of 8-ball, 9-ball or practice (the page H shows in the game)",
+        description="Print the rules the referee plays by, in plain words: the page the "
+                    "game's help (H) shows. Without a game, all three.",
+    )
+    ru.add_argument("game", nargs="?", choices=("8ball", "9ball", "practice"),
+                    help="the game (default: all)")
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -318,6 +337,22 @@ def _sim(args: argparse.Namespace) -> int:
 def _replay(args: argparse.Namespace) -> int:
     from termpool.game.record import ReplayError, read_replay, replay
 
+    if args.watch:
+        if args.json:
+            return _fail("--json: not with --watch")
+        from termpool.ui.watch import WatchError, run
+
+        if args.colors is None:
+            args.colors = "auto"
+        try:
+            return run(args)
+        except WatchError as e:
+            return _fail(f"replay: {e}")
+    given = [f for f, v in (("--headless", args.headless), ("--size", args.size),
+                            ("--keys", args.keys), ("--colors", args.colors)) if v]
+    if given:
+        return _fail(f"{given[0]}: only with --watch")
+
     try:
         data = read_replay(args.file)
         shots = replay(data)
@@ -349,6 +384,18 @@ def _replay(args: argparse.Namespace) -> int:
         sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")
     sys.stdout.flush()
     return 1 if bad else 0
+
+
+# -------------------------------------------------------------------------------- rules
+
+
+def _rules(args: argparse.Namespace) -> int:
+    from termpool.rules.words import MODE_NAMES, rules_text
+
+    pages = [rules_text(m) for m in ([args.game] if args.game else MODE_NAMES)]
+    sys.stdout.write("\n\n".join("\n".join(p) for p in pages) + "\n")
+    sys.stdout.flush()
+    return 0
 
 
 # -------------------------------------------------------------------------------- bench
@@ -398,6 +445,8 @@ def main(argv: list[str] | None = None) -> int:
             return _play(args)
         if args.command == "replay":
             return _replay(args)
+        if args.command == "rules":
+            return _rules(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

@@ -600,7 +600,8 @@ def test_help_box_fits_80x24_and_says_how_to_close_it():
     app = app_for()
     app.key(Key("h"), 0.0)
     text = screen_text(app.cells(80, 24)[0])
-    assert "any key closes this" in text and "rerack" in text and "mouse" in text
+    assert "any other key closes" in text and "rerack" in text and "mouse" in text
+    assert "← → pages" in text  # the rules of the game come after the keys
 
 
 def test_quit_question_shows_even_when_the_window_is_too_small():

@@ -18,6 +18,7 @@ from termpool.rules.common import GROUPS, MODE_BALLS, MODES, Outcome, State
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
 from termpool.rules.themes import THEMES
+from termpool.rules.words import FOUL_LIMIT, count_word, ordinal
 from termpool.scene import table_to_dict
 
 from . import layout, record
@@ -107,10 +108,10 @@ class Match:
         """The WPA warning owed to the shooter before a shot that could be their third
         consecutive foul (9-ball with `three_foul`), else None."""
         s = self.state
-        if not s.three_foul or s.fouls[s.shooter] < 2 or self.frame_over:
+        if not s.three_foul or s.fouls[s.shooter] < FOUL_LIMIT - 1 or self.frame_over:
             return None
-        return (f"{self.players[s.shooter]} is on two fouls: a third foul in a row loses "
-                "the frame")
+        return (f"{self.players[s.shooter]} is on {count_word(FOUL_LIMIT - 1)} fouls: a "
+                f"{ordinal(FOUL_LIMIT)} foul in a row loses the frame")
 
     def needs_call(self) -> bool:
         """True when the shooter must name a pocket: 8-ball, their group cleared, the 8 next."""

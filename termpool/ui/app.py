@@ -92,6 +92,8 @@ class App:
         self.dirty = True
         self.bells = 0  # bells to ring (the driver writes BEL and resets this)
         self.overlay: str | None = None  # "help", "pause", "quit"
+        self.help_page, self.help_count = 0, 1  # the help box's page on show, of how many
+        self.watching = None  # a ui.watch.Watch of the match just played (W at the end)
         self.menu_index = 0
         self._swallow = None  # (key, time, repeating): the key that placed the ball, held
         # Ball in hand: 1 cm a tap; held, from 0.25 to 1 m/s over a second from the press.
@@ -322,6 +324,8 @@ class App:
     # -------------------------------------------------------------------------- the clock
     def wake_in(self, t: float) -> float | None:
         """Seconds until the app needs a tick (None: only on a key)."""
+        if self.watching is not None:
+            return self.watching.wake_in(t)
         if self.overlay is not None:
             return None
         if self.phase in ("run", "cpu") or (self._aid is not None and not self._aid[1].done):
@@ -333,6 +337,10 @@ class App:
 
     def tick(self, t: float) -> None:
         self.now = t
+        if self.watching is not None:
+            self.watching.tick(t)
+            self.dirty = self.dirty or self.watching.dirty
+            return
         if self._aid is not None and not self._aid[1].done:  # the aid fills in
             self._aid[1].run(AID_STEP)
             self._aid = (*self._aid[:2], None)
@@ -448,6 +456,12 @@ class App:
     # ------------------------------------------------------------------------------ keys
     def key(self, key, t: float) -> None:
         self.now = t
+        if self.watching is not None:
+            self.watching.key(key, t)
+            if self.watching.done:  # back to the end of the match
+                self.watching = None
+            self.dirty = True
+            return
         action = self.keymap.action(key)
         if key.kind == "release" and action != "shoot":
             self.aimctl.step(key, t)  # a release ends an aim hold: the next press is a tap
@@ -462,7 +476,7 @@ class App:
             self.dirty = True
             return  # their letters (P: pass, N: new game) come before the global keys
         if action == "help" and key.kind == "press":
-            self.overlay = "help"
+            self.overlay, self.help_page = "help", 0
         elif action == "quit" and key.kind == "press":
             self.overlay = "quit" if self.phase != "menu" else None
             self.done = self.phase == "menu"
@@ -480,6 +494,7 @@ class App:
         moves the cue ball there); the arrows then refine."""
         self.now = t
         if (self.overlay is not None or self.match is None or self._geom is None
+                or self.watching is not None
                 or self.phase not in ("aim", "place") or ev.button != 0
                 or ev.kind not in ("press", "drag")):
             return
@@ -510,11 +525,15 @@ class App:
                 self.done = True
             elif key.name == "n" or action in ("cancel", "confirm"):
                 self.overlay = None
-        elif self.overlay == "help" and self.phase == "menu" and self._menu_help:
-            self.overlay = None
-            self._menu_help = False
+        elif self.overlay == "help":
+            from termpool.ui.help import page_key
+
+            self.help_page, close = page_key(key.name, self.help_page, self.help_count)
+            if close:
+                self.overlay = None
+                self._menu_help = False
         else:
-            self.overlay = None  # any key closes help and ends the pause
+            self.overlay = None  # any key ends the pause
         self.dirty = True
 
     _menu_help = False
@@ -538,7 +557,7 @@ class App:
         if what == "quit":
             self.done = True
         elif what == "help":
-            self.overlay = "help"
+            self.overlay, self.help_page = "help", 0
             self._menu_help = True
         else:
             self.new_match(*what)
@@ -681,6 +700,10 @@ class App:
         elif key.name == "m":
             self.phase = "menu"
             self.match = None
+        elif key.name == "w":  # watch the match just played, then come back here
+            from termpool.ui.watch import Watch
+
+            self.watching = Watch(self.match.to_json(), self.depth)
         elif key.name == "q" or self.keymap.action(key) == "quit":
             self.done = True  # the box says "q: quit": no second question on top of it
         else:
@@ -767,6 +790,9 @@ class App:
         """The whole screen as (chars, fg, bg) cells (see ui.app_screen)."""
         from termpool.ui.app_screen import cells
 
+        if self.watching is not None:
+            self.dirty = False
+            return self.watching.cells(cols, rows)
         return cells(self, cols, rows)
 
     def _positions(self):

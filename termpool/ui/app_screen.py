@@ -43,7 +43,10 @@ def cells(app, cols: int, rows: int):
             draw_panel(out, lay, panel_info(app, lay), mono)
             _question(app, out)
     if app.overlay == "help":
-        draw_box(out, help_box_lines(app.keymap, rows, cols), "keys", wrap=False)
+        pages = help_pages(app, cols, rows)
+        app.help_count = len(pages)  # for the keys that turn them
+        app.help_page = min(app.help_page, len(pages) - 1)
+        draw_box(out, pages[app.help_page][1], pages[app.help_page][0], wrap=False)
     elif app.overlay == "pause":
         draw_box(out, ["paused", "", "any key to go on"], "pause")
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
@@ -62,24 +65,18 @@ def pretty(spec: str) -> str:
     return "".join({"shift": "⇧", "ctrl": "^", "alt": "M-"}.get(m, m) for m in mods) + base
 
 
-def help_box_lines(keymap, rows: int, cols: int) -> list[str]:
-    """The help box's lines: every bound action with its keys (in two columns, each cut to
-    half the screen, when one column does not fit the screen's height), the mouse, and how to
-    close it."""
-    from termpool.ui.controls import ACTIONS
+def help_pages(app, cols: int, rows: int) -> list[tuple[str, list[str]]]:
+    """The help box's pages (ui.help): the keys, then the rules of the game in play as it is
+    set (at the menu, of every game)."""
+    from termpool.ui import help as box
 
-    rows_ = [(", ".join(pretty(k) for k in keymap.keys_for(a)), desc)
-             for a, desc in ACTIONS.items() if keymap.keys_for(a)]
-    rows_.append(("mouse", "click or drag on the table: aim there"))
-    kw = max(len(k) for k, _ in rows_)
-    lines = [f"{k:<{kw}}  {d}" for k, d in rows_]
-    if len(lines) + 4 > rows:
-        half = -(-len(lines) // 2)
-        width = max(8, (cols - 10) // 2)
-        left = [s if len(s) <= width else s[:width - 1] + "…" for s in lines[:half]]
-        right = lines[half:] + [""] * (2 * half - len(lines))
-        lines = [f"{a:<{width}}  {b}".rstrip() for a, b in zip(left, right, strict=True)]
-    return [*lines, "", "any key closes this"]
+    mode = app.match.mode if app.match is not None and app.phase != "menu" else None
+    how = {"theme": app.opts.theme}
+    if mode == "9ball":
+        how["three_foul"] = app.match.three_foul
+    elif mode == "8ball":
+        how["eight_break"] = app.match.eight_break
+    return box.help_pages(box.keymap_rows(app.keymap), mode, cols, rows, **how)
 
 
 def _table_cells(app, lay, view, mono: bool):
@@ -141,7 +138,7 @@ def _question(app, cells) -> None:
         m = app.match
         why = app.message[-1][0] if app.message else ""
         draw_box(cells, [app.names(f"player {m.winner} wins!"), why, "",
-                         "n: new game   m: menu   q: quit"],
+                         "n: new game   m: menu   q: quit", "w: watch this match"],
                  "game over", "good")
 
 
@@ -318,7 +315,7 @@ def hint_lines(app) -> list[tuple]:
     if app.phase == "option":
         return [("answer with a letter in the box", 0), help_, quit_]
     if app.phase == "over":
-        return [("N new game", 0), ("M menu", 0), quit_]
+        return [("N new game", 0), ("M menu", 0), ("W watch", 0), quit_]
     if app.phase == "cpu":
         return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
     return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
