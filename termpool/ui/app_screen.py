@@ -45,7 +45,9 @@ def cells(app, cols: int, rows: int):
     if app.overlay == "help":
         draw_box(out, help_box_lines(app.keymap, rows, cols), "keys", wrap=False)
     elif app.overlay == "pause":
-        draw_box(out, ["paused", "", "any key to go on"], "pause")
+        draw_box(out, ["paused", "", "S: settings · any other key to go on"], "pause")
+    elif app.screen is not None:  # settings, stats
+        draw_box(out, app.screen.lines(app, cols, rows), app.screen.title, wrap=False)
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
         draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
     return out
