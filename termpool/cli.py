@@ -1,6 +1,6 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
 prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
-checks it bit for bit.
+checks it bit for bit; `termpool stats` sums up the history of play.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -143,6 +143,18 @@ def _parser() -> _Parser:
     )
     r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
     r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
+    st = sub.add_parser(
+        "stats",
+        help="the history of play: totals, per opponent, the last 20 matches",
+        description=(
+            "Sum up the history of play (one line per player per match, in the data directory: "
+            "$XDG_DATA_HOME/termpool/history.jsonl, else ~/.local/share/termpool/): the totals, "
+            "the totals per opponent (the computer's level, a second player, practice), a chart "
+            "of the pot rate and the last 20 matches, as the menu's Stats screen shows them. "
+            "Corrupt lines are skipped with one line of warning."
+        ),
+    )
+    st.add_argument("--json", action="store_true", help="print the same figures as JSON")
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -351,6 +363,28 @@ def _replay(args: argparse.Namespace) -> int:
     return 1 if bad else 0
 
 
+# -------------------------------------------------------------------------------- stats
+
+
+def _stats(args: argparse.Namespace) -> int:
+    from termpool.game.history import history_path, read_history, summary
+    from termpool.text import shown
+    from termpool.ui.stats import stats_lines
+
+    path = history_path()
+    lines, warning, readable = read_history(path)
+    if warning:
+        say(f"warning: {warning}")
+    figures = summary(lines)
+    if args.json:
+        text = json.dumps({"file": str(path), **figures}, indent=1) + "\n"
+    else:
+        text = "".join(shown(line) + "\n" for line in stats_lines(figures))
+    sys.stdout.write(text)
+    sys.stdout.flush()
+    return 0 if readable else 1
+
+
 # -------------------------------------------------------------------------------- bench
 
 
@@ -398,6 +432,8 @@ def main(argv: list[str] | None = None) -> int:
             return _play(args)
         if args.command == "replay":
             return _replay(args)
+        if args.command == "stats":
+            return _stats(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

@@ -7,7 +7,7 @@ shot in motion, which advances by wall-clock time through a fixed-step accumulat
 
 Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls moving), "cpu"
 (the computer thinks, then turns its stick), "option" (the incoming player answers a choice),
-"over" (the match is won). Help, pause, the quit question and the Settings screen
+"over" (the match is won). Help, pause, the quit question and the Settings and Stats screens
 (``ui.screens``) are boxes over any phase.
 """
 
@@ -53,6 +53,7 @@ MENU = [
     ("9-ball, two players", ("9ball", "human")),
     ("Practice", ("practice", "human")),
     ("Settings", "settings"),
+    ("Stats", "stats"),
     ("Help", "help"),
     ("Quit", "quit"),
 ]
@@ -122,9 +123,10 @@ class App:
         self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
         self._cpu_note: list = []  # the computer's plan, in words, for the panel
         self._shot_note: list = []  # ... kept for the shot it is playing
-        self.screen = None  # the Settings screen (ui.screens), when open
+        self.screen = None  # the Settings or Stats screen (ui.screens), when open
         self.pending: dict = {}  # settings changed during a match, for the next one
         self.prefs = None  # the settings file (ui.settings.Store), to save changes to
+        self.history = None  # the history of play (game.history.Recorder), to add matches to
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -149,6 +151,7 @@ class App:
         from termpool.game import Match
         from termpool.ui.screens import apply_pending
 
+        self.log_match()
         if self.match is not None and self.match.history:
             self.played.append(self.match)  # kept for --record
         apply_pending(self)
@@ -239,6 +242,7 @@ class App:
                                  "good"))
         if m.winner is not None:
             self.phase = "over"
+            self.log_match()
         elif m.option is not None:
             self.phase = "cpu" if self.shooter_is_cpu() else "option"
             self._cpu_plan = None
@@ -519,11 +523,19 @@ class App:
         self.dirty = True
 
     def open_screen(self, what: str, back: str | None = None) -> None:
-        """Open the Settings screen; it goes back to `back` when it closes."""
-        from termpool.ui.screens import SettingsScreen
+        """Open the Settings or the Stats screen; it goes back to `back` when it closes."""
+        from termpool.ui.screens import SettingsScreen, StatsScreen
 
-        self.screen = SettingsScreen(self, back)
+        self.screen = (SettingsScreen if what == "settings" else StatsScreen)(self, back)
         self.overlay = "screen"
+
+    def log_match(self) -> None:
+        """Add the match in play to the history of play (once; not one without shots). A
+        file that cannot be written is one line for the terminal when the game ends."""
+        if self.history is not None and self.match is not None:
+            warning = self.history.add(self.match, self.cpu, self.opts.level)
+            if warning:
+                self.notes.append(warning)
 
     def _overlay_key(self, key, action) -> None:
         if self.screen is not None:
@@ -570,7 +582,7 @@ class App:
         elif what == "help":
             self.overlay = "help"
             self._menu_help = True
-        elif what == "settings":
+        elif what in ("settings", "stats"):
             self.open_screen(what)
         else:
             self.new_match(*what)
@@ -711,6 +723,7 @@ class App:
         if key.name == "n":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
+            self.log_match()
             self.phase = "menu"
             self.match = None
         elif key.name == "q" or self.keymap.action(key) == "quit":

@@ -208,7 +208,10 @@ def run(args: argparse.Namespace) -> int:
             sys.stderr.write(no_tty_message() + "\n")
             return 2
         app, play = _terminal(args, opts, _keymap(args.keymap))
+    from termpool.game.history import Recorder
+
     app.prefs = store
+    app.history = Recorder()
     try:
         rc = play()
     except BaseException:
@@ -219,10 +222,14 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _leave(app, args: argparse.Namespace) -> int:
-    """However the game ended: the record is saved (--record), and what is left to say is
-    said. Returns save_record's status."""
+    """However the game ended: the match in play goes into the history, the record is
+    saved (--record), and what is left to say is said. Returns save_record's status."""
     from termpool.text import say
+    from termpool.ui.term import signals_held
 
+    with signals_held():
+        app.record()  # a shot still rolling is played out first
+        app.log_match()
     saved = save_record(app, args.record, args.force)
     for note in app.notes:
         say(note)

@@ -1,8 +1,8 @@
-"""The Settings screen: a box over the menu or the paused game.
+"""The Settings and Stats screens: boxes over the menu or the paused game.
 
 A screen takes the app's key presses while it is open (`key`), gives the lines of its box
 (`lines`) and sets `closed` when it is done; the app then goes back to `back` (the pause box,
-or nothing). It touches no file until it closes.
+or nothing). Neither touches a file until it closes (Settings) or opens (Stats).
 """
 
 from __future__ import annotations
@@ -180,6 +180,48 @@ class SettingsScreen:
         rows_left = rows - 2 - len(tail) - len(head)
         middle = headed if len(headed) <= rows_left else body
         return [*head, *middle, *tail]
+
+
+class StatsScreen:
+    title = "stats"
+
+    def __init__(self, app, back: str | None = None) -> None:
+        from termpool.game.history import history_path, read_history, summary
+        from termpool.ui.stats import stats_lines
+
+        self.back = back
+        self.closed = False
+        self.top = 0
+        self.rows = 24  # the screen's height when last drawn: a page is what fits
+        path = app.history.path if app.history is not None else history_path(app.env)
+        found, warning, _ = read_history(path)
+        self.text = [shown(x) for x in ([warning, ""] if warning else []) +
+                     stats_lines(summary(found))]
+
+    def _room(self, rows: int) -> int:
+        return max(1, rows - 4)  # the frame, a blank line and the keys
+
+    def key(self, app, key, action) -> None:
+        if key.kind == "release":
+            return
+        page = self._room(self.rows)
+        most = max(0, len(self.text) - page)
+        moves = {"up": -1, "k": -1, "down": 1, "j": 1, "pageup": -page, "pagedown": page,
+                 "space": page, "home": -len(self.text), "end": len(self.text)}
+        if key.name in moves and most:
+            self.top = min(most, max(0, self.top + moves[key.name]))
+        else:
+            self.closed = True
+
+    def lines(self, app, cols: int, rows: int) -> list[str]:
+        self.rows = rows
+        room = self._room(rows)
+        self.top = min(self.top, max(0, len(self.text) - room))
+        window = self.text[self.top:self.top + room]
+        more = len(self.text) > room
+        keys = (f"↑↓ PgUp PgDn: lines {self.top + 1}-{self.top + len(window)} of "
+                f"{len(self.text)} · Esc closes") if more else "any key closes this"
+        return [*window, "", keys]
 
 
 def _cut(text: str, width: int) -> str:
