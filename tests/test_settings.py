@@ -317,6 +317,15 @@ def test_from_pause_match_settings_wait_for_the_next_game() -> None:
     assert load_settings().saved["level"] == "hard"
 
 
+def test_every_key_on_the_screen_is_drawn() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"))
+    for name in ("down", "right", "esc"):
+        app.cells(80, 24)  # drawn: nothing left to draw
+        keys(app, name)
+        assert app.dirty  # the terminal draws only what is dirty
+
+
 def test_the_colour_depth_changes_at_once() -> None:
     app = App(Options(mode="practice", opponent="human", colors="16", seed=0))
     assert app.cells(80, 24)[1] is not None

@@ -542,6 +542,7 @@ class App:
             self.screen.key(self, key, action)
             if self.screen.closed:
                 self.overlay, self.screen = self.screen.back, None
+            self.dirty = True
             return
         if key.kind != "press":
             return
