@@ -166,7 +166,7 @@ class SettingsScreen:
         elif s.kind == "name":
             help_ = f"{s.help} · Enter: type it"
         else:
-            help_ = f"{s.help}: {s.allowed()}"
+            help_ = f"{s.allowed()} · {s.help}"
         tail = ["", *(_cut(x, width) for x in textwrap.wrap(help_, width)[:2])]
         tail.append("↑↓ choose · ←→ change · Esc done")
         if app.prefs is not None:
