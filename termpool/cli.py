@@ -1,6 +1,7 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
 prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
-checks it bit for bit (`--watch`: plays it on screen); `termpool rules` prints the rules.
+checks it bit for bit (`--watch`: plays it on screen); `termpool rules` prints the rules;
+`termpool stats` sums up the history of play.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -122,7 +123,8 @@ def _parser() -> _Parser:
         metavar="N",
         help="also output ball positions sampled N times per simulated second",
     )
-    from termpool.ui.play import COLORS, add_arguments
+    from termpool.ui.play import add_arguments
+    from termpool.ui.settings import BY_KEY
 
     pl = sub.add_parser(
         "play",
@@ -146,7 +148,7 @@ def _parser() -> _Parser:
     r.add_argument("--watch", action="store_true",
                    help="play the match on screen as it was played (Space pauses, ← → step "
                         "a shot, F ×4, H help, Q quits)")
-    r.add_argument("--colors", choices=COLORS,
+    r.add_argument("--colors", choices=BY_KEY["colors"].values,
                    default=None, help="--watch: colour depth (default: from the terminal)")
     r.add_argument("--headless", action="store_true",
                    help="--watch without a terminal: play --keys on a virtual screen, print "
@@ -162,6 +164,18 @@ def _parser() -> _Parser:
     )
     ru.add_argument("game", nargs="?", choices=("8ball", "9ball", "practice"),
                     help="the game (default: all)")
+    st = sub.add_parser(
+        "stats",
+        help="the history of play: totals, per opponent, the last 20 matches",
+        description=(
+            "Sum up the history of play (one line per player per match, in the data directory: "
+            "$XDG_DATA_HOME/termpool/history.jsonl, else ~/.local/share/termpool/): the totals, "
+            "the totals per opponent (the computer's level, a second player, practice), a chart "
+            "of the pot rate and the last 20 matches, as the menu's Stats screen shows them. "
+            "Corrupt lines are skipped with one line of warning."
+        ),
+    )
+    st.add_argument("--json", action="store_true", help="print the same figures as JSON")
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -396,6 +410,26 @@ def _rules(args: argparse.Namespace) -> int:
     sys.stdout.write("\n\n".join("\n".join(p) for p in pages) + "\n")
     sys.stdout.flush()
     return 0
+# -------------------------------------------------------------------------------- stats
+
+
+def _stats(args: argparse.Namespace) -> int:
+    from termpool.game.history import history_path, read_history, summary
+    from termpool.text import shown
+    from termpool.ui.stats import stats_lines
+
+    path = history_path()
+    lines, warning, readable = read_history(path)
+    if warning:
+        say(f"warning: {warning}")
+    figures = summary(lines)
+    if args.json:
+        text = json.dumps({"file": str(path), **figures}, indent=1) + "\n"
+    else:
+        text = "".join(shown(line) + "\n" for line in stats_lines(figures))
+    sys.stdout.write(text)
+    sys.stdout.flush()
+    return 0 if readable else 1
 
 
 # -------------------------------------------------------------------------------- bench
@@ -447,6 +481,8 @@ def main(argv: list[str] | None = None) -> int:
             return _replay(args)
         if args.command == "rules":
             return _rules(args)
+        if args.command == "stats":
+            return _stats(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

@@ -7,7 +7,8 @@ shot in motion, which advances by wall-clock time through a fixed-step accumulat
 
 Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls moving), "cpu"
 (the computer thinks, then turns its stick), "option" (the incoming player answers a choice),
-"over" (the match is won). Help, pause and the quit question are boxes over any phase.
+"over" (the match is won). Help, pause, the quit question and the Settings and Stats screens
+(``ui.screens``) are boxes over any phase.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from termpool.physics.cue import clamp_tip
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
+from termpool.ui.settings import DEFAULTS, player_names
 from termpool.ui.table_view import TableView, layout
 from termpool.ui.term import signals_held
 
@@ -50,6 +52,8 @@ MENU = [
     ("9-ball vs computer", ("9ball", "cpu")),
     ("9-ball, two players", ("9ball", "human")),
     ("Practice", ("practice", "human")),
+    ("Settings", "settings"),
+    ("Stats", "stats"),
     ("Help", "help"),
     ("Quit", "quit"),
 ]
@@ -57,18 +61,24 @@ MENU = [
 
 @dataclass
 class Options:
+    """How to play: the settings (ui.settings: their values and defaults) and the rest."""
+
     mode: str | None = None  # None: start at the menu
     opponent: str = "cpu"  # "cpu" or "human"
-    table: str = "9ft"
-    colors: str = "auto"
-    frames: int = 1
     seed: int | None = None  # racks and the computer's choices; None: a new seed each game
-    level: str = "normal"
-    aid: str = "full"  # the aim aid: "full", "ghost" (the ghost ball only) or "off"
-    bell: bool = False
-    theme: str = "standard"
     three_foul: bool = False  # 9-ball: three fouls in a row lose the frame
     eight_break: str = "respot"  # 8-ball: the 8 pocketed on the break is re-spotted or re-racked
+    level: str = DEFAULTS["level"]
+    table: str = DEFAULTS["table"]
+    frames: int = DEFAULTS["frames"]
+    theme: str = DEFAULTS["theme"]
+    colors: str = DEFAULTS["colors"]
+    aid: str = DEFAULTS["aid"]  # the aim aid: "full", "ghost" (the ghost ball only) or "off"
+    power: str = DEFAULTS["power"]  # "hold", "meter" or "digits"
+    bell: bool = DEFAULTS["bell"]
+    fast: str = DEFAULTS["fast"]  # shots start fast-forwarded: "off", "computer", "always"
+    player1: str = DEFAULTS["player1"]  # names; empty: the usual ones
+    player2: str = DEFAULTS["player2"]
 
 
 def power_to_speed(level: float) -> float:
@@ -85,8 +95,10 @@ class App:
 
         self.opts = opts or Options()
         self.keymap = keymap if keymap is not None else KeyMap()
+        self.env = env
         self.depth = resolve_depth(self.opts.colors, env)
         self.aimctl = AimControl(self.keymap)
+        self.last_power = 0.5  # the power of the last shot: the aid's until another is set
         self.set_input_mode(input_mode)
         self.done = False
         self.dirty = True
@@ -111,9 +123,12 @@ class App:
         self._aim_cache = None
         self._predictor = None  # (layout key, ui.predict.Predictor) for the table now
         self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
-        self.last_power = 0.5  # the power of the last shot: the aid's until another is set
         self._cpu_note: list = []  # the computer's plan, in words, for the panel
         self._shot_note: list = []  # ... kept for the shot it is playing
+        self.screen = None  # the Settings or Stats screen (ui.screens), when open
+        self.pending: dict = {}  # settings changed during a match, for the next one
+        self.prefs = None  # the settings file (ui.settings.Store), to save changes to
+        self.history = None  # the history of play (game.history.Recorder), to add matches to
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -121,23 +136,29 @@ class App:
 
     # ----------------------------------------------------------------------------- set-up
     def set_input_mode(self, mode: str) -> None:
-        """"release" (kitty protocol), "repeat" (infer holds) or "classic" (press, press)."""
+        """How the terminal tells a held key: "release" (kitty protocol), "repeat" (infer
+        holds) or "classic" (it cannot: press, press). The power setting picks the meter or
+        digits over holds."""
         from termpool.ui.controls import PowerCharge
 
         self.input_mode = mode
         shoot = self.keymap.keys_for("shoot")
-        self.charge = PowerCharge(mode, key_label=shoot[0] if shoot else "space")
+        self.charge = PowerCharge("classic" if self.opts.power == "meter" else mode,
+                                  key_label=shoot[0] if shoot else "space")
+        if self.opts.power == "digits":
+            self.charge.preset(self.last_power)
         self.dirty = True
 
     def new_match(self, mode: str, opponent: str) -> None:
         from termpool.game import Match
+        from termpool.ui.screens import apply_pending
 
+        self.log_match()
         if self.match is not None and self.match.history:
             self.played.append(self.match)  # kept for --record
+        apply_pending(self)
         self.opts.mode, self.opts.opponent = mode, opponent
-        names = ("You", "Computer") if opponent == "cpu" else ("Player 1", "Player 2")
-        if mode == "practice":
-            names = ("You", "You")
+        names = player_names(self.opts.player1, self.opts.player2, mode, opponent)
         self.cpu = (False, opponent == "cpu" and mode != "practice")
         # Without a seed every game deals a new rack; the seed is in the record either way.
         seed = self.opts.seed if self.opts.seed is not None else secrets.randbits(63)
@@ -223,6 +244,7 @@ class App:
                                  "good"))
         if m.winner is not None:
             self.phase = "over"
+            self.log_match()
         elif m.option is not None:
             self.phase = "cpu" if self.shooter_is_cpu() else "option"
             self._cpu_plan = None
@@ -264,7 +286,8 @@ class App:
         self.struck_at = self.now  # the clock at the strike
         self.frames = self._simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
-        self.fast = False  # fast-forward is for one shot
+        fast = self.opts.fast  # fast-forward is for one shot, unless the settings say
+        self.fast = fast == "always" or (fast == "computer" and self.shooter_is_cpu())
         self.phase = "run"
         self._last = None
         self._acc = 0.0
@@ -517,10 +540,33 @@ class App:
             self.call_picked = False  # a new aim: the 8's call follows it again
         self.dirty = True
 
+    def open_screen(self, what: str, back: str | None = None) -> None:
+        """Open the Settings or the Stats screen; it goes back to `back` when it closes."""
+        from termpool.ui.screens import SettingsScreen, StatsScreen
+
+        self.screen = (SettingsScreen if what == "settings" else StatsScreen)(self, back)
+        self.overlay = "screen"
+
+    def log_match(self) -> None:
+        """Add the match in play to the history of play (once; not one without shots). A
+        file that cannot be written is one line for the terminal when the game ends."""
+        if self.history is not None and self.match is not None:
+            warning = self.history.add(self.match, self.cpu, self.opts.level)
+            if warning:
+                self.notes.append(warning)
+
     def _overlay_key(self, key, action) -> None:
+        if self.screen is not None:
+            self.screen.key(self, key, action)
+            if self.screen.closed:
+                self.overlay, self.screen = self.screen.back, None
+            self.dirty = True
+            return
         if key.kind != "press":
             return
-        if self.overlay == "quit":
+        if self.overlay == "pause" and key.name == "s" and not (key.ctrl or key.alt):
+            self.open_screen("settings", "pause")
+        elif self.overlay == "quit":
             if key.name in ("y", "q") or action == "quit":
                 self.done = True
             elif key.name == "n" or action in ("cancel", "confirm"):
@@ -559,6 +605,8 @@ class App:
         elif what == "help":
             self.overlay, self.help_page = "help", 0
             self._menu_help = True
+        elif what in ("settings", "stats"):
+            self.open_screen(what)
         else:
             self.new_match(*what)
 
@@ -596,7 +644,7 @@ class App:
         elif action == "cancel":
             if self.charge.active:
                 self.charge.cancel()
-            elif self.charge.preset_level is not None:
+            elif self.charge.preset_level is not None and self.opts.power != "digits":
                 self.charge.preset(None)
                 self.message = [(f"power: hold {self.charge.key_label} again", "dim")]
         elif action is None and _power_digit(key) is not None:
@@ -698,6 +746,7 @@ class App:
         if key.name == "n":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
+            self.log_match()
             self.phase = "menu"
             self.match = None
         elif key.name == "w":  # watch the match just played, then come back here

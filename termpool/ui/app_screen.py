@@ -48,7 +48,9 @@ def cells(app, cols: int, rows: int):
         app.help_page = min(app.help_page, len(pages) - 1)
         draw_box(out, pages[app.help_page][1], pages[app.help_page][0], wrap=False)
     elif app.overlay == "pause":
-        draw_box(out, ["paused", "", "any key to go on"], "pause")
+        draw_box(out, ["paused", "", "S: settings · any other key to go on"], "pause")
+    elif app.screen is not None:  # settings, stats
+        draw_box(out, app.screen.lines(app, cols, rows), app.screen.title, wrap=False)
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
         draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
     return out

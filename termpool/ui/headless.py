@@ -46,6 +46,8 @@ def play(app, events: Sequence[tuple[float, object]], cols: int, rows: int,
         app.tick(t)
         if app.dirty:
             cells = app.cells(cols, rows)
+            if screen is not None and screen.depth != app.depth:  # changed in the settings
+                screen = Screen(cols, rows, app.depth)
             if screen is not None:
                 frames_out.append(screen.render(*cells))
         if k >= len(events) and app.wake_in(t) is None:

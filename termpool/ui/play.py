@@ -11,12 +11,8 @@ from contextlib import contextmanager
 
 MODES = ("8ball", "9ball", "practice")
 OPPONENTS = ("cpu", "human")
-TABLES = ("7ft", "8ft", "9ft")
-COLORS = ("auto", "truecolor", "256", "16", "mono")
 INPUTS = ("auto", "kitty", "repeat", "classic")
-LEVELS = ("easy", "normal", "hard")
 MAX_SEED = 2 ** 64 - 1  # a seed is saved in the record, and read back
-MAX_FRAMES = 1000
 
 
 def _whole(lo: int, hi: int):
@@ -35,33 +31,25 @@ def _whole(lo: int, hi: int):
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
+    from termpool.ui.settings import add_flags
+
     p.add_argument("--mode", choices=MODES, help="skip the menu and play this game")
     p.add_argument("--opponent", choices=OPPONENTS, default="cpu",
                    help="the computer or a second player on the same keyboard (default cpu)")
-    p.add_argument("--table", choices=TABLES, default="9ft", help="table size (default 9ft)")
-    p.add_argument("--colors", choices=COLORS, default="auto",
-                   help="colour depth (default: from the terminal; NO_COLOR gives mono)")
-    p.add_argument("--frames", type=_whole(1, MAX_FRAMES), default=1,
-                   help="play a match to N frames (default 1)")
     p.add_argument("--seed", type=_whole(0, MAX_SEED), default=None,
                    help=f"racks and the computer's choices (0 to {MAX_SEED}); without it "
                         "every game deals a new rack (its seed is in the --record)")
-    p.add_argument("--level", choices=LEVELS, default="normal", help="the computer's skill")
-    p.add_argument("--theme", choices=("standard", "classic"), default="standard",
-                   help="ball colours: numbered solids and stripes, or reds and yellows")
     p.add_argument("--three-foul", action="store_true",
                    help="9-ball: three fouls in a row lose the frame")
     p.add_argument("--eight-break", choices=("respot", "rerack"), default="respot",
                    help="8-ball: the 8 pocketed on the break is re-spotted (default) or the "
                         "balls are re-racked for the same breaker")
-    p.add_argument("--aid", choices=("full", "ghost", "off"), default="full",
-                   help="the aim aid: every predicted path, the ghost ball only, or none (G "
-                        "cycles them)")
+    add_flags(p)  # the settings: each flag overrides the settings file for this run
     p.add_argument("--no-aid", action="store_true", help="start with the aim aid off (--aid off)")
-    p.add_argument("--bell", action="store_true", help="ring the bell on a foul (N toggles)")
     p.add_argument("--input", choices=INPUTS, default="auto",
-                   help="how Space charges: kitty (key releases), repeat (hold inferred from "
-                        "auto-repeat), classic (press to start the meter, press to strike)")
+                   help="how the terminal tells a held Space: kitty (key releases), repeat "
+                        "(inferred from auto-repeat); classic: no holds at all, so the "
+                        "swinging meter (--power meter)")
     p.add_argument("--no-mouse", action="store_true",
                    help="leave the mouse to the terminal (by default a click or drag aims)")
     p.add_argument("--keymap", metavar="FILE", help="key bindings (default "
@@ -92,14 +80,28 @@ def _size(text: str) -> tuple[int, int]:
     return c, r
 
 
-def _options(args: argparse.Namespace):
+def _settings(args: argparse.Namespace):
+    """The settings file (its warnings said, one line each) and this run's values: the
+    file's, with the flags on top."""
+    from termpool.text import say
+    from termpool.ui.settings import from_flags, load_settings
+
+    store = load_settings()
+    for warning in store.warnings:
+        say(f"warning: {warning}")
+    values = from_flags(store.saved, args)
+    if args.no_aid:
+        values["aid"] = "off"
+    if args.input == "classic" and args.power is None:  # no holds: the meter
+        values["power"] = "meter"
+    return store, values
+
+
+def _options(args: argparse.Namespace, values: dict):
     from termpool.ui.app import Options
 
-    return Options(mode=args.mode, opponent=args.opponent, table=args.table, colors=args.colors,
-                   frames=args.frames, seed=args.seed, level=args.level,
-                   aid="off" if args.no_aid else args.aid,
-                   bell=args.bell, theme=args.theme, three_foul=args.three_foul,
-                   eight_break=args.eight_break)
+    return Options(mode=args.mode, opponent=args.opponent, seed=args.seed,
+                   three_foul=args.three_foul, eight_break=args.eight_break, **values)
 
 
 def _keymap(path: str | None):
@@ -138,6 +140,7 @@ def save_record(app, path: str | None, force: bool = False) -> int:
         match = app.record()
         for note in app.notes:
             say(note)
+        app.notes.clear()
         if match is None:
             say("no match was played, so there is no record to save")
             return 0
@@ -188,7 +191,8 @@ def _stoppable():
 def run(args: argparse.Namespace) -> int:
     """Play; returns the exit status. Raises PlayError for bad options (one line, status 2).
     The record (--record) is saved on every way out: the end, Q, Ctrl-C, a signal, a crash."""
-    opts = _options(args)
+    store, values = _settings(args)
+    opts = _options(args, values)
     if not args.headless:
         for flag, val in (("--size", args.size), ("--keys", args.keys)):
             if val is not None:
@@ -204,13 +208,33 @@ def run(args: argparse.Namespace) -> int:
             sys.stderr.write(no_tty_message() + "\n")
             return 2
         app, play = _terminal(args, opts, _keymap(args.keymap))
+    from termpool.game.history import Recorder
+
+    app.prefs = store
+    app.history = Recorder()
     try:
         rc = play()
     except BaseException:
-        save_record(app, args.record, args.force)  # a crash keeps the match too
+        _leave(app, args)  # a crash keeps the match too
         raise
-    saved = save_record(app, args.record, args.force)
+    saved = _leave(app, args)
     return rc or saved
+
+
+def _leave(app, args: argparse.Namespace) -> int:
+    """However the game ended: the match in play goes into the history, the record is
+    saved (--record), and what is left to say is said. Returns save_record's status."""
+    from termpool.text import say
+    from termpool.ui.term import signals_held
+
+    with signals_held():
+        app.record()  # a shot still rolling is played out first
+        app.log_match()
+    saved = save_record(app, args.record, args.force)
+    for note in app.notes:
+        say(note)
+    app.notes.clear()
+    return saved
 
 
 def _terminal(args: argparse.Namespace, opts, keymap):

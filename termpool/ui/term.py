@@ -242,7 +242,10 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
         flags["resized"] = True  # the size may have changed while we were away
 
     def draw() -> None:
-        nonlocal cols, rows
+        nonlocal cols, rows, screen
+        if getattr(app, "depth", depth) != screen.depth:  # changed in the settings
+            screen = Screen(cols, rows, app.depth, sync=True)
+            flags["resized"] = True  # a full redraw in the new colours
         if flags["resized"]:
             flags["resized"] = False
             cols, rows = _size(out)
