@@ -7,6 +7,7 @@ and changes nothing but the app's `dirty` flag and its layout cache.
 from __future__ import annotations
 
 from termpool.rules.common import legal_targets
+from termpool.rules.words import KITCHEN, MODE_NAMES
 from termpool.ui.canvas import put_text, to_cells
 from termpool.ui.frame import message_cells, too_small_lines
 from termpool.ui.palette import DIM_TEXT_C, TEXT_C
@@ -184,7 +185,7 @@ def panel_info(app, lay=None) -> PanelInfo:
     # What to do now first, the last verdicts next, then the power, the aid and the spin.
     status = now[:1] + app.message + now[1:]
     hint = hint_lines(app)
-    title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
+    title = MODE_NAMES[st.mode]
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
     return PanelInfo(f"termpool · {title}", players, status, hint, m.ids,
@@ -248,7 +249,7 @@ def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
             out.append((s + (f" · {tip}" if tip else ""), "turn"))
             out.append((_power_line(app), "dim"))
     elif app.phase == "place":
-        where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
+        where = KITCHEN if m.ball_in_hand == "kitchen" else "anywhere"
         what = "break" if m.state.is_break else "shoot"
         out.append((f"{name} to {what} · ball in hand {where}",
                     "turn"))
