@@ -129,6 +129,7 @@ class App:
         self.pending: dict = {}  # settings changed during a match, for the next one
         self.prefs = None  # the settings file (ui.settings.Store), to save changes to
         self.history = None  # the history of play (game.history.Recorder), to add matches to
+        self.records = None  # --record (ui.records.Records): every match of the session
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -548,8 +549,11 @@ class App:
         self.overlay = "screen"
 
     def log_match(self) -> None:
-        """Add the match in play to the history of play (once; not one without shots). A
-        file that cannot be written is one line for the terminal when the game ends."""
+        """The match in play has ended or is being left: save it (--record) and add it to the
+        history of play (once; not one without shots). A file that cannot be written is one
+        line for the terminal when the game ends."""
+        if self.records is not None:
+            self.records.keep(self.match)
         if self.history is not None and self.match is not None:
             warning = self.history.add(self.match, self.cpu, self.opts.level)
             if warning:
