@@ -210,9 +210,9 @@ def test_help_lists_the_key_bindings() -> None:
     assert isinstance(app.keymap, KeyMap)
     app.key(Key("enter"), 0.0)
     text = screen_text(app.cells(120, 40)[0])
-    assert "Z: hold (key repeat)" in text
+    assert "Z: hold to charge" in text
     app.key(Key("z"), 1.0)
-    assert "release z to shoot" in screen_text(app.cells(120, 40)[0])
+    assert "keep z down to charge" in screen_text(app.cells(120, 40)[0])
     app.key(Key("h"), 1.0)
     assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
 
@@ -781,7 +781,7 @@ def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() ->
         app = app_for(input_mode=mode)
         run_script(app, "enter wait 0.2", legacy=mode != "release")
         hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
-        assert {"release": "Space: hold, let go", "repeat": "Space: hold (key repeat)",
+        assert {"release": "Space: hold, let go", "repeat": "Space: hold to charge",
                 "classic": "Space: meter"}[mode] in hint
         play(app, [(1.0, Key("3")), (1.1, Key("space"))] if mode != "release" else
              [(1.0, Key("3")), (1.1, Key("space")), (1.15, Key("space", "release"))], 100, 32)
@@ -1119,7 +1119,7 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
     parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app)]
     assert hint == fit_hint(hint_lines(app), size[0] - 3)  # the panel's text width
     assert hint.endswith("Q quit") and hint.startswith("←→ aim")
-    assert {"release": "Space:hold", "repeat": "Space:hold/rep",
+    assert {"release": "Space:hold", "repeat": "Space:hold",
             "classic": "Space:meter"}[mode] in hint.replace(": ", ":").replace(", let go", "")
     assert parts  # every piece shown is whole: the line is pieces joined, none cut
     for piece in hint.split("  ") if "  " in hint else [hint]:
@@ -1156,3 +1156,57 @@ def test_a_verdict_too_long_for_the_panel_ends_in_an_ellipsis(cols, rows) -> Non
     if cols == 80:  # the verdict's first two lines, the second cut at a word
         shown = [s.strip() for s in text.splitlines() if s.strip().rstrip("…") in words]
         assert len(shown) == 2 and words.startswith(shown[0]) and shown[1].endswith("…")
+
+
+# ----------------------------------------------------- power on terminals without releases
+
+def test_a_tap_without_key_releases_starts_the_meter_from_nothing() -> None:
+    ch = PowerCharge("repeat")
+    assert ch.key(Key("space"), 10.0) is None
+    assert ch.waiting and ch.level(10.5) == 0.0  # a tap or a hold: nothing known yet
+    t = 10.0 + PowerCharge.INITIAL_DELAY_MAX + 0.2  # no repeat came: a tap
+    assert ch.poll(t) is None and ch.fallback and not ch.waiting
+    # The meter rises from 0 at the moment the tap was known, not from the press.
+    known = 10.0 + PowerCharge.INITIAL_DELAY_MAX
+    assert ch.level(known) == 0.0
+    assert ch.level(t) == pytest.approx(0.2 / ch.full_time)
+    power = ch.key(Key("space"), known + 0.1)  # a quick second press: a soft shot
+    assert power == pytest.approx(0.1 / ch.full_time)
+
+
+def test_the_screen_says_what_a_tap_is_waiting_for() -> None:
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2", legacy=True)
+    app.key(Key("space"), 1.0)
+    app.tick(1.4)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "keep space down to charge, or let go for a meter" in text
+    assert "release space" not in text and "power 0%" not in text
+    app.tick(1.0 + PowerCharge.INITIAL_DELAY_MAX + 0.06)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "power 5%" in text and "space again to strike" in text
+
+
+def test_power_set_with_a_digit_does_not_carry_into_the_next_game() -> None:
+    for power in ("hold", "digits"):
+        app = app_for(mode="8ball", opponent="human", power=power)
+        run_script(app, "enter 2 space wait 20")
+        assert shots(app)[0]["speed"] == power_to_speed(0.2)
+        app.key(Key("2"), 100.0)  # set for the next shot ...
+        app.match.winner = 0
+        app._turn_start()
+        app.key(Key("n"), 101.0)  # ... but a new game starts afresh
+        assert app.charge.preset_level == (0.5 if power == "digits" else None)
+        assert app.last_power == 0.5
+
+
+def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    run_script(app, "enter")
+    text = screen_text(app.cells(120, 40)[0])
+    assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
+    run_script(app, "space-hold 0.6 wait 20")
+    while app.phase != "aim":  # the next shooter may have ball in hand
+        app.key(Key("enter"), app.now + 1.0)
+    text = screen_text(app.cells(120, 40)[0])
+    assert "aid at 50% power (the last shot's)" in text

@@ -32,6 +32,7 @@ DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
 MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once
 MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
+DEFAULT_POWER = 0.5  # the aid's power (and the digits') before a match's first shot
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
@@ -98,7 +99,8 @@ class App:
         self.env = env
         self.depth = resolve_depth(self.opts.colors, env)
         self.aimctl = AimControl(self.keymap)
-        self.last_power = 0.5  # the power of the last shot: the aid's until another is set
+        self.last_power = DEFAULT_POWER  # the last shot's power: the aid's until another
+        self.shot_power_set = False  # ... once this match has a shot of the keys'
         self.set_input_mode(input_mode)
         self.done = False
         self.dirty = True
@@ -158,6 +160,9 @@ class App:
         if self.match is not None and self.match.history:
             self.played.append(self.match)  # kept for --record
         apply_pending(self)
+        # Power starts afresh: a soft safety's 20% of the last game is no break for this one.
+        self.last_power, self.shot_power_set = DEFAULT_POWER, False
+        self.charge.preset(self.last_power if self.opts.power == "digits" else None)
         self.opts.mode, self.opts.opponent = mode, opponent
         names = player_names(self.opts.player1, self.opts.player2, mode, opponent)
         self.cpu = (False, opponent == "cpu" and mode != "practice")
@@ -298,7 +303,7 @@ class App:
         self.dirty = True
 
     def _shoot_human(self, level: float) -> None:
-        self.last_power = level
+        self.last_power, self.shot_power_set = level, True
         called = None
         if self.match.needs_call():
             called = self._called()

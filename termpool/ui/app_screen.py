@@ -240,7 +240,10 @@ def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
             s += " · push-out"
         elif m.state.push_out == "available":
             s += " · O: push-out"
-        if app.charge.active:  # while charging the power reading comes first
+        if app.charge.waiting:  # a tap or a hold: no power to show yet
+            out.insert(0, (app.charge.label, "turn"))
+            out.append((s, "dim"))
+        elif app.charge.active:  # while charging the power reading comes first
             level = round(100 * app.charge.level(app.now))
             out.insert(0, (f"power {level}% · {app.charge.label}", "turn"))
             out.append((s, "dim"))
@@ -273,7 +276,7 @@ def power_hint(app) -> tuple[str, str]:
         pct = f"{round(100 * ch.preset_level)}%"
         return f"{k}: strike at {pct}", f"{k}:{pct}"
     return {"release": (f"{k}: hold, let go", f"{k}:hold"),
-            "repeat": (f"{k}: hold (key repeat)", f"{k}:hold/rep"),
+            "repeat": (f"{k}: hold to charge", f"{k}:hold"),
             "classic": (f"{k}: meter, {k} strikes", f"{k}:meter")}[ch.mode]
 
 
@@ -283,7 +286,8 @@ def _power_line(app) -> str:
     if ch.preset_level is not None:
         line = f"power {round(100 * ch.preset_level)}%"
     elif app.aid_level() != "off":
-        line = f"aid at {round(100 * app.last_power)}% power (the last shot's)"
+        whose = "the last shot's" if app.shot_power_set else "until you give one"
+        line = f"aid at {round(100 * app.last_power)}% power ({whose})"
     else:
         line = "power: " + ch.label
     pred = app.prediction()

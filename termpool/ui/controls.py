@@ -324,8 +324,9 @@ class PowerCharge:
     the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
     GAP_MIN..GAP_MAX s) and placed one interval after the last repeat, so the power does not
     depend on when `poll` is called. A press with no repeat within INITIAL_DELAY_MAX s was a
-    tap (or the terminal does not repeat): that shot falls back to the classic meter (press
-    again to strike), and `label` says so.
+    tap (or the terminal does not repeat): that shot falls back to the classic meter, rising
+    from 0 at that moment (press again to strike), and `label` says so. Until then `waiting`
+    is true and the level 0.
 
     Set power (any mode): `preset(level)` (the digit keys) makes the next press strike at
     once at that level, until `preset(None)`.
@@ -394,20 +395,27 @@ class PowerCharge:
             return f"{k} strikes at {round(100 * self.preset_level)}%"
         if self._phase == "meter":
             if self.fallback:
-                return f"no key repeat seen: {k} again to strike"
+                return f"a tap: the meter runs, {k} again to strike"
             return f"{k} to strike"
         if self.mode == "classic":
             return f"{k} to start, {k} to strike"
+        if self.waiting:
+            return f"keep {k} down to charge, or let go for a meter"
         if self._phase == "charge":
             return f"release {k} to shoot"
         return f"hold {k}, release to shoot"
+
+    @property
+    def waiting(self) -> bool:
+        """Repeat mode: pressed, and no repeat yet to tell a hold from a tap (no power yet)."""
+        return (self.mode == "repeat" and self._phase == "charge" and self._repeats == 0
+                and not self._kinds)
 
     def level(self, t: float) -> float:
         """The meter's level in [0, 1] at time t (0 when idle)."""
         if self._phase == "idle":
             return 0.0
-        if (self.mode == "repeat" and self._phase == "charge" and self._repeats == 0
-                and not self._kinds):
+        if self.waiting:
             return 0.0  # the charge starts at the first repeat
         x = max(0.0, t - self._t0) / self.full_time
         if self._phase == "charge":
@@ -474,7 +482,10 @@ class PowerCharge:
             return None
         if self._repeats == 0:
             if t - self._t0 > self.INITIAL_DELAY_MAX:
+                # The meter starts from nothing when the tap is known, not from the press:
+                # it rises from 0% as a soft shot is wanted as often as a hard one.
                 self._phase, self.fallback = "meter", True
+                self._t0 += self.INITIAL_DELAY_MAX
             return None
         if t - self._last > self._release_gap():
             return self._fire(self._last + self._interval())
