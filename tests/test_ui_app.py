@@ -1210,3 +1210,48 @@ def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
         app.key(Key("enter"), app.now + 1.0)
     text = screen_text(app.cells(120, 40)[0])
     assert "aid at 50% power (the last shot's)" in text
+
+
+# -------------------------------------------------------------- what the panel keeps in view
+
+def _to_the_computer(app: App) -> float:
+    """The player breaks and the balls stop; the computer's turn, its plan made."""
+    app.key(Key("enter"), 0.0)
+    app.key(Key("space"), 1.0)
+    app.key(Key("space", "release"), 2.0)
+    t = 2.0
+    while not (app.phase == "cpu" and app._cpu_plan is not None) and t < 100:
+        t += 1 / 30
+        app.tick(t)
+    assert app.phase == "cpu"
+    return t
+
+
+def test_the_verdict_on_the_players_shot_stays_through_the_computers_turn() -> None:
+    app = app_for(mode="8ball", opponent="cpu", seed=3)
+    _to_the_computer(app)
+    (verdict,) = [x for x in app.message if x not in app._cpu_note]
+    assert "Computer's turn" in verdict[0]  # the referee on the player's break
+    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
+    # The computer's first shot ends and leaves it at the table: its next plan keeps the
+    # player's verdict in view, not the computer's own.
+    note = app._cpu_note
+    app._shot_note = note
+    app.message = [*note, ("the 6 went in: Computer's turn again", "good")]
+    app._cpu_plan = app._plan()
+    assert app.message[0] == verdict
+    assert "the 6 went in" not in screen_text(app.cells(120, 40)[0])
+
+
+def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> None:
+    app = app_for(mode="8ball", opponent="cpu", seed=4)
+    app.key(Key("enter"), 0.0)
+    run_script(app, "")
+    app._shot_note = [("Computer: 3 in the side right pocket", "turn")]
+    app.message = [*app._shot_note, ("nothing pocketed: your turn", "plain")]
+    assert app.phase in ("aim", "place")
+    app.phase = "aim"
+    lines = screen_text(app.cells(80, 24)[0]).splitlines()[-5:]
+    assert lines[1].strip().startswith("You to")
+    assert lines[2].strip().startswith("aid at 50% power") and "first ball" in lines[2]
+    assert lines[3].strip().startswith("nothing pocketed: your turn")

@@ -127,6 +127,8 @@ class App:
         self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
         self._cpu_note: list = []  # the computer's plan, in words, for the panel
         self._shot_note: list = []  # ... kept for the shot it is playing
+        self._your_verdict = None  # the verdict on the last shot of a player against the
+        # computer: kept in view through the computer's turn
         self.screen = None  # the Settings or Stats screen (ui.screens), when open
         self.pending: dict = {}  # settings changed during a match, for the next one
         self.prefs = None  # the settings file (ui.settings.Store), to save changes to
@@ -175,6 +177,7 @@ class App:
         self._geom = None
         self.run = None
         self.message = []
+        self._your_verdict = None
         self.angle = 0.0
         self.side = self.top = 0.0
         self.called_k = 0
@@ -243,6 +246,7 @@ class App:
         self._aim_cache = None
         self._cpu_skip = False
         if m.frame_over and m.winner is None:
+            self._your_verdict = None  # the frame's end is the news now
             won = m.frame_winner
             m.new_frame()
             self.message.append((self.names(f"player {won} wins the frame ({m.scores[0]}-"
@@ -339,13 +343,17 @@ class App:
     def _finish_shot(self) -> None:
         m = self.match
         before = int(m.on_table.sum())
+        by_cpu = self.shooter_is_cpu()
         with signals_held():  # judged and recorded whole, whatever interrupts
             out = self.run.finish()
         reason = self.names(out.reason)
         if out.foul:
-            self.message = [*self._shot_note, (f"Foul: {reason}", "foul")]
+            verdict = (f"Foul: {reason}", "foul")
         else:
-            self.message = [*self._shot_note, (reason, "good" if out.continue_turn else "plain")]
+            verdict = (reason, "good" if out.continue_turn else "plain")
+        self.message = [*self._shot_note, verdict]
+        if not by_cpu and any(self.cpu):
+            self._your_verdict = verdict
         if self.opts.bell and (out.foul or int(m.on_table.sum()) < before):
             self.bells += 1  # a pocketed ball or a foul
         self._turn_start()
@@ -477,8 +485,12 @@ class App:
         foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
         note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
-        # The last verdict stays in view (without the plan of the shot it was about).
-        self.message = [x for x in self.message if x not in self._shot_note][:2] + note
+        # The verdict on the player's own last shot stays in view through the computer's
+        # turn, however many shots it takes; else the last verdict (without the plan of the
+        # shot it was about).
+        last = [x for x in self.message if x not in self._shot_note][:2]
+        kept = [self._your_verdict] if self._your_verdict is not None else last
+        self.message = kept + note
         self._cpu_note = note
         return plan
 

@@ -182,8 +182,14 @@ def panel_info(app, lay=None) -> PanelInfo:
             widgets.append((power_meter_cells(app.charge.level(app.now), 14,
                                               "power"), "power"))
     now = _status(app, spin_words)
-    # What to do now first, the last verdicts next, then the power, the aid and the spin.
-    status = now[:1] + app.message + now[1:]
+    if app.phase == "aim" and not app.charge.active:
+        # A player's turn: what to do, the power and the first ball the aid sees (to act
+        # on), then the last verdict, then the plan of the shot it was about.
+        plans = [x for x in app.message if x in app._shot_note]
+        status = now + [x for x in app.message if x not in plans] + plans
+    else:
+        # What to do now first, the last verdicts next, then the power, the aid, the spin.
+        status = now[:1] + app.message + now[1:]
     hint = hint_lines(app)
     title = MODE_NAMES[st.mode]
     if app.opts.frames > 1:
