@@ -321,10 +321,14 @@ def hint_lines(app) -> list[tuple]:
     if app.phase == "aim":
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         cancel = [(f"{k('cancel')} hold", 1)] if app.charge.preset_level is not None else []
+        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 3),
+                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 3)] \
+            if app.match.state.mode == "practice" else []
         return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
                 (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
                 (power_hint(app), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
-                (f"{k('aim_aid')} aid", 3), help_, (f"{k('pause')} pause", 4), quit_]
+                (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
+                quit_]
     if app.phase == "option":
         return [("answer with a letter in the box", 0), help_, quit_]
     if app.phase == "over":
