@@ -188,7 +188,8 @@ def _leave(app, args: argparse.Namespace) -> int:
     with signals_held():
         app.record()  # a shot still rolling is played out first
         app.log_match()
-        lines, status = app.records.finish() if app.records is not None else ([], 0)
+        lines, status = app.records.finish(app.match) if app.records is not None \
+            else ([], 0)
     for line in [*app.notes, *lines]:
         say(line)
     app.notes.clear()

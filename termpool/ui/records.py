@@ -43,15 +43,18 @@ class Records:
         self._ours: set[str] = set()  # files this session wrote
         self._replaced: set[str] = set()  # ... of which were there before
 
-    def keep(self, match) -> None:
-        """Save `match` (not one without shots; again only if it has more shots since)."""
-        if not self.path or match is None or not match.history or match.running is not None:
+    def keep(self, match, empty: bool = False) -> None:
+        """Save `match` (not one without shots unless `empty`; again only if it has more
+        shots since)."""
+        if not self.path or match is None or match.running is not None:
+            return
+        if not (match.history or empty):
             return
         kept = next((x for x in self._kept if x.match is match), None)
         if kept is None:
             kept = _Kept(match)
             self._kept.append(kept)
-        elif kept.shots == len(match.history):
+        elif kept.shots == len(match.history) and kept.where is not None:
             return
         kept.shots = len(match.history)
         if self.path != "-":
@@ -88,12 +91,15 @@ class Records:
                 kept.where = None
                 kept.why += f" nor to the data directory ({e.strerror or e})"
 
-    def finish(self) -> tuple[list[str], int]:
+    def finish(self, current=None) -> tuple[list[str], int]:
         """After play: the lines to say, one per match in order (with "-", standard output
         gets the matches themselves), and the status: 0, or 1 if a match did not go where
-        asked."""
+        asked. A session whose only match (`current`) has no shot yet still saves it: its
+        rack and settings are a record too."""
         if not self.path:
             return [], 0
+        if not self._kept and current is not None:
+            self.keep(current, empty=True)
         if not self._kept:
             return ["no match was played, so there is no record to save"], 0
         if self.path == "-":
