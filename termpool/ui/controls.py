@@ -31,10 +31,10 @@ from termpool.ui.keys import Key, parse_key
 
 # action -> (help text); the order is the order of the help screen
 ACTIONS: dict[str, str] = {
-    "aim_ccw": "aim counter-clockwise (hold: faster)",
-    "aim_cw": "aim clockwise (hold: faster)",
-    "aim_fine_ccw": "fine aim counter-clockwise",
-    "aim_fine_cw": "fine aim clockwise",
+    "aim_ccw": "aim ↺ counter-clockwise (hold: faster)",
+    "aim_cw": "aim ↻ clockwise (hold: faster)",
+    "aim_fine_ccw": "fine aim ↺ (hold: faster)",
+    "aim_fine_cw": "fine aim ↻ (hold: faster)",
     "shoot": "shoot (hold to charge)",
     "spin_up": "cue tip up (follow)",
     "spin_down": "cue tip down (draw)",
@@ -268,10 +268,13 @@ class HoldRamp:
 
 
 class AimControl:
-    """Aim steps that speed up while an aim key is held (a `HoldRamp` in degrees).
+    """Aim steps that speed up while an aim key is held (`HoldRamp`s in degrees).
 
     A tap turns TAP degrees and, held, the turn speeds up from SPEED0 to SPEED_MAX deg/s over
-    RAMP seconds; fine keys always turn FINE.
+    RAMP seconds (a sweep across the table). A fine key's tap turns FINE degrees and, held,
+    from FINE_SPEED0 to FINE_SPEED_MAX deg/s over FINE_RAMP seconds: the few degrees between
+    a rough aim and a pot take a second of holding, not thirty taps, and stay slower than the
+    coarse keys' taps until the last half second.
     """
 
     TAP = 0.5
@@ -279,16 +282,21 @@ class AimControl:
     SPEED0 = 15.0
     SPEED_MAX = 120.0
     RAMP = 1.2
+    FINE_SPEED0 = 2.0
+    FINE_SPEED_MAX = 12.0
+    FINE_RAMP = 1.5
     HOLD_GAP = HoldRamp.HOLD_GAP
     DT_MAX = HoldRamp.DT_MAX
 
     def __init__(self, keymap: KeyMap | None = None) -> None:
         self.keymap = keymap if keymap is not None else KeyMap()
         self._ramp = HoldRamp(self.TAP, self.SPEED0, self.SPEED_MAX, self.RAMP)
+        self._fine = HoldRamp(self.FINE, self.FINE_SPEED0, self.FINE_SPEED_MAX, self.FINE_RAMP)
 
     def reset(self) -> None:
         """Forget the current hold (e.g. after a shot)."""
         self._ramp.reset()
+        self._fine.reset()
 
     def step(self, key: Key, t: float) -> float:
         """Degrees to turn the aim for this event (0 for non-aim keys and releases)."""
@@ -297,12 +305,12 @@ class AimControl:
             return 0.0
         if key.kind == "release":
             self._ramp.release(action)
+            self._fine.release(action)
             return 0.0
         sign, fine = _AIM[action]
-        if fine:  # never held: a fine key ends any hold and turns FINE
-            self._ramp.reset()
-            return sign * self.FINE
-        return sign * self._ramp.step(action, key.kind, t)
+        held, other = (self._fine, self._ramp) if fine else (self._ramp, self._fine)
+        other.reset()  # the other kind of key ends its hold
+        return sign * held.step(action, key.kind, t)
 
 
 # ----------------------------------------------------------------------------- power
