@@ -1255,3 +1255,22 @@ def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> No
     assert lines[1].strip().startswith("You to")
     assert lines[2].strip().startswith("aid at 50% power") and "first ball" in lines[2]
     assert lines[3].strip().startswith("nothing pocketed: your turn")
+
+
+@pytest.mark.parametrize("cols, rows", [(120, 40), (100, 32), (160, 50)])
+def test_the_second_players_name_stays_put_from_ball_in_hand_to_aim_to_charge(cols, rows):
+    app = app_for(mode="8ball", opponent="human", colors="256")
+
+    def column() -> int:
+        (line,) = [x for x in screen_text(app.cells(cols, rows)[0]).splitlines()
+                   if "Player 1" in x and "Player 2" in x]
+        return line.index("Player 2")
+
+    where = [column()]  # ball in hand
+    app.key(Key("enter"), 0.0)
+    where.append(column())  # aiming, the spin face up
+    app.key(Key("space"), 1.0)
+    app.tick(1.5)
+    assert app.charge.active
+    where.append(column())  # charging, the power meter up too
+    assert len(set(where)) == 1, where

@@ -169,11 +169,13 @@ def panel_info(app, lay=None) -> PanelInfo:
                                   p == m.shooter and app.phase != "over", fouls))
     if st.mode == "practice":
         players = players[:1]
-    widgets = []
+    widgets, most = [], []
     spin_words = True  # the tip offset goes in words unless the spin face shows it
-    if app.phase in ("aim", "cpu") and app.depth != "mono":
+    if app.depth != "mono":
         from termpool.ui.overlay import power_meter_cells
 
+        most = [(_spin_block(0.0, 0.0), "spin"), (power_meter_cells(0.0, 14, "power"), "power")]
+    if app.phase in ("aim", "cpu") and app.depth != "mono":
         block = _spin_block(app.side, app.top)
         if lay is None or widget_fits(lay, block):
             widgets.append((block, "spin"))
@@ -195,7 +197,7 @@ def panel_info(app, lay=None) -> PanelInfo:
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
     return PanelInfo(f"termpool · {title}", players, status, hint, m.ids,
-                     widgets=widgets, theme=app.opts.theme)
+                     widgets=widgets, most_widgets=most, theme=app.opts.theme)
 
 
 def _tip_words(app) -> str | None:
