@@ -359,3 +359,24 @@ def test_a_signal_after_two_matches_keeps_both(capsys, tmp_path, monkeypatch) ->
                    f"termpool: record saved to {tmp_path / 'm-2.json'} (1 shot)\n")
     assert replays(rec, capsys) == "1 shot: all identical"
     assert replays(tmp_path / "m-2.json", capsys) == "1 shot: all identical"
+
+
+def test_m_in_the_quit_question_goes_to_the_menu_and_keeps_the_match(capsys,
+                                                                       tmp_path) -> None:
+    from termpool.ui.app import Options
+    from termpool.ui.headless import play as play_keys
+    from termpool.ui.headless import screen_text
+    from termpool.ui.keys import Key, parse_script
+    from termpool.ui.records import Records
+
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
+    app.records = Records(str(tmp_path / "m.json"))
+    play_keys(app, parse_script("enter space-hold 1.0 wait 20 q"), 80, 24)
+    assert "m: menu" in screen_text(app.cells(80, 24)[0])
+    app.key(Key("m"), 100.0)
+    assert app.phase == "menu" and app.match is None and not app.done
+    rec = tmp_path / "m.json"
+    assert replays(rec, capsys) == "1 shot: all identical"  # saved on the way to the menu
+    app.key(Key("q"), 101.0)
+    assert app.done
+    assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]

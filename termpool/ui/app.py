@@ -565,6 +565,19 @@ class App:
         self.screen = (SettingsScreen if what == "settings" else StatsScreen)(self, back)
         self.overlay = "screen"
 
+    def to_menu(self) -> None:
+        """Leave the match for the menu (it is saved and added to the history first)."""
+        if self.run is not None:
+            self.record()  # a shot still rolling is played out, as on the way out
+        self.log_match()
+        if self.match is not None and self.match.history:
+            self.played.append(self.match)
+        self.overlay = None
+        self.run = None
+        self.phase = "menu"
+        self.match = None
+        self.dirty = True
+
     def log_match(self) -> None:
         """The match in play has ended or is being left: save it (--record) and add it to the
         history of play (once; not one without shots). A file that cannot be written is one
@@ -590,6 +603,8 @@ class App:
         elif self.overlay == "quit":
             if key.name in ("y", "q") or action == "quit":
                 self.done = True
+            elif key.name == "m" and not (key.ctrl or key.alt):
+                self.to_menu()
             elif key.name == "n" or action in ("cancel", "confirm"):
                 self.overlay = None
         elif self.overlay == "help":
@@ -767,9 +782,7 @@ class App:
         if key.name == "n":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
-            self.log_match()
-            self.phase = "menu"
-            self.match = None
+            self.to_menu()
         elif key.name == "w":  # watch the match just played, then come back here
             from termpool.ui.watch import Watch
 

@@ -53,7 +53,7 @@ def cells(app, cols: int, rows: int):
     elif app.screen is not None:  # settings, stats
         draw_box(out, app.screen.lines(app, cols, rows), app.screen.title, wrap=False)
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
-        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
+        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"], "quit")
     return out
 
 
