@@ -1241,6 +1241,14 @@ def test_the_verdict_on_the_players_shot_stays_through_the_computers_turn() -> N
     app._cpu_plan = app._plan()
     assert app.message[0] == verdict
     assert "the 6 went in" not in screen_text(app.cells(120, 40)[0])
+    # ... and while its shot runs.
+    app._cpu_skip = True
+    t = app.now
+    while app.phase == "cpu":
+        t += 1 / 30
+        app.tick(t)
+    assert app.phase == "run" and app.message[0] == verdict
+    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
 
 
 def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> None:

@@ -303,7 +303,8 @@ class App:
         self._acc = 0.0
         # The computer's plan stays in view while its shot runs, and then beside the verdict.
         self._shot_note = self._cpu_note if keep_message else []
-        self.message = list(self._shot_note)
+        yours = [self._your_verdict] if keep_message and self._your_verdict else []
+        self.message = yours + list(self._shot_note)
         self.dirty = True
 
     def _shoot_human(self, level: float) -> None:
@@ -489,7 +490,8 @@ class App:
         # turn, however many shots it takes; else the last verdict (without the plan of the
         # shot it was about).
         last = [x for x in self.message if x not in self._shot_note][:2]
-        kept = [self._your_verdict] if self._your_verdict is not None else last
+        kept = last if self._your_verdict is None else [self._your_verdict] + [
+            x for x in last if x[0].startswith(f"{m.players[m.shooter]} chose to ")]
         self.message = kept + note
         self._cpu_note = note
         return plan
