@@ -1282,3 +1282,29 @@ def test_the_second_players_name_stays_put_from_ball_in_hand_to_aim_to_charge(co
     assert app.charge.active
     where.append(column())  # charging, the power meter up too
     assert len(set(where)) == 1, where
+
+
+def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
+    from termpool.ui.app_screen import panel_info
+
+    app = app_for(mode="8ball", opponent="human", colors="256")
+    app.key(Key("enter"), 0.0)
+    chars, fg, bg = app.cells(80, 24)
+    lines = screen_text(chars).splitlines()
+    (row,) = [r for r, line in enumerate(lines) if line.strip().startswith("balls ")]
+    assert lines[row].split()[1:] == [str(n) for n in range(1, 16)]
+    # Each number in its ball's colour, as the players' lines show a group's balls.
+    from termpool.ui.frame import _ball_tokens
+
+    m = app.match
+    want = _ball_tokens(m.ids, [m.index(str(n)) for n in range(1, 16)], False)
+    col = lines[row].index("balls ") + len("balls")
+    for text, f, b in want:
+        col += 1
+        assert "".join(chars[row, col:col + len(text)]) == text
+        assert tuple(bg[row, col]) == tuple(b) and tuple(fg[row, col + len(text) - 1]) == f
+        col += len(text)
+    # Once the groups are set, the players' lines show them instead.
+    app.match.state = app.match.state.__class__(mode="8ball", shooter=0,
+                                                groups={0: "solids", 1: "stripes"})
+    assert panel_info(app).legend == []

@@ -196,8 +196,11 @@ def panel_info(app, lay=None) -> PanelInfo:
     title = MODE_NAMES[st.mode]
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
+    # Before groups are set no player line shows the balls: a free row names them.
+    legend = [k for k, b in enumerate(m.ids) if b != "cue" and m.on_table[k]] \
+        if st.groups is None and app.phase != "run" else []
     return PanelInfo(f"termpool · {title}", players, status, hint, m.ids,
-                     widgets=widgets, most_widgets=most, theme=app.opts.theme)
+                     widgets=widgets, most_widgets=most, theme=app.opts.theme, legend=legend)
 
 
 def _tip_words(app) -> str | None:

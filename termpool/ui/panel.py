@@ -51,6 +51,8 @@ class PanelInfo:
     most_widgets: list = field(default_factory=list)  # the blocks the match ever shows at
     # once (the players' line keeps clear of them all, so it does not move as they come and go)
     theme: str = "standard"
+    legend: list[int] = field(default_factory=list)  # balls to show with their numbers in
+    # a free row of a bottom panel (where the table is too small to number them)
 
 
 def _tone(t: str):
@@ -211,6 +213,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     for s, tone in _cut(lines, r0 + nrows - 1 - r, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
+    if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
+        pieces = [("balls", DIM_TEXT_C.rgb, BACKDROP_C.rgb)]
+        for t in _ball_tokens(info.ids, info.legend, mono, info.theme):
+            pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
+        if sum(len(t) for t, _, _ in pieces) <= w:
+            _put_line(cells, r, c0, pieces)
     put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
