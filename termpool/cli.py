@@ -76,11 +76,14 @@ def bundled_example(name: str = "break.json") -> str:
 def _parser() -> _Parser:
     p = _Parser(
         prog=PROG,
-        description="Pool in the terminal on an exact, batched physics core.",
+        description="Pool in the terminal: 8-ball, 9-ball and practice, against the computer "
+                    "or a friend at the same keyboard.",
         epilog=(
-            "With no arguments, termpool starts the game in the terminal (the same as "
-            "`termpool play`). Without a terminal, try `termpool sim` on the bundled example "
-            "break scene: termpool sim " + bundled_example() + "."
+            "With no arguments, termpool starts the game (the same as `termpool play`). "
+            "`termpool play --record match.json` keeps your matches; `termpool replay "
+            "match.json --watch` shows one again on screen. Without a terminal, try "
+            "`termpool sim` on the bundled example break scene: termpool sim "
+            + bundled_example() + "."
         ),
     )
     from termpool import __version__
@@ -135,7 +138,7 @@ def _parser() -> _Parser:
     add_arguments(pl)
     r = sub.add_parser(
         "replay",
-        help="re-simulate every shot of a saved match and check it is identical",
+        help="watch a saved match again (--watch), or check that it replays identically",
         description=(
             "Re-simulate every shot of a replay file (a saved match, see docs/rules.md) from its "
             "scene and shot parameters and check that the events, the final balls and the "

@@ -229,3 +229,60 @@ def test_rules_text_wraps_to_the_width_asked() -> None:
         assert lines[0] == TITLES[mode] and max(map(len, lines)) <= 60
     with pytest.raises(ValueError, match="mode"):
         rules_page("snooker")
+
+
+def test_the_keys_page_wraps_at_80_columns_and_cuts_nothing() -> None:
+    from termpool.ui.app import App, Options
+    from termpool.ui.controls import ACTIONS
+    from termpool.ui.headless import screen_text
+    from termpool.ui.keys import Key
+
+    app = App(Options(mode="8ball", opponent="cpu", colors="mono", seed=0))
+    app.key(Key("h"), 0.0)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "…" not in text
+    words = " ".join(line.strip("│ ") for line in text.splitlines())
+    for desc in ACTIONS.values():  # each whole, however it wrapped
+        assert all(w in words.split() for w in desc.split()), desc
+
+
+def test_the_rules_page_explains_the_pocket_names_as_the_screen_shows_them() -> None:
+    from termpool.game import Match
+    from termpool.rules.words import rules_page
+    from termpool.ui.table_view import layout
+
+    for mode in ("8ball", "9ball", "practice"):
+        (text,) = [t for head, t in rules_page(mode) if head == "Pockets"]
+        assert "head is the end you break from" in text
+    # What the page says of the screen: the head at the left, the left pockets along the top.
+    m = Match("8ball", seed=0)
+    lay = layout(80, 24, m.table)
+    names = list(m.table.hole_names)
+    c = m.table.hole_c.reshape(-1, 2)
+
+    def cell(name):
+        x, y = c[names.index(name)]
+        return lay.px + x * lay.sx, lay.py + (m.table.width - y) * lay.sy  # column, half-row
+
+    assert cell("head_left")[0] < cell("side_left")[0] < cell("foot_left")[0]
+    assert cell("head_left")[1] < cell("head_right")[1]
+    assert cell("foot_left")[1] < cell("foot_right")[1]
+    assert m.table.head_spot[0] < m.table.length / 2  # the break is from the head's end
+
+
+def test_practice_key_help_names_take_back_and_re_rack_where_they_fit() -> None:
+    from termpool.ui.app import App, Options
+    from termpool.ui.headless import screen_text
+    from termpool.ui.keys import Key
+
+    for input_mode in ("release", "repeat"):
+        app = App(Options(mode="practice", opponent="human", colors="mono", seed=0),
+                  input_mode=input_mode)
+        app.key(Key("enter"), 0.0)
+        hint = screen_text(app.cells(80, 24)[0]).splitlines()[-1]
+        assert "U undo" in hint and "R rack" in hint and hint.strip().endswith("Q quit")
+        hint = screen_text(app.cells(160, 50)[0]).splitlines()[-1]
+        assert "U take back" in hint and "R re-rack" in hint
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0))
+    app.key(Key("enter"), 0.0)
+    assert "take back" not in screen_text(app.cells(160, 50)[0])

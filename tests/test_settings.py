@@ -416,3 +416,21 @@ def test_key_press_in_the_settings_never_reaches_the_game() -> None:
     app.key(Key("space"), 1.0)
     app.key(Key("left"), 1.1)
     assert app.angle == angle and app.match.history == [] and app.screen is not None
+
+
+@pytest.mark.parametrize("cols, rows", [(80, 24), (120, 40), (60, 30)])
+def test_the_settings_box_keeps_its_width_as_the_selection_moves(cols, rows) -> None:
+    from termpool.ui.app import App, Options
+    from termpool.ui.headless import screen_text
+    from termpool.ui.keys import Key
+    from termpool.ui.settings import SETTINGS
+
+    app = App(Options(colors="mono"))
+    app.open_screen("settings")
+    widths = set()
+    for k in range(len(SETTINGS) + 1):
+        text = screen_text(app.cells(cols, rows)[0])
+        (top,) = [line for line in text.splitlines() if "┌" in line]
+        widths.add((top.index("┌"), top.index("┐")))
+        app.key(Key("down"), float(k))
+    assert len(widths) == 1, widths

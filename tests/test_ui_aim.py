@@ -449,7 +449,11 @@ def test_the_paths_follow_the_prediction_even_where_they_bend(view):
     cv = view.background.copy()
     draw_prediction(cv, lay, pred, R)
     r_px = R * lay.scale
-    solid = _coloured(cv, AIM_C)
+    from termpool.ui.palette import OBJECT_C
+
+    # The cue ball's path and the ghost in white, the first ball's path and its end in pink.
+    solid = np.concatenate([_coloured(cv, AIM_C), _coloured(cv, OBJECT_C)])
+    assert on_path(_coloured(cv, OBJECT_C), obj.points, lay).max() <= r_px + 0.5 + 1e-9
     rings = np.zeros(len(solid), bool)
     for p in (ghost, obj.points[-1]):
         rings |= np.abs(np.linalg.norm(solid - _px(lay, p), axis=1) - r_px) <= 0.5 + 1e-9
@@ -716,3 +720,29 @@ def test_same_inputs_give_the_same_pixels(view):
         draw_cue_stick(cv, view.layout, pos[0], R, 3.3, 0.4)
         out.append(cv.rgb.tobytes())
     assert out[0] == out[1]
+
+
+def test_at_80x24_the_two_paths_differ_and_no_line_shares_a_balls_cell():
+    from termpool.ui.palette import OBJECT_C
+
+    lay = layout(80, 24, TABLE)
+    small = TableView(TABLE, lay)
+    for k in range(12):  # the object ball on even and odd pixel rows and columns
+        obj = np.array([1.3 + 0.013 * k, 0.6 + 0.011 * k])
+        cue = obj - np.array([0.6, 0.05 * (k % 3 - 1)])
+        pos = np.array([cue, obj])
+        cv = small.draw(["cue", "3"], pos, None, R, canvas=small.background.copy())
+        balls = np.isin(cv.tag, [SOLID, STRIPE, EIGHT, CUE])
+        cell_has_ball = balls[0::2] | balls[1::2]
+        aim_at = obj + np.array([0.0, 1.6 * R * (k % 4 - 1.5) / 1.5])  # cuts either way
+        a = trace(pos, math.degrees(math.atan2(*(aim_at - cue)[::-1])))
+        assert a.ball == 1
+        draw_prediction(cv, lay, straight(a, pos[0]), R)
+        aid = cv.tag == AIM
+        assert not (cell_has_ball & (aid[0::2] | aid[1::2])).any()
+        cue_px, obj_px = _coloured(cv, AIM_C), _coloured(cv, OBJECT_C)
+        assert len(cue_px) and len(obj_px)
+        ring = max(1.0, R * lay.scale) + 0.5  # the ring where the first ball stops
+        assert on_path(obj_px, straight(a, pos[0]).object.points, lay).max() <= ring + 0.71
+    assert np.linalg.norm(np.subtract(OBJECT_C.rgb, AIM_C.rgb)) > 100
+    assert OBJECT_C.c16 != AIM_C.c16 and OBJECT_C.c256 != AIM_C.c256

@@ -210,9 +210,9 @@ def test_help_lists_the_key_bindings() -> None:
     assert isinstance(app.keymap, KeyMap)
     app.key(Key("enter"), 0.0)
     text = screen_text(app.cells(120, 40)[0])
-    assert "Z: hold (key repeat)" in text
+    assert "Z: hold to charge" in text
     app.key(Key("z"), 1.0)
-    assert "release z to shoot" in screen_text(app.cells(120, 40)[0])
+    assert "keep z down to charge" in screen_text(app.cells(120, 40)[0])
     app.key(Key("h"), 1.0)
     assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
 
@@ -781,7 +781,7 @@ def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() ->
         app = app_for(input_mode=mode)
         run_script(app, "enter wait 0.2", legacy=mode != "release")
         hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
-        assert {"release": "Space: hold, let go", "repeat": "Space: hold (key repeat)",
+        assert {"release": "Space: hold, let go", "repeat": "Space: hold to charge",
                 "classic": "Space: meter"}[mode] in hint
         play(app, [(1.0, Key("3")), (1.1, Key("space"))] if mode != "release" else
              [(1.0, Key("3")), (1.1, Key("space")), (1.15, Key("space", "release"))], 100, 32)
@@ -1119,7 +1119,7 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
     parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app)]
     assert hint == fit_hint(hint_lines(app), size[0] - 3)  # the panel's text width
     assert hint.endswith("Q quit") and hint.startswith("←→ aim")
-    assert {"release": "Space:hold", "repeat": "Space:hold/rep",
+    assert {"release": "Space:hold", "repeat": "Space:hold",
             "classic": "Space:meter"}[mode] in hint.replace(": ", ":").replace(", let go", "")
     assert parts  # every piece shown is whole: the line is pieces joined, none cut
     for piece in hint.split("  ") if "  " in hint else [hint]:
@@ -1156,3 +1156,155 @@ def test_a_verdict_too_long_for_the_panel_ends_in_an_ellipsis(cols, rows) -> Non
     if cols == 80:  # the verdict's first two lines, the second cut at a word
         shown = [s.strip() for s in text.splitlines() if s.strip().rstrip("…") in words]
         assert len(shown) == 2 and words.startswith(shown[0]) and shown[1].endswith("…")
+
+
+# ----------------------------------------------------- power on terminals without releases
+
+def test_a_tap_without_key_releases_starts_the_meter_from_nothing() -> None:
+    ch = PowerCharge("repeat")
+    assert ch.key(Key("space"), 10.0) is None
+    assert ch.waiting and ch.level(10.5) == 0.0  # a tap or a hold: nothing known yet
+    t = 10.0 + PowerCharge.INITIAL_DELAY_MAX + 0.2  # no repeat came: a tap
+    assert ch.poll(t) is None and ch.fallback and not ch.waiting
+    # The meter rises from 0 at the moment the tap was known, not from the press.
+    known = 10.0 + PowerCharge.INITIAL_DELAY_MAX
+    assert ch.level(known) == 0.0
+    assert ch.level(t) == pytest.approx(0.2 / ch.full_time)
+    power = ch.key(Key("space"), known + 0.1)  # a quick second press: a soft shot
+    assert power == pytest.approx(0.1 / ch.full_time)
+
+
+def test_the_screen_says_what_a_tap_is_waiting_for() -> None:
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2", legacy=True)
+    app.key(Key("space"), 1.0)
+    app.tick(1.4)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "keep space down to charge, or let go for a meter" in text
+    assert "release space" not in text and "power 0%" not in text
+    app.tick(1.0 + PowerCharge.INITIAL_DELAY_MAX + 0.06)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "power 5%" in text and "space again to strike" in text
+
+
+def test_power_set_with_a_digit_does_not_carry_into_the_next_game() -> None:
+    for power in ("hold", "digits"):
+        app = app_for(mode="8ball", opponent="human", power=power)
+        run_script(app, "enter 2 space wait 20")
+        assert shots(app)[0]["speed"] == power_to_speed(0.2)
+        app.key(Key("2"), 100.0)  # set for the next shot ...
+        app.match.winner = 0
+        app._turn_start()
+        app.key(Key("n"), 101.0)  # ... but a new game starts afresh
+        assert app.charge.preset_level == (0.5 if power == "digits" else None)
+        assert app.last_power == 0.5
+
+
+def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    run_script(app, "enter")
+    text = screen_text(app.cells(120, 40)[0])
+    assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
+    run_script(app, "space-hold 0.6 wait 20")
+    while app.phase != "aim":  # the next shooter may have ball in hand
+        app.key(Key("enter"), app.now + 1.0)
+    text = screen_text(app.cells(120, 40)[0])
+    assert "aid at 50% power (the last shot's)" in text
+
+
+# -------------------------------------------------------------- what the panel keeps in view
+
+def _to_the_computer(app: App) -> float:
+    """The player breaks and the balls stop; the computer's turn, its plan made."""
+    app.key(Key("enter"), 0.0)
+    app.key(Key("space"), 1.0)
+    app.key(Key("space", "release"), 2.0)
+    t = 2.0
+    while not (app.phase == "cpu" and app._cpu_plan is not None) and t < 100:
+        t += 1 / 30
+        app.tick(t)
+    assert app.phase == "cpu"
+    return t
+
+
+def test_the_verdict_on_the_players_shot_stays_through_the_computers_turn() -> None:
+    app = app_for(mode="8ball", opponent="cpu", seed=3)
+    _to_the_computer(app)
+    (verdict,) = [x for x in app.message if x not in app._cpu_note]
+    assert "Computer's turn" in verdict[0]  # the referee on the player's break
+    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
+    # The computer's first shot ends and leaves it at the table: its next plan keeps the
+    # player's verdict in view, not the computer's own.
+    note = app._cpu_note
+    app._shot_note = note
+    app.message = [*note, ("the 6 went in: Computer's turn again", "good")]
+    app._cpu_plan = app._plan()
+    assert app.message[0] == verdict
+    assert "the 6 went in" not in screen_text(app.cells(120, 40)[0])
+    # ... and while its shot runs.
+    app._cpu_skip = True
+    t = app.now
+    while app.phase == "cpu":
+        t += 1 / 30
+        app.tick(t)
+    assert app.phase == "run" and app.message[0] == verdict
+    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
+
+
+def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> None:
+    app = app_for(mode="8ball", opponent="cpu", seed=4)
+    app.key(Key("enter"), 0.0)
+    run_script(app, "")
+    app._shot_note = [("Computer: 3 in the side right pocket", "turn")]
+    app.message = [*app._shot_note, ("nothing pocketed: your turn", "plain")]
+    assert app.phase in ("aim", "place")
+    app.phase = "aim"
+    lines = screen_text(app.cells(80, 24)[0]).splitlines()[-5:]
+    assert lines[1].strip().startswith("You to")
+    assert lines[2].strip().startswith("aid at 50% power") and "first ball" in lines[2]
+    assert lines[3].strip().startswith("nothing pocketed: your turn")
+
+
+@pytest.mark.parametrize("cols, rows", [(120, 40), (100, 32), (160, 50)])
+def test_the_second_players_name_stays_put_from_ball_in_hand_to_aim_to_charge(cols, rows):
+    app = app_for(mode="8ball", opponent="human", colors="256")
+
+    def column() -> int:
+        (line,) = [x for x in screen_text(app.cells(cols, rows)[0]).splitlines()
+                   if "Player 1" in x and "Player 2" in x]
+        return line.index("Player 2")
+
+    where = [column()]  # ball in hand
+    app.key(Key("enter"), 0.0)
+    where.append(column())  # aiming, the spin face up
+    app.key(Key("space"), 1.0)
+    app.tick(1.5)
+    assert app.charge.active
+    where.append(column())  # charging, the power meter up too
+    assert len(set(where)) == 1, where
+
+
+def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
+    from termpool.ui.app_screen import panel_info
+
+    app = app_for(mode="8ball", opponent="human", colors="256")
+    app.key(Key("enter"), 0.0)
+    chars, fg, bg = app.cells(80, 24)
+    lines = screen_text(chars).splitlines()
+    (row,) = [r for r, line in enumerate(lines) if line.strip().startswith("balls ")]
+    assert lines[row].split()[1:] == [str(n) for n in range(1, 16)]
+    # Each number in its ball's colour, as the players' lines show a group's balls.
+    from termpool.ui.frame import _ball_tokens
+
+    m = app.match
+    want = _ball_tokens(m.ids, [m.index(str(n)) for n in range(1, 16)], False)
+    col = lines[row].index("balls ") + len("balls")
+    for text, f, b in want:
+        col += 1
+        assert "".join(chars[row, col:col + len(text)]) == text
+        assert tuple(bg[row, col]) == tuple(b) and tuple(fg[row, col + len(text) - 1]) == f
+        col += len(text)
+    # Once the groups are set, the players' lines show them instead.
+    app.match.state = app.match.state.__class__(mode="8ball", shooter=0,
+                                                groups={0: "solids", 1: "stripes"})
+    assert panel_info(app).legend == []

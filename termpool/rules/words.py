@@ -75,7 +75,15 @@ def rules_page(mode: str, *, three_foul: bool | None = None, eight_break: str | 
         page = _practice()
     else:
         raise ValueError(f"mode: must be one of 8ball, 9ball, practice, not {mode!r}")
-    return [(head, themed(text, theme)) for head, text in page]
+    return [(head, themed(text, theme)) for head, text in [*page, POCKETS]]
+
+
+# The pockets' names, as verdicts and the computer's plans say them ("the foot left pocket").
+POCKETS = ("Pockets", "the head is the end you break from (the left end on screen), the foot "
+                      "the far end, where the balls are racked; the two side pockets are "
+                      "halfway along. Left and right are as seen from the head: the left "
+                      "pockets are along the top of the screen, the right ones along the "
+                      "bottom.")
 
 
 def _fouls(after: str) -> str:

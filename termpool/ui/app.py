@@ -32,6 +32,7 @@ DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
 MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once
 MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
+DEFAULT_POWER = 0.5  # the aid's power (and the digits') before a match's first shot
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
@@ -98,7 +99,8 @@ class App:
         self.env = env
         self.depth = resolve_depth(self.opts.colors, env)
         self.aimctl = AimControl(self.keymap)
-        self.last_power = 0.5  # the power of the last shot: the aid's until another is set
+        self.last_power = DEFAULT_POWER  # the last shot's power: the aid's until another
+        self.shot_power_set = False  # ... once this match has a shot of the keys'
         self.set_input_mode(input_mode)
         self.done = False
         self.dirty = True
@@ -125,10 +127,13 @@ class App:
         self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
         self._cpu_note: list = []  # the computer's plan, in words, for the panel
         self._shot_note: list = []  # ... kept for the shot it is playing
+        self._your_verdict = None  # the verdict on the last shot of a player against the
+        # computer: kept in view through the computer's turn
         self.screen = None  # the Settings or Stats screen (ui.screens), when open
         self.pending: dict = {}  # settings changed during a match, for the next one
         self.prefs = None  # the settings file (ui.settings.Store), to save changes to
         self.history = None  # the history of play (game.history.Recorder), to add matches to
+        self.records = None  # --record (ui.records.Records): every match of the session
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -157,6 +162,9 @@ class App:
         if self.match is not None and self.match.history:
             self.played.append(self.match)  # kept for --record
         apply_pending(self)
+        # Power starts afresh: a soft safety's 20% of the last game is no break for this one.
+        self.last_power, self.shot_power_set = DEFAULT_POWER, False
+        self.charge.preset(self.last_power if self.opts.power == "digits" else None)
         self.opts.mode, self.opts.opponent = mode, opponent
         names = player_names(self.opts.player1, self.opts.player2, mode, opponent)
         self.cpu = (False, opponent == "cpu" and mode != "practice")
@@ -169,6 +177,7 @@ class App:
         self._geom = None
         self.run = None
         self.message = []
+        self._your_verdict = None
         self.angle = 0.0
         self.side = self.top = 0.0
         self.called_k = 0
@@ -237,6 +246,7 @@ class App:
         self._aim_cache = None
         self._cpu_skip = False
         if m.frame_over and m.winner is None:
+            self._your_verdict = None  # the frame's end is the news now
             won = m.frame_winner
             m.new_frame()
             self.message.append((self.names(f"player {won} wins the frame ({m.scores[0]}-"
@@ -293,11 +303,12 @@ class App:
         self._acc = 0.0
         # The computer's plan stays in view while its shot runs, and then beside the verdict.
         self._shot_note = self._cpu_note if keep_message else []
-        self.message = list(self._shot_note)
+        yours = [self._your_verdict] if keep_message and self._your_verdict else []
+        self.message = yours + list(self._shot_note)
         self.dirty = True
 
     def _shoot_human(self, level: float) -> None:
-        self.last_power = level
+        self.last_power, self.shot_power_set = level, True
         called = None
         if self.match.needs_call():
             called = self._called()
@@ -333,13 +344,17 @@ class App:
     def _finish_shot(self) -> None:
         m = self.match
         before = int(m.on_table.sum())
+        by_cpu = self.shooter_is_cpu()
         with signals_held():  # judged and recorded whole, whatever interrupts
             out = self.run.finish()
         reason = self.names(out.reason)
         if out.foul:
-            self.message = [*self._shot_note, (f"Foul: {reason}", "foul")]
+            verdict = (f"Foul: {reason}", "foul")
         else:
-            self.message = [*self._shot_note, (reason, "good" if out.continue_turn else "plain")]
+            verdict = (reason, "good" if out.continue_turn else "plain")
+        self.message = [*self._shot_note, verdict]
+        if not by_cpu and any(self.cpu):
+            self._your_verdict = verdict
         if self.opts.bell and (out.foul or int(m.on_table.sum()) < before):
             self.bells += 1  # a pocketed ball or a foul
         self._turn_start()
@@ -471,8 +486,13 @@ class App:
         foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
         note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
-        # The last verdict stays in view (without the plan of the shot it was about).
-        self.message = [x for x in self.message if x not in self._shot_note][:2] + note
+        # The verdict on the player's own last shot stays in view through the computer's
+        # turn, however many shots it takes; else the last verdict (without the plan of the
+        # shot it was about).
+        last = [x for x in self.message if x not in self._shot_note][:2]
+        kept = last if self._your_verdict is None else [self._your_verdict] + [
+            x for x in last if x[0].startswith(f"{m.players[m.shooter]} chose to ")]
+        self.message = kept + note
         self._cpu_note = note
         return plan
 
@@ -547,9 +567,25 @@ class App:
         self.screen = (SettingsScreen if what == "settings" else StatsScreen)(self, back)
         self.overlay = "screen"
 
+    def to_menu(self) -> None:
+        """Leave the match for the menu (it is saved and added to the history first)."""
+        if self.run is not None:
+            self.record()  # a shot still rolling is played out, as on the way out
+        self.log_match()
+        if self.match is not None and self.match.history:
+            self.played.append(self.match)
+        self.overlay = None
+        self.run = None
+        self.phase = "menu"
+        self.match = None
+        self.dirty = True
+
     def log_match(self) -> None:
-        """Add the match in play to the history of play (once; not one without shots). A
-        file that cannot be written is one line for the terminal when the game ends."""
+        """The match in play has ended or is being left: save it (--record) and add it to the
+        history of play (once; not one without shots). A file that cannot be written is one
+        line for the terminal when the game ends."""
+        if self.records is not None:
+            self.records.keep(self.match)
         if self.history is not None and self.match is not None:
             warning = self.history.add(self.match, self.cpu, self.opts.level)
             if warning:
@@ -569,6 +605,8 @@ class App:
         elif self.overlay == "quit":
             if key.name in ("y", "q") or action == "quit":
                 self.done = True
+            elif key.name == "m" and not (key.ctrl or key.alt):
+                self.to_menu()
             elif key.name == "n" or action in ("cancel", "confirm"):
                 self.overlay = None
         elif self.overlay == "help":
@@ -746,9 +784,7 @@ class App:
         if key.name == "n":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
-            self.log_match()
-            self.phase = "menu"
-            self.match = None
+            self.to_menu()
         elif key.name == "w":  # watch the match just played, then come back here
             from termpool.ui.watch import Watch
 

@@ -53,7 +53,7 @@ def cells(app, cols: int, rows: int):
     elif app.screen is not None:  # settings, stats
         draw_box(out, app.screen.lines(app, cols, rows), app.screen.title, wrap=False)
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
-        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
+        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"], "quit")
     return out
 
 
@@ -169,11 +169,13 @@ def panel_info(app, lay=None) -> PanelInfo:
                                   p == m.shooter and app.phase != "over", fouls))
     if st.mode == "practice":
         players = players[:1]
-    widgets = []
+    widgets, most = [], []
     spin_words = True  # the tip offset goes in words unless the spin face shows it
-    if app.phase in ("aim", "cpu") and app.depth != "mono":
+    if app.depth != "mono":
         from termpool.ui.overlay import power_meter_cells
 
+        most = [(_spin_block(0.0, 0.0), "spin"), (power_meter_cells(0.0, 14, "power"), "power")]
+    if app.phase in ("aim", "cpu") and app.depth != "mono":
         block = _spin_block(app.side, app.top)
         if lay is None or widget_fits(lay, block):
             widgets.append((block, "spin"))
@@ -182,14 +184,23 @@ def panel_info(app, lay=None) -> PanelInfo:
             widgets.append((power_meter_cells(app.charge.level(app.now), 14,
                                               "power"), "power"))
     now = _status(app, spin_words)
-    # What to do now first, the last verdicts next, then the power, the aid and the spin.
-    status = now[:1] + app.message + now[1:]
+    if app.phase == "aim" and not app.charge.active:
+        # A player's turn: what to do, the power and the first ball the aid sees (to act
+        # on), then the last verdict, then the plan of the shot it was about.
+        plans = [x for x in app.message if x in app._shot_note]
+        status = now + [x for x in app.message if x not in plans] + plans
+    else:
+        # What to do now first, the last verdicts next, then the power, the aid, the spin.
+        status = now[:1] + app.message + now[1:]
     hint = hint_lines(app)
     title = MODE_NAMES[st.mode]
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
+    # Before groups are set no player line shows the balls: a free row names them.
+    legend = [k for k, b in enumerate(m.ids) if b != "cue" and m.on_table[k]] \
+        if st.groups is None and app.phase != "run" else []
     return PanelInfo(f"termpool · {title}", players, status, hint, m.ids,
-                     widgets=widgets, theme=app.opts.theme)
+                     widgets=widgets, most_widgets=most, theme=app.opts.theme, legend=legend)
 
 
 def _tip_words(app) -> str | None:
@@ -240,7 +251,10 @@ def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
             s += " · push-out"
         elif m.state.push_out == "available":
             s += " · O: push-out"
-        if app.charge.active:  # while charging the power reading comes first
+        if app.charge.waiting:  # a tap or a hold: no power to show yet
+            out.insert(0, (app.charge.label, "turn"))
+            out.append((s, "dim"))
+        elif app.charge.active:  # while charging the power reading comes first
             level = round(100 * app.charge.level(app.now))
             out.insert(0, (f"power {level}% · {app.charge.label}", "turn"))
             out.append((s, "dim"))
@@ -273,7 +287,7 @@ def power_hint(app) -> tuple[str, str]:
         pct = f"{round(100 * ch.preset_level)}%"
         return f"{k}: strike at {pct}", f"{k}:{pct}"
     return {"release": (f"{k}: hold, let go", f"{k}:hold"),
-            "repeat": (f"{k}: hold (key repeat)", f"{k}:hold/rep"),
+            "repeat": (f"{k}: hold to charge", f"{k}:hold"),
             "classic": (f"{k}: meter, {k} strikes", f"{k}:meter")}[ch.mode]
 
 
@@ -283,7 +297,8 @@ def _power_line(app) -> str:
     if ch.preset_level is not None:
         line = f"power {round(100 * ch.preset_level)}%"
     elif app.aid_level() != "off":
-        line = f"aid at {round(100 * app.last_power)}% power (the last shot's)"
+        whose = "the last shot's" if app.shot_power_set else "until you give one"
+        line = f"aid at {round(100 * app.last_power)}% power ({whose})"
     else:
         line = "power: " + ch.label
     pred = app.prediction()
@@ -311,10 +326,14 @@ def hint_lines(app) -> list[tuple]:
     if app.phase == "aim":
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         cancel = [(f"{k('cancel')} hold", 1)] if app.charge.preset_level is not None else []
+        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 3),
+                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 3)] \
+            if app.match.state.mode == "practice" else []
         return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
                 (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
                 (power_hint(app), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
-                (f"{k('aim_aid')} aid", 3), help_, (f"{k('pause')} pause", 4), quit_]
+                (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
+                quit_]
     if app.phase == "option":
         return [("answer with a letter in the box", 0), help_, quit_]
     if app.phase == "over":

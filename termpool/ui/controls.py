@@ -31,10 +31,10 @@ from termpool.ui.keys import Key, parse_key
 
 # action -> (help text); the order is the order of the help screen
 ACTIONS: dict[str, str] = {
-    "aim_ccw": "aim counter-clockwise (hold: faster)",
-    "aim_cw": "aim clockwise (hold: faster)",
-    "aim_fine_ccw": "fine aim counter-clockwise",
-    "aim_fine_cw": "fine aim clockwise",
+    "aim_ccw": "aim ↺ counter-clockwise (hold: faster)",
+    "aim_cw": "aim ↻ clockwise (hold: faster)",
+    "aim_fine_ccw": "fine aim ↺ (hold: faster)",
+    "aim_fine_cw": "fine aim ↻ (hold: faster)",
     "shoot": "shoot (hold to charge)",
     "spin_up": "cue tip up (follow)",
     "spin_down": "cue tip down (draw)",
@@ -268,10 +268,13 @@ class HoldRamp:
 
 
 class AimControl:
-    """Aim steps that speed up while an aim key is held (a `HoldRamp` in degrees).
+    """Aim steps that speed up while an aim key is held (`HoldRamp`s in degrees).
 
     A tap turns TAP degrees and, held, the turn speeds up from SPEED0 to SPEED_MAX deg/s over
-    RAMP seconds; fine keys always turn FINE.
+    RAMP seconds (a sweep across the table). A fine key's tap turns FINE degrees and, held,
+    from FINE_SPEED0 to FINE_SPEED_MAX deg/s over FINE_RAMP seconds: the few degrees between
+    a rough aim and a pot take a second of holding, not thirty taps, and stay slower than the
+    coarse keys' taps until the last half second.
     """
 
     TAP = 0.5
@@ -279,16 +282,21 @@ class AimControl:
     SPEED0 = 15.0
     SPEED_MAX = 120.0
     RAMP = 1.2
+    FINE_SPEED0 = 2.0
+    FINE_SPEED_MAX = 12.0
+    FINE_RAMP = 1.5
     HOLD_GAP = HoldRamp.HOLD_GAP
     DT_MAX = HoldRamp.DT_MAX
 
     def __init__(self, keymap: KeyMap | None = None) -> None:
         self.keymap = keymap if keymap is not None else KeyMap()
         self._ramp = HoldRamp(self.TAP, self.SPEED0, self.SPEED_MAX, self.RAMP)
+        self._fine = HoldRamp(self.FINE, self.FINE_SPEED0, self.FINE_SPEED_MAX, self.FINE_RAMP)
 
     def reset(self) -> None:
         """Forget the current hold (e.g. after a shot)."""
         self._ramp.reset()
+        self._fine.reset()
 
     def step(self, key: Key, t: float) -> float:
         """Degrees to turn the aim for this event (0 for non-aim keys and releases)."""
@@ -297,12 +305,12 @@ class AimControl:
             return 0.0
         if key.kind == "release":
             self._ramp.release(action)
+            self._fine.release(action)
             return 0.0
         sign, fine = _AIM[action]
-        if fine:  # never held: a fine key ends any hold and turns FINE
-            self._ramp.reset()
-            return sign * self.FINE
-        return sign * self._ramp.step(action, key.kind, t)
+        held, other = (self._fine, self._ramp) if fine else (self._ramp, self._fine)
+        other.reset()  # the other kind of key ends its hold
+        return sign * held.step(action, key.kind, t)
 
 
 # ----------------------------------------------------------------------------- power
@@ -324,8 +332,9 @@ class PowerCharge:
     the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
     GAP_MIN..GAP_MAX s) and placed one interval after the last repeat, so the power does not
     depend on when `poll` is called. A press with no repeat within INITIAL_DELAY_MAX s was a
-    tap (or the terminal does not repeat): that shot falls back to the classic meter (press
-    again to strike), and `label` says so.
+    tap (or the terminal does not repeat): that shot falls back to the classic meter, rising
+    from 0 at that moment (press again to strike), and `label` says so. Until then `waiting`
+    is true and the level 0.
 
     Set power (any mode): `preset(level)` (the digit keys) makes the next press strike at
     once at that level, until `preset(None)`.
@@ -394,20 +403,27 @@ class PowerCharge:
             return f"{k} strikes at {round(100 * self.preset_level)}%"
         if self._phase == "meter":
             if self.fallback:
-                return f"no key repeat seen: {k} again to strike"
+                return f"a tap: the meter runs, {k} again to strike"
             return f"{k} to strike"
         if self.mode == "classic":
             return f"{k} to start, {k} to strike"
+        if self.waiting:
+            return f"keep {k} down to charge, or let go for a meter"
         if self._phase == "charge":
             return f"release {k} to shoot"
         return f"hold {k}, release to shoot"
+
+    @property
+    def waiting(self) -> bool:
+        """Repeat mode: pressed, and no repeat yet to tell a hold from a tap (no power yet)."""
+        return (self.mode == "repeat" and self._phase == "charge" and self._repeats == 0
+                and not self._kinds)
 
     def level(self, t: float) -> float:
         """The meter's level in [0, 1] at time t (0 when idle)."""
         if self._phase == "idle":
             return 0.0
-        if (self.mode == "repeat" and self._phase == "charge" and self._repeats == 0
-                and not self._kinds):
+        if self.waiting:
             return 0.0  # the charge starts at the first repeat
         x = max(0.0, t - self._t0) / self.full_time
         if self._phase == "charge":
@@ -474,7 +490,10 @@ class PowerCharge:
             return None
         if self._repeats == 0:
             if t - self._t0 > self.INITIAL_DELAY_MAX:
+                # The meter starts from nothing when the tap is known, not from the press:
+                # it rises from 0% as a soft shot is wanted as often as a hard one.
                 self._phase, self.fallback = "meter", True
+                self._t0 += self.INITIAL_DELAY_MAX
             return None
         if t - self._last > self._release_gap():
             return self._fire(self._last + self._interval())

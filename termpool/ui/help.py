@@ -30,24 +30,38 @@ def keymap_rows(keymap) -> list[tuple[str, str]]:
     return rows
 
 
-def key_lines(rows: Sequence[tuple[str, str]], cols: int, height: int) -> list[str]:
-    """The keys as lines for a box on a screen `cols` wide: one column, or, when that is
-    taller than `height` and the screen is wide enough, two (each cut to half the box). On a
-    narrow screen what a key does is wrapped under itself (the pages then take the rest)."""
+def _wrapped(rows: Sequence[tuple[str, str]], width: int) -> list[list[str]]:
+    """Each (keys, what they do) as lines at most `width` wide: what a key does wrapped
+    under itself, never cut."""
     kw = max(len(k) for k, _ in rows)
-    lines = [f"{k:<{kw}}  {d}" for k, d in rows]
-    width = max(20, cols - BOX_EDGE)
-    half = (cols - 10) // 2
-    if len(lines) > height and half >= TWO_COLUMNS:
-        n = -(-len(lines) // 2)
-        left = [s if len(s) <= half else s[:half - 1] + "…" for s in lines[:n]]
-        right = lines[n:] + [""] * (2 * n - len(lines))
-        return [f"{a:<{half}}  {b}".rstrip() for a, b in zip(left, right, strict=True)]
     out = []
     for k, d in rows:
-        parts = textwrap.wrap(d, max(8, width - kw - 2)) or [""]
-        out += [f"{k if j == 0 else '':<{kw}}  {p}" for j, p in enumerate(parts)]
+        parts = textwrap.wrap(d, max(8, width - kw - 2), break_on_hyphens=False) or [""]
+        out.append([f"{k if j == 0 else '':<{kw}}  {p}".rstrip() for j, p in enumerate(parts)])
     return out
+
+
+def key_lines(rows: Sequence[tuple[str, str]], cols: int, height: int) -> list[str]:
+    """The keys as lines for a box on a screen `cols` wide: one column, or, when that is
+    taller than `height` and the screen is wide enough, two (split where they come out most
+    even). What a key does is wrapped under itself where it is too long (the pages then take
+    the rest), never cut."""
+    width = max(20, cols - BOX_EDGE)
+    one = [line for entry in _wrapped(rows, width) for line in entry]
+    half = (cols - 10) // 2
+    if len(one) <= height or half < TWO_COLUMNS:
+        return one
+    best = None
+    for n in range(1, len(rows)):
+        left = [line for e in _wrapped(rows[:n], half) for line in e]
+        right = [line for e in _wrapped(rows[n:], half) for line in e]
+        if best is None or max(len(left), len(right)) < max(len(best[0]), len(best[1])):
+            best = (left, right)
+    left, right = best
+    tall = max(len(left), len(right))
+    left += [""] * (tall - len(left))
+    right += [""] * (tall - len(right))
+    return [f"{a:<{half}}  {b}".rstrip() for a, b in zip(left, right, strict=True)]
 
 
 def rules_lines(mode: str, width: int, **how) -> list[str]:

@@ -28,6 +28,7 @@ from termpool.ui.palette import (
     DIM_TEXT_C,
     EIGHT,
     GUIDE_C,
+    OBJECT_C,
     PLACE_BAD_C,
     PLACE_OK_C,
     POWER_C,
@@ -86,7 +87,10 @@ def _ring(lay: Layout, w: int, h: int, centre, r_px: float, half: float = 0.5):
 
 def _paint(cv: Canvas, ix, iy, colour, over_balls: bool = False) -> None:
     if not over_balls:
-        free = ~_IS_BALL[cv.tag[iy, ix]]
+        # Nor the other half of a ball's cell: a cell shows two colours, and a ball a pixel
+        # or two across (80x24) that shares its cell with a line reads as half a line.
+        ball = _IS_BALL[cv.tag]
+        free = ~ball[iy, ix] & ~ball[np.minimum(iy ^ 1, cv.height - 1), ix]
         ix, iy = ix[free], iy[free]
     cv.rgb[iy, ix] = colour.rgb
     cv.tag[iy, ix] = AIM
@@ -127,11 +131,12 @@ def _polyline(lay: Layout, w: int, h: int, pts, skip0: float = 0.0, skip1: float
 
 def draw_prediction(canvas: Canvas, lay: Layout, pred: Prediction, radius: float = BALL_RADIUS,
                     level: str = "full") -> None:
-    """The aim aid from the engine's prediction (`ui.predict`): the cue ball's path (dotted)
-    to the ghost ball, where it first meets a ball (or a pocket, a cushion, its rest), and at
-    level "full" the first ball's path to its next contact or rest and, faint and dotted, the
-    cue ball's path from the hit to its next contact. A ring marks where each path ends,
-    unless it ends in a pocket. Level "ghost" draws the first path and its ring only."""
+    """The aim aid from the engine's prediction (`ui.predict`): the cue ball's path (dotted,
+    white) to the ghost ball, where it first meets a ball (or a pocket, a cushion, its rest),
+    and at level "full" the first ball's path (solid, pink) to its next contact or rest and,
+    faint and dotted, the cue ball's path from the hit to its next contact. A ring marks
+    where each path ends, unless it ends in a pocket. Level "ghost" draws the first path and
+    its ring only."""
     if level == "off":
         return
     w, h = canvas.width, canvas.height
@@ -139,7 +144,8 @@ def draw_prediction(canvas: Canvas, lay: Layout, pred: Prediction, radius: float
     legs = [(pred.cue, AIM_C, True)]
     if level == "full":
         legs += [(leg, colour, dotted) for leg, colour, dotted in
-                 ((pred.object, AIM_C, False), (pred.after, GUIDE_C, True)) if leg is not None]
+                 ((pred.object, OBJECT_C, False), (pred.after, GUIDE_C, True))
+                 if leg is not None]
     for k, (leg, colour, dotted) in enumerate(legs):
         ring = leg.end != "pocket"
         _paint(canvas, *_polyline(lay, w, h, leg.points, r_px, r_px if ring else 0.0,

@@ -54,7 +54,9 @@ STRIPE_WHITE_C = Colour((240, 238, 226), 255, 15)
 TEXT_C = Colour((210, 210, 210), 252, 7)
 DIM_TEXT_C = Colour((130, 130, 130), 244, 8)
 # Overlays (ui/overlay.py). The stick is yellow in 16 colours so it stands out on the rail.
-AIM_C = Colour((238, 238, 228), 255, 15)  # aim line, ghost ball, object ball's line
+AIM_C = Colour((238, 238, 228), 255, 15)  # the cue ball's path (dotted) and the ghost ball
+OBJECT_C = Colour((255, 135, 215), 212, 13)  # the first ball's path (solid): pink, unlike
+# the cue ball's white and every ball's colour (the purple 4 is magenta 5 in 16 colours)
 GUIDE_C = Colour((150, 200, 160), 115, 7)  # faint: the cue ball's tangent line
 STICK_C = Colour((224, 190, 132), 180, 11)  # maple shaft
 BUTT_C = Colour((84, 44, 22), 52, 1)
@@ -87,7 +89,7 @@ CLASSIC_YELLOW_C = Colour((245, 205, 30), 220, 11)
 ALL_COLOURS = (
     BACKDROP_C, FELT_C, CUSHION_C, RAIL_C, DIAMOND_C, POCKET_C, CUE_C, STRIPE_WHITE_C,
     TEXT_C, DIM_TEXT_C, *BALL_C.values(), CLASSIC_RED_C, CLASSIC_YELLOW_C,
-    AIM_C, GUIDE_C, STICK_C, BUTT_C, TIP_C, PLACE_OK_C, PLACE_BAD_C, POWER_C, SPIN_DOT_C,
+    AIM_C, OBJECT_C, GUIDE_C, STICK_C, BUTT_C, TIP_C, PLACE_OK_C, PLACE_BAD_C, POWER_C, SPIN_DOT_C,
     SPIN_LIMIT_C, CALL_C, NUMBER_DARK_C, NUMBER_LIGHT_C,
 )
 

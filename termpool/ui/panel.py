@@ -48,7 +48,11 @@ class PanelInfo:
     # is too narrow (see fit_hint)
     ids: Sequence[str] = ()
     widgets: list = field(default_factory=list)  # (cells, name) blocks: spin face, power meter
+    most_widgets: list = field(default_factory=list)  # the blocks the match ever shows at
+    # once (the players' line keeps clear of them all, so it does not move as they come and go)
     theme: str = "standard"
+    legend: list[int] = field(default_factory=list)  # balls to show with their numbers in
+    # a free row of a bottom panel (where the table is too small to number them)
 
 
 def _tone(t: str):
@@ -167,6 +171,16 @@ def _room(width: int, nrows: int, block) -> bool:
     return width - w - 1 >= TEXT_MIN_COLS and h <= nrows
 
 
+def _widgets_left(width: int, nrows: int, blocks) -> int:
+    """Columns of a bottom panel `width` wide left to text once these widgets take the
+    right end (those that fit)."""
+    right = width
+    for block, _where in blocks:
+        if _room(right, nrows, block):
+            right -= block[0].shape[1] + 1
+    return right
+
+
 def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
     # Widgets (spin face, power meter) take the right end; text gets the rest.
     right = c0 + width
@@ -179,7 +193,9 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     w = right - c0 - 1
     r = r0
     players = info.players[:2]
-    half = w // 2
+    # The players share the width left by the most widgets the match shows, whichever are
+    # up now: the second player's name stays put from ball in hand to aim to charge.
+    half = min(w, _widgets_left(width, nrows, info.most_widgets or info.widgets) - 1) // 2
     shared = [player_line(p, info, mono, half - 1, keep_score=nrows >= 5) for p in players]
     if len(players) > 1 and all(x is not None for x in shared):
         # Both players on one row when they fit whole (in short panels always: the status
@@ -197,6 +213,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     for s, tone in _cut(lines, r0 + nrows - 1 - r, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
+    if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
+        pieces = [("balls", DIM_TEXT_C.rgb, BACKDROP_C.rgb)]
+        for t in _ball_tokens(info.ids, info.legend, mono, info.theme):
+            pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
+        if sum(len(t) for t, _, _ in pieces) <= w:
+            _put_line(cells, r, c0, pieces)
     put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 

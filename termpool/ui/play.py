@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import signal
 import sys
@@ -60,8 +59,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
                    "'right*5 wait 0.2 space-hold 1.5'")
     p.add_argument("--record", metavar="FILE",
-                   help="write the match record (JSON, for `termpool replay`) to FILE at the "
-                        "end, however the game ends ('-' for stdout)")
+                   help="keep every match played (JSON, for `termpool replay`): the first in "
+                        "FILE, the next in FILE-2, FILE-3 ..., each written when it ends or "
+                        "is left and on every way out ('-': all to stdout at the end)")
     p.add_argument("--force", action="store_true",
                    help="let --record replace an existing file (without it, one is refused)")
 
@@ -126,51 +126,6 @@ def _check_record(args: argparse.Namespace) -> None:
             raise PlayError(f"--record: cannot write '{args.record}': {why}")
 
 
-def save_record(app, path: str | None, force: bool = False) -> int:
-    """Write the match (--record) after play, however it ended; a shot still rolling is played
-    out in simulation first. Says where the record went. Returns 0, or 1 when it could not go
-    to `path` (it then goes to a new file in the data directory, if it can)."""
-    from termpool.files import write_atomic, write_fallback, write_problem
-    from termpool.text import say
-    from termpool.ui.term import signals_held
-
-    if not path:
-        return 0
-    with signals_held():
-        match = app.record()
-        for note in app.notes:
-            say(note)
-        app.notes.clear()
-        if match is None:
-            say("no match was played, so there is no record to save")
-            return 0
-        text = json.dumps(match.to_json(), indent=1) + "\n"
-        n = len(match.history)
-        what = f"{n} {'shot' if n == 1 else 'shots'}"
-        if path == "-":
-            sys.stdout.write(text)
-            sys.stdout.flush()
-            return 0
-        existed = os.path.exists(path)
-        why = write_problem(path, force=force)
-        if why is None:
-            try:
-                write_atomic(path, text)
-                replaced = "; it replaced the file that was there" if existed else ""
-                say(f"record saved to {path} ({what}{replaced})")
-                return 0
-            except OSError as e:
-                why = e.strerror or str(e)
-        try:
-            spare = write_fallback(text, "record")
-        except OSError as e:
-            say(f"cannot write the record to '{path}' ({why}) nor to the data directory "
-                f"({e.strerror or e}): it is lost")
-            return 1
-        say(f"cannot write the record to '{path}' ({why}); it was saved to {spare} ({what})")
-        return 1
-
-
 @contextmanager
 def _stoppable():
     """SIGTERM, SIGHUP and SIGQUIT end a headless run the way Ctrl-C does (an exception), so
@@ -209,9 +164,11 @@ def run(args: argparse.Namespace) -> int:
             return 2
         app, play = _terminal(args, opts, _keymap(args.keymap))
     from termpool.game.history import Recorder
+    from termpool.ui.records import Records
 
     app.prefs = store
     app.history = Recorder()
+    app.records = Records(args.record, args.force)
     try:
         rc = play()
     except BaseException:
@@ -222,19 +179,21 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _leave(app, args: argparse.Namespace) -> int:
-    """However the game ended: the match in play goes into the history, the record is
-    saved (--record), and what is left to say is said. Returns save_record's status."""
+    """However the game ended: the match in play is saved (--record) and goes into the
+    history, and what is left to say is said: where each match of the session went. Returns
+    0, or 1 when a record could not go where asked."""
     from termpool.text import say
     from termpool.ui.term import signals_held
 
     with signals_held():
         app.record()  # a shot still rolling is played out first
         app.log_match()
-    saved = save_record(app, args.record, args.force)
-    for note in app.notes:
-        say(note)
+        lines, status = app.records.finish(app.match) if app.records is not None \
+            else ([], 0)
+    for line in [*app.notes, *lines]:
+        say(line)
     app.notes.clear()
-    return saved
+    return status
 
 
 def _terminal(args: argparse.Namespace, opts, keymap):

@@ -18,6 +18,8 @@ GROUPS = (("The game", ("level", "table", "frames", "theme", "colors")),
           ("Names", ("player1", "player2")))
 USUAL_NAME = {"player1": "You / Player 1", "player2": "Player 2"}
 
+BOX_TEXT_COLS = 70  # the Settings box's text width (less on a narrow screen)
+
 
 def current(app, key: str) -> Any:
     """A setting's value as the screen shows it: a change waiting for the next game, else
@@ -141,7 +143,9 @@ class SettingsScreen:
         return text
 
     def lines(self, app, cols: int, rows: int) -> list[str]:
-        width = max(20, cols - 6)
+        # One width for every row chosen: the box must not change size as the selection
+        # (and the help under it) moves.
+        width = min(BOX_TEXT_COLS, max(20, cols - 6))
         later = app.match is not None
         body: list[str] = []
         headed: list[str] = []
@@ -179,7 +183,8 @@ class SettingsScreen:
             else []
         rows_left = rows - 2 - len(tail) - len(head)
         middle = headed if len(headed) <= rows_left else body
-        return [*head, *middle, *tail]
+        out = [*head, *middle, *tail]
+        return [out[0].ljust(width), *out[1:]]
 
 
 class StatsScreen:
