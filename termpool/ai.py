@@ -51,6 +51,9 @@ class Plan(NamedTuple):
     called: tuple[str, str] | None  # (ball, pocket name) when the rules need a call (the 8)
     score: float
     note: str  # why, in words ("3 in the foot_left pocket")
+    kind: str = ""  # "break", "pot", "combo", "safety", "kick" ("": none of them)
+    ball: str | None = None  # pots and combinations: the ball meant to drop ...
+    pocket: str | None = None  # ... and the pocket it is sent to
 
 
 class Level(NamedTuple):
@@ -58,19 +61,21 @@ class Level(NamedTuple):
     speeds: tuple[float, ...]  # multiples of the slowest speed that reaches the pocket
     spins: tuple[tuple[float, float], ...]  # (side, top) tip offsets
     sigma: float  # notional aim error (degrees) that weighs how risky a pot is
-    noise: bool  # add that aim error (and a speed error) to the chosen plan
     spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
     combos: int  # candidates kept for combinations (two speeds each)
     verify: int  # best candidates re-simulated under aim error before choosing
+    aim_sd: float  # the shot as struck: sd of the aim (degrees) ...
+    speed_sd: float  # ... of the speed (relative) ...
+    spot_sd: float  # ... and of where the cue ball in hand is put (m)
 
 
 LEVELS = {
-    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1, 0, 6),
-    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2,
-                    16, 8),
+    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, 1, 0, 6, 1.0, 0.05, 0.03),
+    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, 2,
+                    16, 8, 0.25, 0.02, 0.0),
     "hard": Level(2.0, (1.0, 1.5, 2.2, 3.2),
                   ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)),
-                  0.2, False, 3, 32, 12),
+                  0.2, 3, 32, 12, 0.0, 0.0, 0.0),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
 MISS = -60.0  # value of a pot that misses in play: the opponent usually gets a shot
@@ -84,8 +89,7 @@ KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's
 BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
 BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
 MIN_CANDIDATES = 8
-EASY_SPEED_ERROR = 0.05  # relative sd of the easy level's speed
-EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
+OPTION_ANSWERS = {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}
 
 
 # ------------------------------------------------------------------------------ inputs
@@ -540,8 +544,12 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
 
 def _plan(ev: _Eval, b: int, score: float) -> Plan:
     c = ev.cands
+    ball = pocket = None
+    if c.kind[b] in ("pot", "combo"):
+        ball = ev.t.ids[c.via[b] if c.via[b] >= 0 else c.target[b]]
+        pocket = ev.pockets.names[c.pocket[b]]
     return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
-                ev.calls[b], float(score), ev.notes[b])
+                ev.calls[b], float(score), ev.notes[b], c.kind[b], ball, pocket)
 
 
 def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
@@ -583,8 +591,8 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
 
     `ids`, `pos` (N, 2), `radius`, `mass` (numbers or one per ball) describe the balls;
     `on_table` (N booleans) says which are on the table. The best few candidates of the
-    batch are checked under the level's aim error and the best of them is played; "easy"
-    plays it with a seeded aim and speed error. Deterministic for a given seed.
+    batch are checked under the level's aim error and the best of them is returned, as meant
+    (`as_struck` adds the level's errors in striking it). Deterministic.
     """
     _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
@@ -596,16 +604,30 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
         score = float(ev.scores[best])
     else:
         best, score = _verify(ev, state, table, physics)
-    plan = _plan(ev, best, score)
-    if ev.lv.noise:
-        plan = with_error(plan, ev.lv.sigma, EASY_SPEED_ERROR, seed)
-    return plan
+    return _plan(ev, best, score)
+
+
+def as_struck(plan: Plan, level: str, seed: int = 0) -> Plan:
+    """The plan as the level strikes it: its aim and speed errors drawn (seeded) and added.
+    The physics is deterministic, so a plan that pots in the batch pots in play: these errors
+    are what makes a level miss."""
+    if level not in LEVELS:
+        raise ValueError(f"level: must be one of {', '.join(LEVELS)}, not {level!r}")
+    lv = LEVELS[level]
+    return with_error(plan, lv.aim_sd, lv.speed_sd, seed)
+
+
+def choose_option(option: str) -> str:
+    """The computer's answer to an option: it accepts the table after an illegal 8-ball break
+    and shoots after a push-out."""
+    if option not in OPTION_ANSWERS:
+        raise ValueError(f"option: must be one of {', '.join(OPTION_ANSWERS)}, not {option!r}")
+    return OPTION_ANSWERS[option]
 
 
 def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0) -> Plan:
     """The plan as a player with these errors (degrees of aim, relative speed; seeded) would
-    play it. The physics is deterministic, so a plan that pots in the batch pots in play: the
-    game gives its "normal" opponent a small error so that it can miss."""
+    play it."""
     if aim_sd <= 0 and speed_sd <= 0:
         return plan
     rng = np.random.default_rng(seed)
@@ -710,9 +732,9 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
         value = value - 1e-3 * near / table.length
     best = int(np.argmax(value))
     spot = xy[best]
-    if lv.noise:
+    if lv.spot_sd > 0:
         rng = np.random.default_rng(seed)
-        moved = spot + rng.normal(0.0, EASY_SPOT_ERROR, 2)
+        moved = spot + rng.normal(0.0, lv.spot_sd, 2)
         if _spot_ok(moved[None], t, table, area)[0]:
             spot = moved
     return float(spot[0]), float(spot[1])

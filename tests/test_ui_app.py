@@ -836,7 +836,7 @@ def cpu_to_shoot(monkeypatch, note="3 in the foot_left pocket"):
 
     plan = ai.Plan(1.5, 20.0, 0.0, 0.2, None, 1.0, note)
     monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
-    monkeypatch.setattr(ai, "with_error", lambda p, *a, **k: p)
+    monkeypatch.setattr(ai, "as_struck", lambda p, *a, **k: p)
     app = app_for(mode="8ball", opponent="cpu")
     app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
                                                         is_break=False)
