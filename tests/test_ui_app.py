@@ -751,6 +751,11 @@ def test_referee_words_take_the_theme_s_group_names():
     assert app.names("not one of the solids") == "not one of the reds"
 
 
+def test_the_record_keeps_the_computer_s_level():
+    assert app_for(mode="9ball", opponent="cpu", level="hard").match.levels == (None, "hard")
+    assert app_for(mode="9ball", opponent="human", level="hard").match.levels == (None, None)
+
+
 def test_the_eight_on_the_break_variant_reaches_the_match():
     assert app_for(mode="8ball", eight_break="rerack").match.eight_break == "rerack"
     assert app_for(mode="8ball").match.eight_break == "respot"

@@ -140,7 +140,8 @@ class App:
         self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
                            seed=seed, theme=self.opts.theme,
                            three_foul=self.opts.three_foul and mode == "9ball",
-                           eight_break=self.opts.eight_break)
+                           eight_break=self.opts.eight_break,
+                           levels=tuple(self.opts.level if c else None for c in self.cpu))
         self._geom = None
         self.run = None
         self.message = []
