@@ -671,21 +671,12 @@ def _cue_in_hand(ids, pos, on_table, table: Table):
     return pos, on_table
 
 
-def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
-                     on_table, state: State, area: str, *, level: str = "normal",
-                     seed: int = 0) -> tuple[float, float]:
-    """Where to put the cue ball in hand: `area` "anywhere" or "kitchen" (behind the head
-    string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
-    distances, and a coarse grid as a fallback, are scored by the shots they leave.
-
-    The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
-    scratch it is still in a pocket); it must be in `ids`.
-    """
-    if area not in AREAS:
-        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
-    pos, on_table = _cue_in_hand(ids, pos, on_table, table)
-    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
-    lv = LEVELS[level]
+def _spot_chances(t: _Table, table: Table, state: State, area: str, distances: int,
+                  sigma: float) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """Legal spots for the cue ball in hand (M, 2) and the pot chances (M, N, P) each leaves:
+    spots behind the ghost ball of each pot at a few cut angles and `distances` distances,
+    then a coarse grid of the area; on a break the head string comes first. Also returns the
+    legal targets."""
     r = float(t.radius[t.cue])
     pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
@@ -693,7 +684,7 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     if state.is_break:  # the head spot, else the nearest free point of the head string
         hx, hy = table.head_spot
         spots += [np.array([hx, hy + s * k * 0.02]) for k in range(25) for s in (1, -1)]
-    dists = (0.3, 0.15, 0.5)[: lv.spots]
+    dists = (0.3, 0.15, 0.5)[:distances]
     for b in targets:
         i = t.ids.index(b)
         for k in range(len(pockets.names)):
@@ -716,14 +707,33 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     xy = xy[_spot_ok(xy, t, table, area)]
     if len(xy) == 0:
         raise ValueError(f"area: no free spot for the cue ball in the {area}")
-    if state.is_break:
-        return float(xy[0, 0]), float(xy[0, 1])
     M, n = len(xy), len(t.ids)
     balls = np.broadcast_to(t.pos, (M, n, 2)).copy()
     balls[:, t.cue] = xy
     tmask = np.broadcast_to(np.array([b in targets for b in t.ids]), (M, n))
     chance, _ = geo.pot_chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue,
-                                pockets, table, lv.sigma)
+                                pockets, table, sigma)
+    return xy, chance, targets
+
+
+def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                     on_table, state: State, area: str, *, level: str = "normal",
+                     seed: int = 0) -> tuple[float, float]:
+    """Where to put the cue ball in hand: `area` "anywhere" or "kitchen" (behind the head
+    string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
+    distances, and a coarse grid as a fallback, are scored by the shots they leave.
+
+    The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
+    scratch it is still in a pocket); it must be in `ids`.
+    """
+    if area not in AREAS:
+        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    pos, on_table = _cue_in_hand(ids, pos, on_table, table)
+    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
+    lv = LEVELS[level]
+    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, lv.sigma)
+    if state.is_break:
+        return float(xy[0, 0]), float(xy[0, 1])
     value = geo.leave_value(chance)
     # Between spots of equal value (say, no pot anywhere), the one nearest a legal ball.
     legal = [k for k, b in enumerate(t.ids) if b in targets]
@@ -738,3 +748,25 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
         if _spot_ok(moved[None], t, table, area)[0]:
             spot = moved
     return float(spot[0]), float(spot[1])
+
+
+def best_chance(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                on_table, state: State, *, area: str | None = None,
+                sigma: float = 0.5) -> float:
+    """The best chance (0..1) of a straight pot for `state.shooter` under an aim error of
+    `sigma` degrees: from where the cue ball lies, or with `area` ("anywhere", "kitchen") from
+    the best spot for the cue ball in hand there. It measures what a shot leaves."""
+    if area is not None and area not in AREAS:
+        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    if area is not None:
+        pos, on_table = _cue_in_hand(ids, pos, on_table, table)
+    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, "normal", 0)
+    if area is not None:
+        _, chance, _ = _spot_chances(t, table, state, area, 3, sigma)
+        return float(chance.max(initial=0.0))
+    pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
+    targets = legal_targets(state, t.ids)
+    tmask = np.array([[b in targets for b in t.ids]])
+    chance, _ = geo.pot_chances(t.pos[t.cue][None], t.pos[None], np.ones((1, len(t.ids)), bool),
+                                tmask, t.radius, t.cue, pockets, table, sigma)
+    return float(chance.max(initial=0.0))
