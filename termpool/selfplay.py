@@ -4,9 +4,10 @@ Plays N games between two levels (`termpool.game.selfplay.play_game`), the break
 (the first level breaks the even games), in parallel processes with --jobs, and prints the
 figures (`termpool.game.selfplay.figures`) as a table or JSON. Every game's seed comes from
 the run's seed and the game's number, so the figures are the same for a seed whatever the
-number of processes (the wall times aside). A progress bar goes to stderr; Ctrl-C stops the
-run and prints the figures of the games finished so far (exit status 130); --record-dir
-keeps every game, the unfinished ones too, as a replay file.
+number of processes (the wall times aside). A progress bar goes to stderr; Ctrl-C (or SIGTERM,
+SIGHUP, SIGQUIT) stops the run and prints the figures of the games finished so far (exit
+status 128 + the signal); --record-dir keeps every game, the unfinished ones too, as a replay
+file.
 """
 
 from __future__ import annotations
@@ -152,24 +153,31 @@ class Progress:
 # ------------------------------------------------------------------------------- playing
 
 
-def _serial(st: dict, games: int, progress: Progress) -> tuple[dict, bool]:
+def _serial(st: dict, games: int, progress: Progress) -> tuple[dict, int | None]:
+    from termpool.ui.term import Stop
+
     done: dict[int, dict] = {}
     try:
         for k in range(games):
             done[k] = play_index(st, k)
             progress.show(len(done))
     except KeyboardInterrupt:
-        return done, True
-    return done, False
+        return done, signal.SIGINT
+    except Stop as e:
+        return done, e.signum
+    return done, None
 
 
 def _worker(st: dict, tasks, results) -> None:
     """A process of --jobs: plays the games it takes from `tasks` until a None. Ctrl-C is
     the parent's to handle; SIGTERM (the parent stopping the run) ends the game at the next
     shot, its record saved."""
+    from termpool.ui.term import STOP_SIGNALS
+
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     stopping = []
-    signal.signal(signal.SIGTERM, lambda *_: stopping.append(True))
+    for sig in STOP_SIGNALS:
+        signal.signal(sig, lambda *_: stopping.append(True))
     while not stopping:
         index = tasks.get()
         if index is None:
@@ -185,8 +193,10 @@ class _Failed(Exception):
     pass
 
 
-def _parallel(st: dict, games: int, jobs: int, progress: Progress) -> tuple[dict, bool]:
+def _parallel(st: dict, games: int, jobs: int, progress: Progress) -> tuple[dict, int | None]:
     import multiprocessing as mp
+
+    from termpool.ui.term import STOP_SIGNALS, Stop
 
     ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
     tasks, results = ctx.Queue(), ctx.Queue()
@@ -209,7 +219,7 @@ def _parallel(st: dict, games: int, jobs: int, progress: Progress) -> tuple[dict
             done[index] = payload
             progress.show(len(done))
 
-    interrupted = False
+    stopped = None
     try:
         while len(done) < games:
             try:
@@ -218,9 +228,12 @@ def _parallel(st: dict, games: int, jobs: int, progress: Progress) -> tuple[dict
                 if not any(p.is_alive() for p in procs):
                     raise _Failed("the game processes ended before the games") from None
     except KeyboardInterrupt:
-        interrupted = True
+        stopped = signal.SIGINT
+    except Stop as e:
+        stopped = e.signum
     finally:
-        old = signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C: still drain
+        # A second Ctrl-C or signal: the games still stop and their records are saved.
+        old = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, *STOP_SIGNALS)}
         try:
             for p in procs:
                 if p.is_alive():
@@ -245,8 +258,9 @@ def _parallel(st: dict, games: int, jobs: int, progress: Progress) -> tuple[dict
                 if msg[0] == "game" and msg[2]["finished"]:
                     done[msg[1]] = msg[2]
         finally:
-            signal.signal(signal.SIGINT, old)
-    return done, interrupted
+            for sig, handler in old.items():
+                signal.signal(sig, handler)
+    return done, stopped
 
 
 # -------------------------------------------------------------------------------- output
@@ -298,7 +312,7 @@ def table_text(r: dict) -> str:
     ]
     first = max(len(name) for name, _ in rows)
     width = max(10, *(len(n) for n in names))
-    stopped = " (stopped by Ctrl-C: the games finished so far)" if r["interrupted"] else ""
+    stopped = " (stopped: the games finished so far)" if r["interrupted"] else ""
     lines = [f"selfplay: {r['games']} games of {r['mode']} on a {r['table']} table, "
              f"{' vs '.join(r['levels'])}, seed {r['seed']}, {r['candidates']} candidates"
              f"{stopped}",
@@ -320,11 +334,17 @@ def run(args: argparse.Namespace) -> int:
     jobs = max(1, min(args.jobs or cores, args.games))
     progress = Progress(args.games)
     t0 = time.perf_counter()
+    from termpool.ui.term import STOP_SIGNALS, Stop
+
+    def stop(signum, frame):
+        raise Stop(signum)
+
+    old = {s: signal.signal(s, stop) for s in STOP_SIGNALS}  # SIGTERM ends it as Ctrl-C does
     try:
         if jobs == 1:
-            done, interrupted = _serial(st, args.games, progress)
+            done, stopped = _serial(st, args.games, progress)
         else:
-            done, interrupted = _parallel(st, args.games, jobs, progress)
+            done, stopped = _parallel(st, args.games, jobs, progress)
     except _Failed as e:
         progress.close()
         from termpool.text import say
@@ -333,8 +353,11 @@ def run(args: argparse.Namespace) -> int:
         sys.stderr.write(rest)
         say(f"selfplay: {first}")
         return 1
+    finally:
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
     progress.close()
-    r = report(st, done, interrupted, time.perf_counter() - t0, jobs)
+    r = report(st, done, stopped is not None, time.perf_counter() - t0, jobs)
     sys.stdout.write(json.dumps(r, indent=1) + "\n" if args.json else table_text(r))
     sys.stdout.flush()
-    return 130 if interrupted else 0
+    return 0 if stopped is None else 128 + stopped

@@ -132,8 +132,9 @@ def test_bad_arguments_get_one_line_and_status_2(args, words, capsys):
     assert err.count("\n") == 1 and err.startswith("termpool: ") and words in err, err
 
 
-@pytest.mark.parametrize("jobs", ["1", "2"])
-def test_ctrl_c_prints_the_figures_so_far(jobs, tmp_path):
+@pytest.mark.parametrize("sig, jobs", [(signal.SIGINT, "1"), (signal.SIGINT, "2"),
+                                       (signal.SIGTERM, "2")])
+def test_ctrl_c_prints_the_figures_so_far(sig, jobs, tmp_path):
     p = subprocess.Popen([sys.executable, "-m", "termpool", "selfplay", *TINY, "--games",
                           "200", "--levels", "easy,normal", "--json", "--jobs", jobs,
                           "--record-dir", str(tmp_path)],
@@ -145,9 +146,9 @@ def test_ctrl_c_prints_the_figures_so_far(jobs, tmp_path):
         line = p.stderr.readline()
         assert line, "selfplay ended before a game was finished"
         err += line
-    p.send_signal(signal.SIGINT)
+    p.send_signal(sig)
     out, rest = p.communicate(timeout=300)
-    assert p.returncode == 130, rest
+    assert p.returncode == 128 + sig, rest
     r = json.loads(out)
     assert r["interrupted"] is True
     assert 1 <= r["games"] < 200
@@ -155,6 +156,8 @@ def test_ctrl_c_prints_the_figures_so_far(jobs, tmp_path):
     # Every game begun has its record, the unfinished ones too; the finished ones are counted.
     records = [json.loads(f.read_text()) for f in sorted(tmp_path.iterdir())]
     assert len(records) >= r["games"]
+    time.sleep(3)  # no game process goes on alone: no new game file
+    assert len(list(tmp_path.iterdir())) == len(records)
     for data in records:
         assert all(s["ok"] for s in replay(data))
 
