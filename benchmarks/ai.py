@@ -35,7 +35,7 @@ from termpool.rules.events import summarize  # noqa: E402
 from termpool.rules.referee import judge  # noqa: E402
 from termpool.scene import load_scene  # noqa: E402
 
-LEVELS = ("easy", "normal", "hard")
+LEVELS = tuple(ai.LEVELS)
 
 
 def _rack(mode: str):

@@ -32,7 +32,7 @@ from typing import NamedTuple
 import numpy as np
 
 from termpool import ai_geometry as geo
-from termpool.physics.cue import strike
+from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
@@ -57,36 +57,57 @@ class Plan(NamedTuple):
 
 
 class Level(NamedTuple):
+    """Everything that makes a level, in one place (docs/ai.md has the figures they give)."""
+
+    # What it tries.
     share: float  # fraction of max_candidates used
-    speeds: tuple[float, ...]  # multiples of the slowest speed that reaches the pocket
-    spins: tuple[tuple[float, float], ...]  # (side, top) tip offsets
-    sigma: float  # notional aim error (degrees) that weighs how risky a pot is
-    spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+    speeds: tuple[float, ...]  # pot speeds: multiples of the slowest that reaches the pocket
+    spins: tuple[tuple[float, float], ...]  # (side, top) tip offsets of pots
     combos: int  # candidates kept for combinations (two speeds each)
-    verify: int  # best candidates re-simulated under aim error before choosing
-    aim_sd: float  # the shot as struck: sd of the aim (degrees) ...
-    speed_sd: float  # ... of the speed (relative) ...
-    spot_sd: float  # ... and of where the cue ball in hand is put (m)
+    verify: int  # best candidates simulated again under its errors before choosing
+    spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+    break_spot: float  # where it breaks from: across the head string, a fraction of the
+    # width (0.5: the head spot; nearer a side rail, the cut break that pots more)
+    # How it weighs a shot.
+    position: float  # weight of its next shot's chance from where the cue ball stops after a
+    # pot (0: it plans no position, only the pot)
+    leave: float  # weight of the opponent's best chance when the turn passes, a miss
+    # included (0: it never plays safe while a pot is possible)
+    # How it strikes: the sd of each error, drawn from a normal distribution per shot.
+    aim_sd: float  # degrees of aim (also the error it weighs a pot's risk with)
+    speed_sd: float  # relative speed
+    tip_sd: float  # tip position, in ball radii, across and along
+    spot_sd: float  # m, where it puts the cue ball in hand
 
 
+STUN, FOLLOW, DRAW = (0.0, 0.0), (0.0, 0.3), (0.0, -0.3)
 LEVELS = {
-    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, 1, 0, 6, 1.0, 0.05, 0.03),
-    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, 2,
-                    16, 8, 0.25, 0.02, 0.0),
-    "hard": Level(2.0, (1.0, 1.5, 2.2, 3.2),
-                  ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)),
-                  0.2, 3, 32, 12, 0.0, 0.0, 0.0),
+    # A beginner: the pot in front of it, hit firmly; no position, no safeties.
+    "easy": Level(0.25, (1.3, 2.4), (STUN, FOLLOW), 0, 4, 1, 0.5,
+                  0.0, 0.0, 0.9, 0.10, 0.10, 0.03),
+    # A club player: a sound choice of pot, some thought of what a miss leaves.
+    "normal": Level(0.6, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 6, 2, 0.5,
+                    0.0, 30.0, 0.3, 0.06, 0.06, 0.01),
+    # A strong amateur: plays position for the next ball and safe when the pot is poor.
+    "hard": Level(1.0, (1.0, 1.5, 2.2, 3.2),
+                  (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)), 16, 8, 3, 0.16,
+                  100.0, 200.0, 0.2, 0.04, 0.04, 0.0),
+    # A professional: more speeds and spins to choose from, and a steadier stroke.
+    "pro": Level(1.5, (1.0, 1.4, 1.9, 2.6, 3.4),
+                 (STUN, (0.0, 0.35), (0.0, -0.4), (0.3, 0.1), (-0.3, 0.1), (0.25, -0.3),
+                  (-0.25, -0.3)), 24, 12, 3, 0.16,
+                 150.0, 300.0, 0.1, 0.025, 0.02, 0.0),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
-MISS = -60.0  # value of a pot that misses in play: the opponent usually gets a shot
+MISS_LEAVE = 0.7  # what a missed pot usually leaves the opponent, as a leave value (0..1)
+OPPONENT_SIGMA = 0.5  # degrees: the aim error the table left to the opponent is valued with
+# (a club player's, whatever the level: the chances it leaves, not its own)
 FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
-POSITION = 100.0  # weight of the next shot's chance after a pot
-LEAVE = 60.0  # weight of the opponent's best chance after the turn passes
 SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
 SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
-BREAK_SPEEDS = (8.0, 8.5, 9.0)
+BREAK_SPEEDS = (7.0, 8.0, 9.0)
+BREAK_SAMPLES = 4  # each break is judged over this many strikes with the level's errors
 KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's aim
-BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
 BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
 MIN_CANDIDATES = 8
 OPTION_ANSWERS = {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}
@@ -194,8 +215,12 @@ class _Cands:
         return len(self.speed)
 
 
-def _break_cands(t: _Table, targets: list[str]) -> _Cands:
-    """Hard shots at the rack's apex: the legal ball nearest the cue ball."""
+def _break_cands(t: _Table, targets: list[str], lv: Level) -> _Cands:
+    """Hard shots at the rack's apex (the legal ball nearest the cue ball), at each of
+    BREAK_SPEEDS and BREAK_SPINS, each struck BREAK_SAMPLES times with the level's errors (the
+    same draws every time: a player's break is theirs). A break scatters the rack chaotically,
+    so it is judged by its average over the samples, not by one exact outcome; the samples
+    of a break are consecutive."""
     cands = _Cands()
     p = t.pos
     choice = [t.ids.index(b) for b in targets] or [k for k in range(len(t.ids)) if k != t.cue]
@@ -203,10 +228,13 @@ def _break_cands(t: _Table, targets: list[str]) -> _Cands:
         return cands
     apex = min(choice, key=lambda k: float(np.linalg.norm(p[k] - p[t.cue])))
     base = geo.deg(p[apex] - p[t.cue])
+    rng = np.random.default_rng(0)
     for speed in BREAK_SPEEDS:
-        for aim in BREAK_AIMS:
-            for side, top in BREAK_SPINS:
-                cands.add(speed, base + aim, side, top, apex, -1, "break", 1.0)
+        for side, top in BREAK_SPINS:
+            for e_aim, e_speed, e_side, e_top in rng.normal(0.0, 1.0, (BREAK_SAMPLES, 4)):
+                tip = clamp_tip(side + lv.tip_sd * e_side, top + lv.tip_sd * e_top)
+                cands.add(speed * (1 + lv.speed_sd * e_speed), base + lv.aim_sd * e_aim, *tip,
+                          apex, -1, "break", 1.0)
     return cands
 
 
@@ -216,7 +244,7 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     alive = np.ones((1, n), bool)
     tmask = np.array([[b in targets for b in t.ids]])
     chance, u = geo.pot_chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius,
-                                t.cue, pockets, table, lv.sigma)
+                                t.cue, pockets, table, lv.aim_sd)
     chance, u = chance[0], u[0]
     # Pairs by chance; a blocked pair (chance 0) is left to the safeties.
     order = [(float(chance[i, k]), i, k) for i, k in zip(*np.nonzero(chance > 1e-4), strict=True)]
@@ -276,8 +304,8 @@ def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int
                     continue
                 tol = max(float(pockets.half[k]) * float(np.dot(uj, pockets.out[k])) - 0.6 * rc,
                           0.004)
-                p2 = geo.pot_chance(tol, d2, d3, cos2, ri + rj, lv.sigma)  # the second ball's cut
-                p1 = geo.pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.sigma)
+                p2 = geo.pot_chance(tol, d2, d3, cos2, ri + rj, lv.aim_sd)  # the second ball's cut
+                p1 = geo.pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.aim_sd)
                 speed = geo.pot_speed(d1, d2 + d3, cos1 * cos2, physics)
                 rows.append((p1 * p2, i, j, k, speed, geo.deg(c), spot))
     rows.sort(key=lambda r: (-r[0], r[1], r[2], r[3]))
@@ -291,11 +319,12 @@ def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int
 
 def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
                   budget: int) -> _Cands:
-    """Fallbacks at each legal ball, most useful first: soft full and half-ball hits, one-rail
-    kicks (two guesses of the rebound: the cushion's restitution, and halfway to a mirror), a
-    harder one-rail kick, two-rail kicks, then fans of one- and two-rail kicks aimed up to a
-    few degrees to either side (the rebound of a spinning ball is only roughly known: the
-    batch finds the one that hits)."""
+    """Safeties and kicks at each legal ball, most useful first: soft full and half-ball hits,
+    one-rail kicks (two guesses of the rebound: the cushion's restitution, and halfway to a
+    mirror), a harder one-rail kick, two-rail kicks, more hits (thin cuts, firmer half-ball
+    hits, a firm full hit: the batch finds the one that leaves least), then fans of one- and
+    two-rail kicks aimed up to a few degrees to either side (the rebound of a spinning ball is
+    only roughly known: the batch finds the one that hits)."""
     cands = _Cands()
     pc = t.pos[t.cue]
     rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
@@ -305,15 +334,19 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
         i = t.ids.index(b)
         d = t.pos[i] - pc
         base = geo.deg(d)
-        half = math.degrees(math.asin(min(
-            (t.radius[i] + t.radius[t.cue]) / 2 / max(float(np.linalg.norm(d)), 1e-9), 1.0)))
+        reach = (t.radius[i] + t.radius[t.cue]) / max(float(np.linalg.norm(d)), 1e-9)
+        half = math.degrees(math.asin(min(reach / 2, 1.0)))
+        thin = math.degrees(math.asin(min(0.85 * reach, 1.0)))
         rows = [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
                 (1.3, base - half, "safety")]
+        more = [(1.0, base + thin), (1.0, base - thin), (2.4, base + half), (2.4, base - half),
+                (1.8, base + thin), (1.8, base - thin), (2.8, base)]
         one = geo.kick_aims(pc, t.pos[i], table, rc, e)
         two = geo.kick_aims(pc, t.pos[i], table, rc, mid, 2)
         rows += [(2.2, a, "kick") for a in one + geo.kick_aims(pc, t.pos[i], table, rc, mid)]
         rows += [(3.5, a, "kick") for a in one]
         rows += [(3.0, a, "kick") for a in two]
+        rows += [(speed, angle, "safety") for speed, angle in more]
         rows += [(2.5, a + s * f, "kick") for f in KICK_FAN for s in (1, -1) for a in one]
         rows += [(3.0, a + s * 1.5, "kick") for s in (1, -1) for a in two]
         per_ball.append([(speed, angle, i, kind) for speed, angle, kind in rows])
@@ -437,6 +470,8 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
     notes: list = []
     leave_for: list[tuple[int, float, State]] = []  # (table, pot chance or -1, next state)
     practice = state.mode == "practice"
+    # A pot that misses in play: the opponent gets the table (in practice, nobody does).
+    miss = 0.0 if practice else -lv.leave * MISS_LEAVE
     for b in range(B):
         summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
         called = _call(state, targets, t, cands, b, summary, pockets)
@@ -452,13 +487,13 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
         p = 1.0 if cands.kind[b] == "break" or sampled else cands.chance[b] if intended \
             else FLUKE
         if out.winner is not None:
-            scores[b] = p * WIN + (1 - p) * MISS if out.winner == state.shooter else LOSS
+            scores[b] = p * WIN + (1 - p) * miss if out.winner == state.shooter else LOSS
             notes.append(out.reason)
         elif out.foul is not None or (practice and out.ball_in_hand):
             scores[b] = FOUL
             notes.append(f"foul: {out.reason}" if out.foul else out.reason)
         elif out.continue_turn and potted:
-            scores[b] = p * CONTINUE + (1 - p) * MISS
+            scores[b] = p * CONTINUE + (1 - p) * miss
             leave_for.append((b, p, nxt))
             if intended and cands.kind[b] == "combo":
                 notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {aimed} "
@@ -485,15 +520,21 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
             nxt_t = legal_targets(nxt, present) if "cue" in present else []
             tmask[r] = [bid in nxt_t for bid in t.ids]
         cue_alive = alive[rows, t.cue]
-        chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask,
-                                    t.radius, t.cue, pockets, table, lv.sigma)
-        value = geo.leave_value(chance)
+        value = np.zeros(len(rows))
+        mine = np.array([p >= 0 for _, p, _ in leave_for])
+        # Its own next shot under its own aim error; the opponent's under OPPONENT_SIGMA.
+        for sel, sigma in ((mine, lv.aim_sd), (~mine, OPPONENT_SIGMA)):
+            if sel.any():
+                rs = np.array(rows)[sel]
+                chance, _ = geo.pot_chances(final[rs, t.cue], final[rs], alive[rs], tmask[sel],
+                                            t.radius, t.cue, pockets, table, sigma)
+                value[sel] = geo.leave_value(chance)
         for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
             # After a pot (p >= 0): the shooter's next shot, as likely as the pot itself.
             # After the turn passes (p < 0): the opponent's.
-            scores[b] += p * POSITION * value[r] if p >= 0 else -LEAVE * value[r]
+            scores[b] += p * lv.position * value[r] if p >= 0 else -lv.leave * value[r]
     return scores, calls, notes
 
 
@@ -522,7 +563,7 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
     targets = legal_targets(state, t.ids)
     pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
     if state.is_break:
-        cands = _break_cands(t, targets)
+        cands = _break_cands(t, targets, lv)
     else:
         reserve = min(budget // 3, 24 * max(len(targets), 1))
         cands = _pot_cands(t, targets, pockets, table, physics, lv,
@@ -563,23 +604,31 @@ def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     return [_plan(ev, b, ev.scores[b]) for b in range(len(ev.cands))]
 
 
-def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
-    """The best of the top few candidates once aim errors are taken into account.
+# The check under errors: the centre and one step either side in aim, then in speed. Each
+# side step is the three-point Gauss-Hermite rule's (sqrt(3) sd, weight 1/6); the two rules
+# share their centre, which keeps the rest (an additive sum of the two one-dimensional rules).
+VERIFY_POINTS = ((0.0, 0.0, 1 / 3), (1.0, 0.0, 1 / 6), (-1.0, 0.0, 1 / 6),
+                 (0.0, 1.0, 1 / 6), (0.0, -1.0, 1 / 6))
 
-    Each is simulated again aimed sigma*sqrt(3) to either side (the three-point Gauss-Hermite
-    rule for a normal error: weights 1/6, 2/3, 1/6), all in one batch, and scored as played
-    (a pot counts in full where it goes in). Returns (candidate, its expected score)."""
+
+def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
+    """The best of the top few candidates once the level's errors are taken into account.
+
+    Each is simulated again at VERIFY_POINTS, aim and speed off by sqrt(3) of the level's
+    error, all in one batch, and scored as played (a pot counts in full where it goes in).
+    Returns (candidate, its expected score)."""
     c, lv = ev.cands, ev.lv
     top = [int(k) for k in np.argsort(-ev.scores, kind="stable")[:lv.verify]]
     sub = _Cands()
-    offset = math.sqrt(3.0) * lv.sigma
+    da, dv = math.sqrt(3.0) * lv.aim_sd, math.sqrt(3.0) * lv.speed_sd
     for k in top:
-        for d in (0.0, offset, -offset):
-            sub.add(c.speed[k], c.angle[k] + d, c.side[k], c.top[k], c.target[k], c.pocket[k],
-                    c.kind[k], 1.0, c.via[k], c.aim[k])
+        for fa, fv, _ in VERIFY_POINTS:
+            sub.add(c.speed[k] * (1 + fv * dv), c.angle[k] + fa * da, c.side[k], c.top[k],
+                    c.target[k], c.pocket[k], c.kind[k], 1.0, c.via[k], c.aim[k])
     eng = _simulate(ev.t, sub, table, physics)
     s, _, _ = _score(state, ev.targets, ev.t, sub, eng, table, ev.pockets, lv, sampled=True)
-    expect = (4 * s[0::3] + s[1::3] + s[2::3]) / 6
+    n = len(VERIFY_POINTS)
+    expect = sum(w * s[j::n] for j, (_, _, w) in enumerate(VERIFY_POINTS))
     best = int(np.argmax(expect))  # the first of equal scores
     return top[best], float(expect[best])
 
@@ -599,7 +648,14 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
                    max_candidates)
     if len(ev.cands) == 0:  # nothing to aim at: roll the cue ball up the table
         return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, "no object ball on the table")
-    if state.is_break or ev.lv.verify == 0:  # a break is chaos either way: take the batch's
+    if state.is_break:  # the break whose samples did best on average, as meant
+        mean = ev.scores.reshape(-1, BREAK_SAMPLES).mean(axis=1)
+        k = int(np.argmax(mean))
+        speed, (side, top) = BREAK_SPEEDS[k // len(BREAK_SPINS)], BREAK_SPINS[k % len(BREAK_SPINS)]
+        angle = (geo.deg(ev.t.pos[ev.cands.target[0]] - ev.t.pos[ev.t.cue]) + 180.0) % 360.0 \
+            - 180.0
+        return Plan(speed, angle, side, top, None, float(mean[k]), "break", "break")
+    if ev.lv.verify == 0:
         best = int(np.argmax(ev.scores))
         score = float(ev.scores[best])
     else:
@@ -608,13 +664,14 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
 
 
 def as_struck(plan: Plan, level: str, seed: int = 0) -> Plan:
-    """The plan as the level strikes it: its aim and speed errors drawn (seeded) and added.
-    The physics is deterministic, so a plan that pots in the batch pots in play: these errors
+    """The plan as the level strikes it: its errors of aim, speed and tip position drawn
+    (seeded) from normal distributions and added (the tip kept within the miscue limit). The
+    physics is deterministic, so a plan that pots in the batch pots in play: these errors
     are what makes a level miss."""
     if level not in LEVELS:
         raise ValueError(f"level: must be one of {', '.join(LEVELS)}, not {level!r}")
     lv = LEVELS[level]
-    return with_error(plan, lv.aim_sd, lv.speed_sd, seed)
+    return with_error(plan, lv.aim_sd, lv.speed_sd, seed, lv.tip_sd)
 
 
 def choose_option(option: str) -> str:
@@ -625,16 +682,18 @@ def choose_option(option: str) -> str:
     return OPTION_ANSWERS[option]
 
 
-def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0) -> Plan:
-    """The plan as a player with these errors (degrees of aim, relative speed; seeded) would
-    play it."""
-    if aim_sd <= 0 and speed_sd <= 0:
-        return plan
+def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0,
+               tip_sd: float = 0.0) -> Plan:
+    """The plan as a player with these errors would strike it: normal errors of sd `aim_sd`
+    degrees, `speed_sd` of the speed and `tip_sd` radii of tip position (seeded)."""
     rng = np.random.default_rng(seed)
-    angle = plan.angle + float(rng.normal(0.0, aim_sd)) if aim_sd > 0 else plan.angle
-    speed = plan.speed * (1 + float(rng.normal(0.0, speed_sd))) if speed_sd > 0 else plan.speed
-    speed = float(np.clip(speed, 0.1, BREAK_SPEEDS[-1]))
-    return plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)
+    e_aim, e_speed = rng.normal(0.0, 1.0, 2)  # always drawn: each error has its own draw
+    e_side, e_top = rng.normal(0.0, 1.0, 2)
+    angle = plan.angle + aim_sd * float(e_aim)
+    speed = float(np.clip(plan.speed * (1 + speed_sd * float(e_speed)), 0.1, BREAK_SPEEDS[-1]))
+    side, top = clamp_tip(plan.side + tip_sd * float(e_side), plan.top + tip_sd * float(e_top))
+    return plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0, side=side,
+                         top=top)
 
 
 def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
@@ -672,18 +731,19 @@ def _cue_in_hand(ids, pos, on_table, table: Table):
 
 
 def _spot_chances(t: _Table, table: Table, state: State, area: str, distances: int,
-                  sigma: float) -> tuple[np.ndarray, np.ndarray, list[str]]:
+                  sigma: float, break_spot: float = 0.5) -> tuple[np.ndarray, np.ndarray,
+                                                                  list[str]]:
     """Legal spots for the cue ball in hand (M, 2) and the pot chances (M, N, P) each leaves:
     spots behind the ghost ball of each pot at a few cut angles and `distances` distances,
-    then a coarse grid of the area; on a break the head string comes first. Also returns the
-    legal targets."""
+    then a coarse grid of the area; on a break the head string comes first, from `break_spot`
+    (a fraction of the width) outwards. Also returns the legal targets."""
     r = float(t.radius[t.cue])
     pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
     spots = []
-    if state.is_break:  # the head spot, else the nearest free point of the head string
-        hx, hy = table.head_spot
-        spots += [np.array([hx, hy + s * k * 0.02]) for k in range(25) for s in (1, -1)]
+    if state.is_break:  # the break spot, else the nearest free point of the head string
+        hx, hy = table.head_spot[0], break_spot * table.width
+        spots += [np.array([hx, hy + s * k * 0.02]) for k in range(60) for s in (1, -1)]
     dists = (0.3, 0.15, 0.5)[:distances]
     for b in targets:
         i = t.ids.index(b)
@@ -731,7 +791,8 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     pos, on_table = _cue_in_hand(ids, pos, on_table, table)
     t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     lv = LEVELS[level]
-    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, lv.sigma)
+    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, lv.aim_sd,
+                                        lv.break_spot)
     if state.is_break:
         return float(xy[0, 0]), float(xy[0, 1])
     value = geo.leave_value(chance)
@@ -752,7 +813,7 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
 
 def best_chance(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
                 on_table, state: State, *, area: str | None = None,
-                sigma: float = 0.5) -> float:
+                sigma: float = OPPONENT_SIGMA) -> float:
     """The best chance (0..1) of a straight pot for `state.shooter` under an aim error of
     `sigma` degrees: from where the cue ball lies, or with `area` ("anywhere", "kitchen") from
     the best spot for the cue ball in hand there. It measures what a shot leaves."""

@@ -309,6 +309,7 @@ def table_text(r: dict) -> str:
         ("safeties that lowered it", lambda lv: _pct(r["safeties"][lv]["lowered"])),
         ("median decision (s)", lambda lv: _num(r["decision_s"][lv], ".3f")),
         ("slowest decision (s)", lambda lv: _num(r["decision_s_max"][lv], ".3f")),
+        ("median decision, CPU (s)", lambda lv: _num(r["decision_cpu_s"][lv], ".3f")),
     ]
     first = max(len(name) for name, _ in rows)
     width = max(10, *(len(n) for n in names))

@@ -532,7 +532,7 @@ def test_bad_settings(kw, words) -> None:
 
 
 @pytest.mark.parametrize("levels", [None, [None, "easy"], ["normal", None], ["hard", "hard"],
-                                    ["normal", "easy"]])
+                                    ["pro", "easy"]])
 def test_records_load_and_replay_with_every_level_and_from_before_levels(levels) -> None:
     # None: a record from before the match kept the computer's level (no "levels" key).
     m = Match("9ball", seed=3, levels=tuple(levels) if levels else (None, None))

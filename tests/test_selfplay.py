@@ -27,7 +27,7 @@ KEYS = {"games", "mode", "levels", "wins", "pot_rate", "fouls_per_game", "break_
         "safeties_per_game", "shots_per_game", "decision_s", "decision_s_max", "wall_s"}
 PER_LEVEL = ("wins", "pot_rate", "fouls_per_game", "break_and_run_rate", "safeties_per_game",
              "decision_s", "decision_s_max")
-TIMES = ("decision_s", "decision_s_max", "wall_s", "jobs")
+TIMES = ("decision_s", "decision_s_max", "decision_cpu_s", "wall_s", "jobs")
 
 
 def env() -> dict:
@@ -82,10 +82,10 @@ def test_one_level_on_both_sides_is_pooled():
 
 
 def test_the_table_names_the_levels_and_the_progress_bar_goes_to_stderr():
-    p = cli(*TINY, "--games", "2", "--levels", "hard,easy", "--jobs", "1")
+    p = cli(*TINY, "--games", "2", "--levels", "pro,easy", "--jobs", "1")
     assert p.returncode == 0, p.stderr
     lines = p.stdout.splitlines()
-    assert lines[1].split() == ["hard", "easy"]
+    assert lines[1].split() == ["pro", "easy"]
     assert any(line.startswith("pot rate ") for line in lines)
     assert "selfplay [" in p.stderr and "2/2 games" in p.stderr
     assert "selfplay [" not in p.stdout
@@ -196,11 +196,15 @@ def test_pots_fouls_and_breaks_are_counted_from_the_record(monkeypatch, tmp_path
     g = sp.play_game(("easy", "easy"), mode="9ball", seed=4, candidates=8, max_shots=10,
                      record=path)
     data = json.loads(path.read_text())
-    want = [dict.fromkeys(("shots", "fouls", "pot_attempts", "pots"), 0) for _ in range(2)]
+    want = [dict.fromkeys(("shots", "fouls", "pot_attempts", "pots"), 0) | {"foul_kinds": {}}
+            for _ in range(2)]
     for plan, rec in zip(plans, data["shots"], strict=True):
         w = want[rec["player"]]
         w["shots"] += 1
-        w["fouls"] += rec["outcome"]["foul"] is not None
+        foul = rec["outcome"]["foul"]
+        w["fouls"] += foul is not None
+        if foul is not None:
+            w["foul_kinds"][foul] = w["foul_kinds"].get(foul, 0) + 1
         if plan.kind in ("pot", "combo"):
             w["pot_attempts"] += 1
             ids = [b["id"] for b in rec["scene"]["balls"]]
@@ -216,17 +220,19 @@ def test_figures_pool_a_level_over_both_sides_and_count_player_games():
 
     games = [
         {"winner": 0, "shots": 10, "tallies": [
-            tally("hard", pot_attempts=4, pots=3, fouls=1, breaks=1, runs=1, decisions=[0.2]),
+            tally("hard", pot_attempts=4, pots=3, fouls=1, breaks=1, runs=1, decisions=[0.2],
+                  foul_kinds={"scratch": 1}),
             tally("hard", pot_attempts=2, pots=1, safeties=2, decisions=[0.4, 0.6],
                   safety_before=[0.5, 0.2], safety_after=[0.1, 0.3])]},
         {"winner": None, "shots": 30, "tallies": [
             tally("hard", pot_attempts=2, pots=2, breaks=1, decisions=[1.0]),
-            tally("hard", fouls=1)]},
+            tally("hard", fouls=1, foul_kinds={"no_rail": 1})]},
     ]
     r = sp.figures(games, ["hard", "hard"])
     assert r["wins"] == {"hard": 1} and r["undecided"] == 1 and r["games"] == 2
     assert r["pot_rate"]["hard"] == pytest.approx(6 / 8)
     assert r["fouls_per_game"]["hard"] == pytest.approx(2 / 4)  # four player-games
+    assert r["foul_kinds"]["hard"] == {"no_rail": 1, "scratch": 1}
     assert r["safeties_per_game"]["hard"] == pytest.approx(2 / 4)
     assert r["break_and_run_rate"]["hard"] == pytest.approx(1 / 2)
     assert r["shots_per_game"] == 20

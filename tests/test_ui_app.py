@@ -225,6 +225,24 @@ def test_menu_picks_a_game() -> None:
     assert app.match.mode == "9ball" and app.cpu == (False, True)
 
 
+def test_menu_offers_every_level_of_the_computer() -> None:
+    from termpool import ai
+    from termpool.ui.play import LEVELS
+
+    assert LEVELS == tuple(ai.LEVELS)  # the command line offers the levels the AI has
+    app = App(Options(colors="mono"))
+    seen = []
+    for _ in LEVELS:
+        seen.append(app.opts.level)
+        assert f"Computer level: {app.opts.level}" in screen_text(app.cells(100, 32)[0])
+        run_script(app, "6")  # the level entry: Enter (or its digit) takes the next level
+    assert sorted(seen) == sorted(LEVELS) and app.opts.level == "normal"
+    run_script(app, "left")  # <- and -> change it too
+    assert app.opts.level == "easy" and app.phase == "menu"
+    run_script(app, "up up up up up enter")  # 8-ball vs computer, at that level
+    assert app.match.mode == "8ball" and app.match.levels == (None, "easy")
+
+
 def test_tiny_window_gets_a_message_and_the_game_survives() -> None:
     app = app_for()
     assert "make the window at least" in screen_text(app.cells(30, 10)[0])

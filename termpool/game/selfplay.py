@@ -10,13 +10,16 @@ What is counted, per player and game:
 
 - a *pot attempt* is a shot whose plan is a pot or a combination; it *dropped* when the ball
   it meant to sink went into the pocket it was sent to;
-- a *foul* is a shot the referee calls a foul; a *safety* is a shot planned as one;
+- a *foul* is a shot the referee calls a foul (counted by its name too); a *safety* is a
+  shot planned as a safety or a kick (a shot that tries no pot);
 - a *break and run*: the breaker wins the game before the opponent has a shot;
 - *after a pot*: pot attempts that follow the same player's pot that dropped (position play);
 - around each safety, the opponent's best chance of a straight pot (`ai.best_chance`, an aim
   error of CHANCE_SIGMA) on the table before it and on the table it leaves (with ball in
   hand after a foul, from the best spot);
-- the wall time of each decision (placing the cue ball in hand, choosing the shot).
+- the wall time of each decision (placing the cue ball in hand, choosing the shot), and the
+  processor time it took (what it would take on an idle machine: a shared one stretches the
+  wall time).
 """
 
 from __future__ import annotations
@@ -39,8 +42,9 @@ from termpool.rules.events import summarize
 from .match import Match
 from .turn import Shot
 
-CHANCE_SIGMA = 0.5  # degrees: the aim error a safety's effect is measured with (any level's)
+CHANCE_SIGMA = ai.OPPONENT_SIGMA  # degrees: the aim error a safety's effect is measured with
 MAX_SHOTS = 300  # a game still going after this many shots is stopped without a winner
+SAFETIES = ("safety", "kick")  # plans that try no pot: defence, by choice or when snookered
 
 
 def game_seed(seed: int, index: int) -> int:
@@ -58,7 +62,9 @@ def shot_seed(match: Match) -> int:
 def _tally(level: str) -> dict:
     return {"level": level, "shots": 0, "pot_attempts": 0, "pots": 0, "fouls": 0,
             "safeties": 0, "breaks": 0, "runs": 0, "after_pot_attempts": 0,
-            "after_pot_pots": 0, "decisions": [], "safety_before": [], "safety_after": []}
+            "after_pot_pots": 0, "decisions": [], "decisions_cpu": [], "safety_before": [],
+            "safety_after": [],
+            "foul_kinds": {}}
 
 
 def players_for(levels: Sequence[str]) -> tuple[str, str]:
@@ -106,7 +112,7 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
                 m.choose(ai.choose_option(m.option))
                 continue
             s = shot_seed(m)
-            t0 = clock()
+            t0, c0 = clock(), time.process_time()
             if m.ball_in_hand:
                 x, y = ai.choose_placement(*_args(m), m.state, m.ball_in_hand, level=level,
                                            seed=s)
@@ -117,7 +123,9 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
                                   max_candidates=candidates)
             struck = ai.as_struck(plan, level, s)
             mine["decisions"].append(clock() - t0)
-            before = _chance_for(m, 1 - me, None) if plan.kind == "safety" else None
+            mine["decisions_cpu"].append(time.process_time() - c0)
+            safety = plan.kind in SAFETIES
+            before = _chance_for(m, 1 - me, None) if safety else None
             is_break = m.state.is_break
             run = m.begin(Shot(struck.speed, struck.angle, struck.side, struck.top,
                                called=struck.called))
@@ -127,6 +135,9 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
             opponent_shot |= me != m.breaker
             mine["breaks"] += is_break
             mine["fouls"] += out.foul is not None
+            if out.foul is not None:
+                kinds = mine["foul_kinds"]
+                kinds[out.foul] = kinds.get(out.foul, 0) + 1
             dropped = False
             if plan.kind in ("pot", "combo"):
                 dropped = summary.pocketed.get(plan.ball) == plan.pocket
@@ -136,7 +147,7 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
                     mine["after_pot_attempts"] += 1
                     mine["after_pot_pots"] += dropped
             last = (me, dropped and out.continue_turn)
-            if plan.kind == "safety":
+            if safety:
                 mine["safeties"] += 1
                 # A safety that ends the game or keeps the turn (it potted) denies nothing.
                 if m.winner is None and m.shooter != me:
@@ -168,7 +179,8 @@ def _mean(xs: list[float]) -> float | None:
 def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
     """The figures of finished games (see `play_game`), pooled by level: for each level its
     wins, pot rate, fouls and safeties per game it played (a level on both sides counts two
-    player-games a game), break-and-run rate (of its breaks), median and slowest decision;
+    player-games a game), break-and-run rate (of its breaks), median and slowest decision
+    (and the median processor time of one);
     then shots per game, games without a winner, the pot rate after a pot (position) and the
     opponent's best chance before and after its safeties."""
     names = list(dict.fromkeys(levels))
@@ -184,6 +196,9 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
             for k, v in t.items():
                 if isinstance(v, list):
                     p[k].extend(v)
+                elif isinstance(v, dict):
+                    for name, count in v.items():
+                        p[k][name] = p[k].get(name, 0) + count
                 elif k != "level":
                     p[k] += v
     n = len(games)
@@ -207,8 +222,11 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
         "decision_s": per("d", lambda p: statistics.median(p["decisions"])
                           if p["decisions"] else None),
         "decision_s_max": per("d", lambda p: max(p["decisions"], default=None)),
+        "decision_cpu_s": per("c", lambda p: statistics.median(p["decisions_cpu"])
+                              if p["decisions_cpu"] else None),
         "undecided": undecided,
         "pot_attempts": per("a", lambda p: p["pot_attempts"]),
+        "foul_kinds": per("f", lambda p: dict(sorted(p["foul_kinds"].items()))),
         "pot_rate_after_pot": per("ap", lambda p: _share(p["after_pot_pots"],
                                                          p["after_pot_attempts"])),
         "safeties": per("s", lambda p: {

@@ -48,6 +48,7 @@ MENU = [
     ("9-ball vs computer", ("9ball", "cpu")),
     ("9-ball, two players", ("9ball", "human")),
     ("Practice", ("practice", "human")),
+    ("Computer level", "level"),  # its value is shown beside it; Enter or <- -> change it
     ("Help", "help"),
     ("Quit", "quit"),
 ]
@@ -527,10 +528,25 @@ class App:
             self._menu_pick()
         elif action in ("confirm", "shoot"):
             self._menu_pick()
+        elif MENU[self.menu_index][1] == "level" and key.name in ("left", "right"):
+            self._next_level(1 if key.name == "right" else -1)
+
+    def menu_label(self, k: int) -> str:
+        """Menu entry k as shown (the computer's level with its value)."""
+        label, what = MENU[k]
+        return f"{label}: {self.opts.level}" if what == "level" else label
+
+    def _next_level(self, step: int) -> None:
+        from termpool.ui.play import LEVELS
+
+        self.opts.level = LEVELS[(LEVELS.index(self.opts.level) + step) % len(LEVELS)]
+        self.dirty = True
 
     def _menu_pick(self) -> None:
         what = MENU[self.menu_index][1]
-        if what == "quit":
+        if what == "level":
+            self._next_level(1)
+        elif what == "quit":
             self.done = True
         elif what == "help":
             self.overlay = "help"

@@ -14,7 +14,7 @@ OPPONENTS = ("cpu", "human")
 TABLES = ("7ft", "8ft", "9ft")
 COLORS = ("auto", "truecolor", "256", "16", "mono")
 INPUTS = ("auto", "kitty", "repeat", "classic")
-LEVELS = ("easy", "normal", "hard")
+LEVELS = ("easy", "normal", "hard", "pro")  # termpool.ai's levels (kept light: no numpy here)
 MAX_SEED = 2 ** 64 - 1  # a seed is saved in the record, and read back
 MAX_FRAMES = 1000
 
@@ -46,7 +46,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=_whole(0, MAX_SEED), default=None,
                    help=f"racks and the computer's choices (0 to {MAX_SEED}); without it "
                         "every game deals a new rack (its seed is in the --record)")
-    p.add_argument("--level", choices=LEVELS, default="normal", help="the computer's skill")
+    p.add_argument("--level", choices=LEVELS, default="normal",
+                   help="the computer's skill: easy (a beginner), normal (a club player), hard "
+                        "(a strong amateur) or pro (default normal)")
     p.add_argument("--theme", choices=("standard", "classic"), default="standard",
                    help="ball colours: numbered solids and stripes, or reds and yellows")
     p.add_argument("--three-foul", action="store_true",
