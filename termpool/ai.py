@@ -86,29 +86,30 @@ LEVELS = {
     "easy": Level(0.25, (1.3, 2.4), (STUN, FOLLOW), 0, 4, 1, 0.5,
                   0.0, 0.0, 0.9, 0.10, 0.10, 0.03),
     # A club player: a sound choice of pot, some thought of what a miss leaves.
-    "normal": Level(0.6, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 6, 2, 0.5,
+    "normal": Level(0.8, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 8, 2, 0.5,
                     0.0, 30.0, 0.3, 0.06, 0.06, 0.01),
     # A strong amateur: plays position for the next ball and safe when the pot is poor.
     "hard": Level(1.0, (1.0, 1.5, 2.2, 3.2),
-                  (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)), 16, 8, 3, 0.16,
-                  100.0, 200.0, 0.2, 0.04, 0.04, 0.0),
+                  (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)), 16, 8, 3, 0.275,
+                  100.0, 200.0, 0.22, 0.04, 0.04, 0.0),
     # A professional: more speeds and spins to choose from, and a steadier stroke.
     "pro": Level(1.5, (1.0, 1.4, 1.9, 2.6, 3.4),
                  (STUN, (0.0, 0.35), (0.0, -0.4), (0.3, 0.1), (-0.3, 0.1), (0.25, -0.3),
-                  (-0.25, -0.3)), 24, 12, 3, 0.16,
-                 150.0, 300.0, 0.1, 0.025, 0.02, 0.0),
+                  (-0.25, -0.3)), 24, 12, 3, 0.275,
+                 150.0, 300.0, 0.07, 0.02, 0.015, 0.0),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
 MISS_LEAVE = 0.7  # what a missed pot usually leaves the opponent, as a leave value (0..1)
-OPPONENT_SIGMA = 0.5  # degrees: the aim error the table left to the opponent is valued with
-# (a club player's, whatever the level: the chances it leaves, not its own)
+LEAVE_SIGMA = 0.5  # degrees: the aim error a table left behind is valued with, for the
+# shooter's next shot and for the opponent alike (a club player's, whatever the level: an
+# error as small as a pro's would call every open shot certain, and tell no leave from another)
 FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
 SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
 SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
 BREAK_SPEEDS = (7.0, 8.0, 9.0)
-BREAK_SAMPLES = 4  # each break is judged over this many strikes with the level's errors
+BREAK_SAMPLES = 12  # each break is judged over this many strikes with the level's errors
 KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's aim
-BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
+BREAK_SPINS = ((0.0, 0.0),)
 MIN_CANDIDATES = 8
 OPTION_ANSWERS = {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}
 
@@ -520,15 +521,9 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
             nxt_t = legal_targets(nxt, present) if "cue" in present else []
             tmask[r] = [bid in nxt_t for bid in t.ids]
         cue_alive = alive[rows, t.cue]
-        value = np.zeros(len(rows))
-        mine = np.array([p >= 0 for _, p, _ in leave_for])
-        # Its own next shot under its own aim error; the opponent's under OPPONENT_SIGMA.
-        for sel, sigma in ((mine, lv.aim_sd), (~mine, OPPONENT_SIGMA)):
-            if sel.any():
-                rs = np.array(rows)[sel]
-                chance, _ = geo.pot_chances(final[rs, t.cue], final[rs], alive[rs], tmask[sel],
-                                            t.radius, t.cue, pockets, table, sigma)
-                value[sel] = geo.leave_value(chance)
+        chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask,
+                                    t.radius, t.cue, pockets, table, LEAVE_SIGMA)
+        value = geo.leave_value(chance)
         for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
@@ -791,7 +786,7 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     pos, on_table = _cue_in_hand(ids, pos, on_table, table)
     t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     lv = LEVELS[level]
-    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, lv.aim_sd,
+    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, LEAVE_SIGMA,
                                         lv.break_spot)
     if state.is_break:
         return float(xy[0, 0]), float(xy[0, 1])
@@ -813,7 +808,7 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
 
 def best_chance(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
                 on_table, state: State, *, area: str | None = None,
-                sigma: float = OPPONENT_SIGMA) -> float:
+                sigma: float = LEAVE_SIGMA) -> float:
     """The best chance (0..1) of a straight pot for `state.shooter` under an aim error of
     `sigma` degrees: from where the cue ball lies, or with `area` ("anywhere", "kitchen") from
     the best spot for the cue ball in hand there. It measures what a shot leaves."""

@@ -307,6 +307,8 @@ def table_text(r: dict) -> str:
          lambda lv: _num(r["safeties"][lv]["opponent_chance_before"])),
         ("... and after it", lambda lv: _num(r["safeties"][lv]["opponent_chance_after"])),
         ("safeties that lowered it", lambda lv: _pct(r["safeties"][lv]["lowered"])),
+        ("... of those without a foul",
+         lambda lv: _pct(r["safeties"][lv]["lowered_without_foul"])),
         ("median decision (s)", lambda lv: _num(r["decision_s"][lv], ".3f")),
         ("slowest decision (s)", lambda lv: _num(r["decision_s_max"][lv], ".3f")),
         ("median decision, CPU (s)", lambda lv: _num(r["decision_cpu_s"][lv], ".3f")),

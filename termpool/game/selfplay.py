@@ -16,7 +16,7 @@ What is counted, per player and game:
 - *after a pot*: pot attempts that follow the same player's pot that dropped (position play);
 - around each safety, the opponent's best chance of a straight pot (`ai.best_chance`, an aim
   error of CHANCE_SIGMA) on the table before it and on the table it leaves (with ball in
-  hand after a foul, from the best spot);
+  hand after a foul, from the best spot), and whether it was a kick and whether it fouled;
 - the wall time of each decision (placing the cue ball in hand, choosing the shot), and the
   processor time it took (what it would take on an idle machine: a shared one stretches the
   wall time).
@@ -42,7 +42,7 @@ from termpool.rules.events import summarize
 from .match import Match
 from .turn import Shot
 
-CHANCE_SIGMA = ai.OPPONENT_SIGMA  # degrees: the aim error a safety's effect is measured with
+CHANCE_SIGMA = ai.LEAVE_SIGMA  # degrees: the aim error a safety's effect is measured with
 MAX_SHOTS = 300  # a game still going after this many shots is stopped without a winner
 SAFETIES = ("safety", "kick")  # plans that try no pot: defence, by choice or when snookered
 
@@ -63,7 +63,7 @@ def _tally(level: str) -> dict:
     return {"level": level, "shots": 0, "pot_attempts": 0, "pots": 0, "fouls": 0,
             "safeties": 0, "breaks": 0, "runs": 0, "after_pot_attempts": 0,
             "after_pot_pots": 0, "decisions": [], "decisions_cpu": [], "safety_before": [],
-            "safety_after": [],
+            "safety_after": [], "safety_kick": [], "safety_foul": [],
             "foul_kinds": {}}
 
 
@@ -153,6 +153,8 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
                 if m.winner is None and m.shooter != me:
                     mine["safety_before"].append(before)
                     mine["safety_after"].append(_chance_for(m, m.shooter, m.ball_in_hand))
+                    mine["safety_kick"].append(plan.kind == "kick")
+                    mine["safety_foul"].append(out.foul is not None)
         finished = m.winner is not None or len(m.history) >= max_shots
     finally:
         if record is not None:
@@ -206,8 +208,9 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
     def per(key: str, fn: Callable[[dict], Any]) -> dict:
         return {lv: fn(pool[lv]) for lv in names}
 
-    def lowered(p: dict) -> float | None:
-        pairs = list(zip(p["safety_before"], p["safety_after"], strict=True))
+    def lowered(p: dict, clean: bool = False) -> float | None:
+        pairs = [(b, a) for b, a, f in zip(p["safety_before"], p["safety_after"],
+                                           p["safety_foul"], strict=True) if not (clean and f)]
         return _share(sum(a < b for b, a in pairs), len(pairs))
 
     return {
@@ -231,9 +234,12 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
                                                          p["after_pot_attempts"])),
         "safeties": per("s", lambda p: {
             "count": len(p["safety_before"]),
+            "kicks": sum(p["safety_kick"]),
+            "fouls": sum(p["safety_foul"]),
             "opponent_chance_before": _mean(p["safety_before"]),
             "opponent_chance_after": _mean(p["safety_after"]),
-            "lowered": lowered(p)}),
+            "lowered": lowered(p),
+            "lowered_without_foul": lowered(p, clean=True)}),
     }
 
 

@@ -1,0 +1,92 @@
+"""How often a level's break keeps the turn, by where it breaks from and how hard.
+
+python benchmarks/breaks.py [--samples N] [--levels pro,hard] [--spots 0.275,0.5]
+                            [--speeds 7,8,9] [--table 9ft]
+
+The 8-ball rack is the same from game to game but for the numbers on the balls, so a break
+from one spot at one speed either tends to pot a ball or not. For each level, spot (the cue
+ball on the head string, at this share of the width from the side cushion) and speed (m/s,
+centre ball at the apex), the break is struck N times with the level's errors (`ai.as_struck`,
+seeds 0..N-1) in one batch, and the referee's verdict counted: breaks that keep the turn (a
+ball pocketed, no foul) and scratches. This is how the levels' `break_spot` was chosen.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import time
+
+if __name__ == "__main__":
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+import numpy as np  # noqa: E402
+
+from termpool import ai  # noqa: E402
+from termpool.game import Match  # noqa: E402
+from termpool.physics.cue import strike  # noqa: E402
+from termpool.physics.engine import Engine  # noqa: E402
+from termpool.rules.common import State  # noqa: E402
+from termpool.rules.events import summarize  # noqa: E402
+from termpool.rules.referee import judge  # noqa: E402
+
+
+def breaks(level: str, spot: float, speed: float, samples: int, table: str) -> tuple[int, int]:
+    """(breaks that kept the turn, scratches) of `samples` strikes."""
+    m = Match("8ball", table=table)
+    cue = m.ids.index("cue")
+    pos = m.pos.copy()
+    pos[cue] = (m.table.head_spot[0], spot * m.table.width)
+    apex = min((k for k in range(len(m.ids)) if k != cue), key=lambda k: pos[k, 0])
+    d = pos[apex] - pos[cue]
+    plan = ai.Plan(speed, math.degrees(math.atan2(d[1], d[0])), 0.0, 0.0, None, 0.0, "break",
+                   "break")
+    n = len(m.ids)
+    vel, w = np.zeros((samples, n, 2)), np.zeros((samples, n, 3))
+    for k in range(samples):
+        s = ai.as_struck(plan, level, k)
+        vel[k, cue], w[k, cue] = strike(s.speed, s.angle, s.side, s.top, float(m.radius[cue]))
+    eng = Engine(m.table, m.physics, np.broadcast_to(pos, (samples, n, 2)).copy(), vel, w,
+                 m.radius, m.mass, record=True)
+    eng.run_events(duration=ai.SIM_SECONDS)
+    kept = scratched = 0
+    for b in range(samples):
+        summary = summarize(eng.events[b], m.ids, is_break=True)
+        out, _ = judge(State(mode="8ball", is_break=True), summary)
+        kept += out.continue_turn
+        scratched += summary.scratch
+    return kept, scratched
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="benchmarks/breaks.py", description=__doc__.split("\n")[0])
+    ap.add_argument("--samples", type=int, default=32)
+    ap.add_argument("--levels", default=",".join(ai.LEVELS))
+    ap.add_argument("--spots", default="0.16,0.275,0.5")
+    ap.add_argument("--speeds", default="7,8,9")
+    ap.add_argument("--table", default="9ft", choices=("7ft", "8ft", "9ft"))
+    args = ap.parse_args(argv)
+    levels = args.levels.split(",")
+    if args.samples < 1 or any(lv not in ai.LEVELS for lv in levels):
+        ap.error(f"--samples must be at least 1 and --levels among {', '.join(ai.LEVELS)}")
+    spots = [float(v) for v in args.spots.split(",")]
+    speeds = [float(v) for v in args.speeds.split(",")]
+    t0 = time.perf_counter()
+    print(f"8-ball breaks on a {args.table} table, {args.samples} strikes each with the level's "
+          "errors: kept the turn / scratched")
+    print(f"{'level':7} {'spot':>6} " + " ".join(f"{f'{v:g} m/s':>10}" for v in speeds))
+    for level in levels:
+        for spot in spots:
+            cells = []
+            for speed in speeds:
+                kept, scratched = breaks(level, spot, speed, args.samples, args.table)
+                cells.append(f"{kept:>3}/{args.samples} {scratched:>2}s".rjust(10))
+            print(f"{level:7} {spot:6.3f} " + " ".join(cells))
+    print(f"({time.perf_counter() - t0:.0f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
