@@ -3,12 +3,13 @@
 python benchmarks/breaks.py [--samples N] [--levels pro,hard] [--spots 0.275,0.5]
                             [--speeds 7,8,9] [--table 9ft]
 
-The 8-ball rack is the same from game to game but for the numbers on the balls, so a break
-from one spot at one speed either tends to pot a ball or not. For each level, spot (the cue
-ball on the head string, at this share of the width from the side cushion) and speed (m/s,
-centre ball at the apex), the break is struck N times with the level's errors (`ai.as_struck`,
-seeds 0..N-1) in one batch, and the referee's verdict counted: breaks that keep the turn (a
-ball pocketed, no foul) and scratches. This is how the levels' `break_spot` was chosen.
+For each level, spot (the cue ball on the head string, at this share of the width from the
+side cushion) and speed (m/s, centre ball at the apex), the break is struck N times, each on
+a different rack (`Match` seeds 0..N-1: the racks differ in the numbers on the balls, and so
+in the order the engine meets their contacts, which a frozen rack is sensitive to) with the
+level's errors (`ai.as_struck`, seeds 0..N-1), all in one batch, and the referee's verdict
+counted: breaks that keep the turn (a ball pocketed, no foul) and scratches. This is how the
+levels' `break_spot` was chosen.
 """
 
 from __future__ import annotations
@@ -35,12 +36,13 @@ from termpool.rules.referee import judge  # noqa: E402
 
 def breaks(level: str, spot: float, speed: float, samples: int, table: str) -> tuple[int, int]:
     """(breaks that kept the turn, scratches) of `samples` strikes."""
-    m = Match("8ball", table=table)
+    racks = [Match("8ball", table=table, seed=k) for k in range(samples)]
+    m = racks[0]
     cue = m.ids.index("cue")
-    pos = m.pos.copy()
-    pos[cue] = (m.table.head_spot[0], spot * m.table.width)
-    apex = min((k for k in range(len(m.ids)) if k != cue), key=lambda k: pos[k, 0])
-    d = pos[apex] - pos[cue]
+    pos = np.stack([r.pos for r in racks])
+    pos[:, cue] = (m.table.head_spot[0], spot * m.table.width)
+    apex = min((k for k in range(len(m.ids)) if k != cue), key=lambda k: pos[0, k, 0])
+    d = pos[0, apex] - pos[0, cue]
     plan = ai.Plan(speed, math.degrees(math.atan2(d[1], d[0])), 0.0, 0.0, None, 0.0, "break",
                    "break")
     n = len(m.ids)
@@ -48,8 +50,7 @@ def breaks(level: str, spot: float, speed: float, samples: int, table: str) -> t
     for k in range(samples):
         s = ai.as_struck(plan, level, k)
         vel[k, cue], w[k, cue] = strike(s.speed, s.angle, s.side, s.top, float(m.radius[cue]))
-    eng = Engine(m.table, m.physics, np.broadcast_to(pos, (samples, n, 2)).copy(), vel, w,
-                 m.radius, m.mass, record=True)
+    eng = Engine(m.table, m.physics, pos, vel, w, m.radius, m.mass, record=True)
     eng.run_events(duration=ai.SIM_SECONDS)
     kept = scratched = 0
     for b in range(samples):

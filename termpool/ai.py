@@ -66,8 +66,8 @@ class Level(NamedTuple):
     combos: int  # candidates kept for combinations (two speeds each)
     verify: int  # best candidates simulated again under its errors before choosing
     spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
-    break_spot: float  # where it breaks from: across the head string, a fraction of the
-    # width (0.5: the head spot; nearer a side rail, the cut break that pots more)
+    break_spots: tuple[float, ...]  # where it may break from: across the head string, as
+    # shares of the width (0.5: the head spot); with several, it tries its break from each
     # How it weighs a shot.
     position: float  # weight of its next shot's chance from where the cue ball stops after a
     # pot (0: it plans no position, only the pot)
@@ -83,19 +83,20 @@ class Level(NamedTuple):
 STUN, FOLLOW, DRAW = (0.0, 0.0), (0.0, 0.3), (0.0, -0.3)
 LEVELS = {
     # A beginner: the pot in front of it, hit firmly; no position, no safeties.
-    "easy": Level(0.25, (1.3, 2.4), (STUN, FOLLOW), 0, 4, 1, 0.5,
+    "easy": Level(0.25, (1.3, 2.4), (STUN, FOLLOW), 0, 4, 1, (0.5,),
                   0.0, 0.0, 0.9, 0.10, 0.10, 0.03),
     # A club player: a sound choice of pot, some thought of what a miss leaves.
-    "normal": Level(0.8, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 8, 2, 0.5,
+    "normal": Level(0.8, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 8, 2, (0.5,),
                     0.0, 30.0, 0.3, 0.06, 0.06, 0.01),
     # A strong amateur: plays position for the next ball and safe when the pot is poor.
     "hard": Level(1.0, (1.0, 1.5, 2.2, 3.2),
-                  (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)), 16, 8, 3, 0.275,
+                  (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)), 16, 8, 3,
+                  (0.5, 0.275, 0.725),
                   100.0, 200.0, 0.22, 0.04, 0.04, 0.0),
     # A professional: more speeds and spins to choose from, and a steadier stroke.
     "pro": Level(1.5, (1.0, 1.4, 1.9, 2.6, 3.4),
                  (STUN, (0.0, 0.35), (0.0, -0.4), (0.3, 0.1), (-0.3, 0.1), (0.25, -0.3),
-                  (-0.25, -0.3)), 24, 12, 3, 0.275,
+                  (-0.25, -0.3)), 24, 12, 3, (0.5, 0.16, 0.275, 0.35, 0.65, 0.725, 0.84),
                  150.0, 300.0, 0.07, 0.02, 0.015, 0.0),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
@@ -368,12 +369,17 @@ def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,
 
     Each round simulates the cue ball and its target alone on a table without pockets,
     measures where the object ball actually heads, and turns the contact normal by the
-    error (a fixed-point iteration: the throw changes little with the normal).
+    error (a fixed-point iteration: the throw changes little with the normal). A pot whose
+    ball (or the cue ball) sits in a pocket's mouth, beyond the line the cushion takes on a
+    table without pockets, keeps its aim: there it would overlap that cushion.
     """
-    pots = [k for k, kind in enumerate(cands.kind) if kind in ("pot", "combo")]
+    plain = Table(length=table.length, width=table.width, pockets="none")
+    inside = [plain.inside(float(x), float(y), float(r))
+              for (x, y), r in zip(t.pos, t.radius, strict=True)]
+    pots = [k for k, kind in enumerate(cands.kind)
+            if kind in ("pot", "combo") and inside[cands.target[k]] and inside[t.cue]]
     if not pots:
         return
-    plain = Table(length=table.length, width=table.width, pockets="none")
     tgt = np.array([cands.target[k] for k in pots])
     want = np.array([geo.deg(np.array(cands.aim[k]) - t.pos[cands.target[k]]) for k in pots])
     normal = want.copy()
@@ -430,9 +436,13 @@ def _heading_point(events: list[dict]) -> np.ndarray | None:
 # ------------------------------------------------------------------------------ judging
 
 
-def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics) -> Engine:
+def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics,
+              cue_at: np.ndarray | None = None) -> Engine:
+    """All candidates in one batch; `cue_at` (B, 2) puts the cue ball elsewhere per table."""
     B, n = len(cands), len(t.ids)
     pos = np.broadcast_to(t.pos, (B, n, 2)).copy()
+    if cue_at is not None:
+        pos[:, t.cue] = cue_at
     vel = np.zeros((B, n, 2))
     w = np.zeros((B, n, 3))
     for b in range(B):
@@ -725,20 +735,50 @@ def _cue_in_hand(ids, pos, on_table, table: Table):
     return pos, on_table
 
 
+def _string_spot(t: _Table, table: Table, area: str, share: float) -> np.ndarray | None:
+    """The free point of the head string nearest the one `share` of the width across."""
+    hx, hy = table.head_spot[0], share * table.width
+    xy = np.array([[hx, hy + s * k * 0.01] for k in range(130) for s in (1, -1)])
+    ok = np.nonzero(_spot_ok(xy, t, table, area))[0]
+    return xy[ok[0]] if len(ok) else None
+
+
+def _break_spot(t: _Table, table: Table, physics: Physics, state: State, area: str,
+                lv: Level) -> np.ndarray:
+    """Where the level breaks from: the free point of the head string nearest each of its
+    break spots; with several, the one whose best break (`_break_cands`, all in one batch)
+    scores best on average over its samples."""
+    spots = [xy for f in lv.break_spots if (xy := _string_spot(t, table, area, f)) is not None]
+    if not spots:
+        raise ValueError(f"area: no free spot for the cue ball in the {area}")
+    if len(spots) == 1:
+        return spots[0]
+    targets = legal_targets(state, t.ids)
+    cands, cue_at = _Cands(), []
+    for xy in spots:
+        here = t._replace(pos=t.pos.copy())
+        here.pos[t.cue] = xy
+        one = _break_cands(here, targets, lv)
+        cands.extend(one)
+        cue_at += [xy] * len(one)
+    if len(cands) == 0:
+        return spots[0]
+    eng = _simulate(t, cands, table, physics, np.array(cue_at))
+    pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
+    scores, _, _ = _score(state, targets, t, cands, eng, table, pockets, lv)
+    mean = scores.reshape(len(spots), -1, BREAK_SAMPLES).mean(axis=2).max(axis=1)
+    return spots[int(np.argmax(mean))]
+
+
 def _spot_chances(t: _Table, table: Table, state: State, area: str, distances: int,
-                  sigma: float, break_spot: float = 0.5) -> tuple[np.ndarray, np.ndarray,
-                                                                  list[str]]:
+                  sigma: float) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """Legal spots for the cue ball in hand (M, 2) and the pot chances (M, N, P) each leaves:
     spots behind the ghost ball of each pot at a few cut angles and `distances` distances,
-    then a coarse grid of the area; on a break the head string comes first, from `break_spot`
-    (a fraction of the width) outwards. Also returns the legal targets."""
+    then a coarse grid of the area. Also returns the legal targets."""
     r = float(t.radius[t.cue])
     pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
     spots = []
-    if state.is_break:  # the break spot, else the nearest free point of the head string
-        hx, hy = table.head_spot[0], break_spot * table.width
-        spots += [np.array([hx, hy + s * k * 0.02]) for k in range(60) for s in (1, -1)]
     dists = (0.3, 0.15, 0.5)[:distances]
     for b in targets:
         i = t.ids.index(b)
@@ -776,7 +816,8 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
                      seed: int = 0) -> tuple[float, float]:
     """Where to put the cue ball in hand: `area` "anywhere" or "kitchen" (behind the head
     string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
-    distances, and a coarse grid as a fallback, are scored by the shots they leave.
+    distances, and a coarse grid as a fallback, are scored by the shots they leave. On a
+    break, the level's break spot on the head string (`_break_spot`).
 
     The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
     scratch it is still in a pocket); it must be in `ids`.
@@ -786,10 +827,10 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     pos, on_table = _cue_in_hand(ids, pos, on_table, table)
     t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     lv = LEVELS[level]
-    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, LEAVE_SIGMA,
-                                        lv.break_spot)
     if state.is_break:
-        return float(xy[0, 0]), float(xy[0, 1])
+        spot = _break_spot(t, table, physics, state, area, lv)
+        return float(spot[0]), float(spot[1])
+    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, LEAVE_SIGMA)
     value = geo.leave_value(chance)
     # Between spots of equal value (say, no pot anywhere), the one nearest a legal ball.
     legal = [k for k, b in enumerate(t.ids) if b in targets]
