@@ -483,6 +483,7 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
     practice = state.mode == "practice"
     # A pot that misses in play: the opponent gets the table (in practice, nobody does).
     miss = 0.0 if practice else -lv.leave * MISS_LEAVE
+    foul = FOUL - (0.0 if practice else lv.leave)  # ball in hand: the best table to leave
     for b in range(B):
         summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
         called = _call(state, targets, t, cands, b, summary, pockets)
@@ -501,7 +502,7 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
             scores[b] = p * WIN + (1 - p) * miss if out.winner == state.shooter else LOSS
             notes.append(out.reason)
         elif out.foul is not None or (practice and out.ball_in_hand):
-            scores[b] = FOUL
+            scores[b] = foul
             notes.append(f"foul: {out.reason}" if out.foul else out.reason)
         elif out.continue_turn and potted:
             scores[b] = p * CONTINUE + (1 - p) * miss

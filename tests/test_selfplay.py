@@ -222,9 +222,10 @@ def test_figures_pool_a_level_over_both_sides_and_count_player_games():
         {"winner": 0, "shots": 10, "tallies": [
             tally("hard", pot_attempts=4, pots=3, fouls=1, breaks=1, runs=1, decisions=[0.2],
                   foul_kinds={"scratch": 1}),
-            tally("hard", pot_attempts=2, pots=1, safeties=2, decisions=[0.4, 0.6],
+            tally("hard", pot_attempts=2, pots=1, safeties=2, kicks=1, decisions=[0.4, 0.6],
                   safety_before=[0.5, 0.2], safety_after=[0.1, 0.3],
-                  safety_kick=[False, True], safety_foul=[False, True])]},
+                  safety_foul=[False, True], kick_before=[0.1], kick_after=[0.6],
+                  kick_foul=[False])]},
         {"winner": None, "shots": 30, "tallies": [
             tally("hard", pot_attempts=2, pots=2, breaks=1, decisions=[1.0]),
             tally("hard", fouls=1, foul_kinds={"no_rail": 1})]},
@@ -239,9 +240,12 @@ def test_figures_pool_a_level_over_both_sides_and_count_player_games():
     assert r["shots_per_game"] == 20
     assert r["decision_s"]["hard"] == pytest.approx(0.5)
     assert r["decision_s_max"]["hard"] == 1.0
+    assert r["kicks_per_game"]["hard"] == pytest.approx(1 / 4)
     s = r["safeties"]["hard"]
     assert s["count"] == 2 and s["lowered"] == 0.5 and s["lowered_without_foul"] == 1.0
-    assert s["kicks"] == 1 and s["fouls"] == 1
+    assert s["fouls"] == 1
+    k = r["kicks"]["hard"]
+    assert k["count"] == 1 and k["lowered"] == 0.0 and k["opponent_chance_after"] == 0.6
     assert s["opponent_chance_before"] == pytest.approx(0.35)
 
 

@@ -11,12 +11,12 @@ What is counted, per player and game:
 - a *pot attempt* is a shot whose plan is a pot or a combination; it *dropped* when the ball
   it meant to sink went into the pocket it was sent to;
 - a *foul* is a shot the referee calls a foul (counted by its name too); a *safety* is a
-  shot planned as a safety or a kick (a shot that tries no pot);
+  shot planned as one (it chose not to pot), a *kick* one planned as a kick (no pot was on);
 - a *break and run*: the breaker wins the game before the opponent has a shot;
 - *after a pot*: pot attempts that follow the same player's pot that dropped (position play);
-- around each safety, the opponent's best chance of a straight pot (`ai.best_chance`, an aim
-  error of CHANCE_SIGMA) on the table before it and on the table it leaves (with ball in
-  hand after a foul, from the best spot), and whether it was a kick and whether it fouled;
+- around each safety and kick, the opponent's best chance of a straight pot (`ai.best_chance`,
+  an aim error of CHANCE_SIGMA) on the table before it and on the table it leaves (with ball
+  in hand after a foul, from the best spot), and whether it fouled;
 - the wall time of each decision (placing the cue ball in hand, choosing the shot), and the
   processor time it took (what it would take on an idle machine: a shared one stretches the
   wall time).
@@ -44,7 +44,8 @@ from .turn import Shot
 
 CHANCE_SIGMA = ai.LEAVE_SIGMA  # degrees: the aim error a safety's effect is measured with
 MAX_SHOTS = 300  # a game still going after this many shots is stopped without a winner
-SAFETIES = ("safety", "kick")  # plans that try no pot: defence, by choice or when snookered
+DEFENCE = {"safety": "safety", "kick": "kick"}  # plans that try no pot: a safety by choice,
+# a kick when no pot is on (snookered)
 
 
 def game_seed(seed: int, index: int) -> int:
@@ -62,8 +63,8 @@ def shot_seed(match: Match) -> int:
 def _tally(level: str) -> dict:
     return {"level": level, "shots": 0, "pot_attempts": 0, "pots": 0, "fouls": 0,
             "safeties": 0, "breaks": 0, "runs": 0, "after_pot_attempts": 0,
-            "after_pot_pots": 0, "decisions": [], "decisions_cpu": [], "safety_before": [],
-            "safety_after": [], "safety_kick": [], "safety_foul": [],
+            "after_pot_pots": 0, "decisions": [], "decisions_cpu": [], "kicks": 0,
+            **{f"{d}_{k}": [] for d in DEFENCE for k in ("before", "after", "foul")},
             "foul_kinds": {}}
 
 
@@ -124,8 +125,8 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
             struck = ai.as_struck(plan, level, s)
             mine["decisions"].append(clock() - t0)
             mine["decisions_cpu"].append(time.process_time() - c0)
-            safety = plan.kind in SAFETIES
-            before = _chance_for(m, 1 - me, None) if safety else None
+            defence = DEFENCE.get(plan.kind)
+            before = _chance_for(m, 1 - me, None) if defence else None
             is_break = m.state.is_break
             run = m.begin(Shot(struck.speed, struck.angle, struck.side, struck.top,
                                called=struck.called))
@@ -147,14 +148,13 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
                     mine["after_pot_attempts"] += 1
                     mine["after_pot_pots"] += dropped
             last = (me, dropped and out.continue_turn)
-            if safety:
-                mine["safeties"] += 1
-                # A safety that ends the game or keeps the turn (it potted) denies nothing.
+            if defence:
+                mine["safeties" if defence == "safety" else "kicks"] += 1
+                # A shot that ends the game or keeps the turn (it potted) denies nothing.
                 if m.winner is None and m.shooter != me:
-                    mine["safety_before"].append(before)
-                    mine["safety_after"].append(_chance_for(m, m.shooter, m.ball_in_hand))
-                    mine["safety_kick"].append(plan.kind == "kick")
-                    mine["safety_foul"].append(out.foul is not None)
+                    mine[f"{defence}_before"].append(before)
+                    mine[f"{defence}_after"].append(_chance_for(m, m.shooter, m.ball_in_hand))
+                    mine[f"{defence}_foul"].append(out.foul is not None)
         finished = m.winner is not None or len(m.history) >= max_shots
     finally:
         if record is not None:
@@ -208,10 +208,15 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
     def per(key: str, fn: Callable[[dict], Any]) -> dict:
         return {lv: fn(pool[lv]) for lv in names}
 
-    def lowered(p: dict, clean: bool = False) -> float | None:
-        pairs = [(b, a) for b, a, f in zip(p["safety_before"], p["safety_after"],
-                                           p["safety_foul"], strict=True) if not (clean and f)]
-        return _share(sum(a < b for b, a in pairs), len(pairs))
+    def effect(p: dict, d: str) -> dict:
+        """What the safeties (or kicks) left the opponent, before and after."""
+        rows = list(zip(p[f"{d}_before"], p[f"{d}_after"], p[f"{d}_foul"], strict=True))
+        clean = [(b, a) for b, a, f in rows if not f]
+        return {"count": len(rows), "fouls": sum(f for _, _, f in rows),
+                "opponent_chance_before": _mean([b for b, _, _ in rows]),
+                "opponent_chance_after": _mean([a for _, a, _ in rows]),
+                "lowered": _share(sum(a < b for b, a, _ in rows), len(rows)),
+                "lowered_without_foul": _share(sum(a < b for b, a in clean), len(clean))}
 
     return {
         "games": n,
@@ -232,14 +237,9 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
         "foul_kinds": per("f", lambda p: dict(sorted(p["foul_kinds"].items()))),
         "pot_rate_after_pot": per("ap", lambda p: _share(p["after_pot_pots"],
                                                          p["after_pot_attempts"])),
-        "safeties": per("s", lambda p: {
-            "count": len(p["safety_before"]),
-            "kicks": sum(p["safety_kick"]),
-            "fouls": sum(p["safety_foul"]),
-            "opponent_chance_before": _mean(p["safety_before"]),
-            "opponent_chance_after": _mean(p["safety_after"]),
-            "lowered": lowered(p),
-            "lowered_without_foul": lowered(p, clean=True)}),
+        "kicks_per_game": per("k", lambda p: _share(p["kicks"], p["games"])),
+        "safeties": per("s", lambda p: effect(p, "safety")),
+        "kicks": per("k", lambda p: effect(p, "kick")),
     }
 
 
