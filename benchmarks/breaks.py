@@ -8,8 +8,12 @@ side cushion) and speed (m/s, centre ball at the apex), the break is struck N ti
 a different rack (`Match` seeds 0..N-1: the racks differ in the numbers on the balls, and so
 in the order the engine meets their contacts, which a frozen rack is sensitive to) with the
 level's errors (`ai.as_struck`, seeds 0..N-1), all in one batch, and the referee's verdict
-counted: breaks that keep the turn (a ball pocketed, no foul) and scratches. This is how the
-levels' `break_spot` was chosen.
+counted: breaks that keep the turn (a ball pocketed, no foul) and scratches.
+
+Then, with --played N, each level breaks N racks as it does in a game: it picks its spot
+(`ai.choose_placement`) and its break (`ai.choose_shot`) on that rack, and strikes it with its
+errors (`ai.as_struck`); the same count. A level with several break spots tries its break from
+each on the rack in front of it, which a fixed spot cannot match.
 """
 
 from __future__ import annotations
@@ -61,6 +65,22 @@ def breaks(level: str, spot: float, speed: float, samples: int, table: str) -> t
     return kept, scratched
 
 
+def played(level: str, racks: int, table: str) -> tuple[int, int]:
+    """(breaks that kept the turn, scratches) of the level's own breaks on `racks` racks."""
+    from termpool.game import Shot
+
+    kept = scratched = 0
+    for k in range(racks):
+        m = Match("8ball", table=table, seed=k)
+        args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table)
+        m.place_cue(*ai.choose_placement(*args, m.state, "kitchen", level=level, seed=k))
+        plan = ai.as_struck(ai.choose_shot(*args, m.state, level=level, seed=k), level, k)
+        out = m.begin(Shot(plan.speed, plan.angle, plan.side, plan.top)).finish()
+        kept += out.continue_turn
+        scratched += out.foul == "scratch"
+    return kept, scratched
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="benchmarks/breaks.py", description=__doc__.split("\n")[0])
     ap.add_argument("--samples", type=int, default=32)
@@ -68,10 +88,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--spots", default="0.16,0.275,0.5")
     ap.add_argument("--speeds", default="7,8,9")
     ap.add_argument("--table", default="9ft", choices=("7ft", "8ft", "9ft"))
+    ap.add_argument("--played", type=int, default=0, metavar="N")
     args = ap.parse_args(argv)
     levels = args.levels.split(",")
-    if args.samples < 1 or any(lv not in ai.LEVELS for lv in levels):
-        ap.error(f"--samples must be at least 1 and --levels among {', '.join(ai.LEVELS)}")
+    if args.samples < 1 or args.played < 0 or any(lv not in ai.LEVELS for lv in levels):
+        ap.error(f"--samples must be at least 1, --played at least 0 and --levels among "
+                 f"{', '.join(ai.LEVELS)}")
     spots = [float(v) for v in args.spots.split(",")]
     speeds = [float(v) for v in args.speeds.split(",")]
     t0 = time.perf_counter()
@@ -85,6 +107,10 @@ def main(argv: list[str] | None = None) -> int:
                 kept, scratched = breaks(level, spot, speed, args.samples, args.table)
                 cells.append(f"{kept:>3}/{args.samples} {scratched:>2}s".rjust(10))
             print(f"{level:7} {spot:6.3f} " + " ".join(cells))
+    for level in levels if args.played else ():
+        kept, scratched = played(level, args.played, args.table)
+        print(f"{level:7} as it breaks in a game: kept the turn {kept}/{args.played}, "
+              f"scratched {scratched}")
     print(f"({time.perf_counter() - t0:.0f} s)")
     return 0
 

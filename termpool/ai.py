@@ -321,12 +321,13 @@ def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int
 
 def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
                   budget: int) -> _Cands:
-    """Safeties and kicks at each legal ball, most useful first: soft full and half-ball hits,
-    one-rail kicks (two guesses of the rebound: the cushion's restitution, and halfway to a
-    mirror), a harder one-rail kick, two-rail kicks, more hits (thin cuts, firmer half-ball
-    hits, a firm full hit: the batch finds the one that leaves least), then fans of one- and
-    two-rail kicks aimed up to a few degrees to either side (the rebound of a spinning ball is
-    only roughly known: the batch finds the one that hits)."""
+    """Safeties and kicks at each legal ball, most useful first: touches (full and half-ball
+    hits about hard enough to send the ball to a rail: the cue ball stays near where it is),
+    soft full and half-ball hits, one-rail kicks (two guesses of the rebound: the cushion's
+    restitution, and halfway to a mirror), a harder one-rail kick, two-rail kicks, more hits
+    (thin cuts, firmer half-ball hits, a firm full hit: the batch finds the one that leaves
+    least), then fans of one- and two-rail kicks aimed up to a few degrees to either side (the
+    rebound of a spinning ball is only roughly known: the batch finds the one that hits)."""
     cands = _Cands()
     pc = t.pos[t.cue]
     rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
@@ -339,8 +340,10 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
         reach = (t.radius[i] + t.radius[t.cue]) / max(float(np.linalg.norm(d)), 1e-9)
         half = math.degrees(math.asin(min(reach / 2, 1.0)))
         thin = math.degrees(math.asin(min(0.85 * reach, 1.0)))
-        rows = [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
-                (1.3, base - half, "safety")]
+        rows = [(speed, angle, "safety") for speed, angle in
+                _touches(pc, t.pos[i], base, half, table, physics)]
+        rows += [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
+                 (1.3, base - half, "safety")]
         more = [(1.0, base + thin), (1.0, base - thin), (2.4, base + half), (2.4, base - half),
                 (1.8, base + thin), (1.8, base - thin), (2.8, base)]
         one = geo.kick_aims(pc, t.pos[i], table, rc, e)
@@ -361,6 +364,25 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
                 speed, angle, i, kind = rows[rank]
                 cands.add(speed, angle, 0.0, 0.0, i, -1, kind, 0.0)
     return cands
+
+
+def _touches(pc: np.ndarray, pt: np.ndarray, base: float, half: float, table: Table,
+             physics: Physics) -> list[tuple[float, float]]:
+    """(speed, angle) of a full hit and the two half-ball hits (which send the object ball
+    30 degrees off the cue's line) about hard enough for the object ball to reach a rail
+    (1.3 times `geo.pot_speed` to it), and a little harder."""
+    out = []
+    d1 = float(np.linalg.norm(pt - pc))
+    for aim, turn in ((base, 0.0), (base + half, -30.0), (base - half, 30.0)):
+        a = math.radians(base + turn)
+        u = np.array([math.cos(a), math.sin(a)])
+        # How far the object ball rolls along u before it meets a cushion line.
+        reach = min((hi - pt[k]) / u[k] if u[k] > 1e-9 else (pt[k] - 0.0) / -u[k]
+                    if u[k] < -1e-9 else math.inf
+                    for k, hi in ((0, table.length), (1, table.width)))
+        v = geo.pot_speed(d1, max(reach - 0.3, 0.0), math.cos(math.radians(turn)), physics)
+        out += [(1.3 * v, aim), (1.8 * v, aim)]
+    return out
 
 
 def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,

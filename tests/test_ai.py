@@ -617,7 +617,7 @@ def test_with_error_is_seeded_and_zero_error_keeps_the_plan():
 def test_plans_say_what_kind_of_shot_they_are():
     lay, down = after_break()
     plans = ai.score_shots(*lay.args(), State(mode="8ball", pocketed=tuple(down)),
-                           level="hard")
+                           level="hard", max_candidates=1024)
     assert {"pot", "safety", "kick"} <= {p.kind for p in plans}
     for p in plans:
         assert (p.ball is not None) == (p.kind in ("pot", "combo"))
@@ -692,7 +692,7 @@ def test_position_play_leaves_a_better_next_shot(monkeypatch):
         lay = Layout(balls)
         nxt = []
         for level in ("hard", "flat"):
-            plan = ai.choose_shot(*lay.args(), state, level=level, max_candidates=48)
+            plan = ai.choose_shot(*lay.args(), state, level=level, max_candidates=96)
             left, out = _after(lay, plan, state)
             potted = out.continue_turn and len(left.ids) < len(lay.ids)
             nxt.append(ai.best_chance(*left.args(), state) if potted and "cue" in left.ids
@@ -734,3 +734,23 @@ def test_safeties_lower_the_opponent_s_best_chance():
         if seen == 2:
             break
     assert seen == 2
+
+
+def test_the_levels_table_in_the_docs_is_the_levels():
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "ai.md").read_text()
+    rows = {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
+            for line in doc.splitlines() if line.startswith("| ") and line.count("|") == 6}
+    assert rows[""] == list(ai.LEVELS)  # the header: a column per level, in order
+    want = {
+        "candidates (share of `max_candidates`)": lambda lv: f"{100 * lv.share:g} %",
+        "aim error, sd (`aim_sd`)": lambda lv: f"{lv.aim_sd:g}°",
+        "speed error, sd (`speed_sd`)": lambda lv: f"{100 * lv.speed_sd:g} %",
+        "tip error, sd (`tip_sd`, R)": lambda lv: f"{lv.tip_sd:g}",
+        "position: weight of its next shot (`position`)": lambda lv: f"{lv.position:g}:",
+        "safety: weight of what it leaves (`leave`)": lambda lv: f"{lv.leave:g}",
+    }
+    for row, cell in want.items():
+        for got, lv in zip(rows[row], ai.LEVELS.values(), strict=True):
+            assert got.startswith(cell(lv)), (row, got)
