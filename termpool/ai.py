@@ -88,12 +88,13 @@ LEVELS = {
     # A club player: a sound choice of pot, some thought of what a miss leaves.
     "normal": Level(0.8, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 8, 2, (0.5,),
                     0.0, 30.0, 0.3, 0.06, 0.06, 0.01),
-    # A strong amateur: plays position for the next ball, and safe when the pot is poor.
+    # A strong amateur: plays position for the next ball, safe when the pot is poor, and
+    # breaks from where its break works best on the rack.
     "hard": Level(1.2, (1.0, 1.4, 1.9, 2.6, 3.4),
                   (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1), (0.25, -0.3),
-                   (-0.25, -0.3)), 16, 10, 3, (0.5, 0.275, 0.725),
-                  100.0, 200.0, 0.21, 0.035, 0.035, 0.0),
-    # A professional: a steadier stroke, more of the batch, and its break where it works best.
+                   (-0.25, -0.3)), 16, 10, 3, (0.5, 0.16, 0.275, 0.35, 0.65, 0.725, 0.84),
+                  100.0, 200.0, 0.25, 0.035, 0.035, 0.0),
+    # A professional: a steadier stroke, more of the batch.
     "pro": Level(1.5, (1.0, 1.4, 1.9, 2.6, 3.4),
                  (STUN, (0.0, 0.35), (0.0, -0.4), (0.3, 0.1), (-0.3, 0.1), (0.25, -0.3),
                   (-0.25, -0.3)), 24, 12, 3, (0.5, 0.16, 0.275, 0.35, 0.65, 0.725, 0.84),
