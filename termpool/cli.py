@@ -1,7 +1,7 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
 prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
 checks it bit for bit (`--watch`: plays it on screen); `termpool rules` prints the rules;
-`termpool stats` sums up the history of play.
+`termpool stats` sums up the history of play; `termpool selfplay` plays the computer against itself.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -179,6 +179,19 @@ def _parser() -> _Parser:
         ),
     )
     st.add_argument("--json", action="store_true", help="print the same figures as JSON")
+    from termpool.selfplay import add_arguments as selfplay_arguments
+
+    sp = sub.add_parser(
+        "selfplay",
+        help="play the computer against itself and print how each level played",
+        description=(
+            "Play N games between two levels of the computer (the break alternating) and "
+            "print each level's wins, pot rate, fouls, break-and-run rate, safeties and "
+            "decision times (see docs/ai.md). Deterministic for a --seed, whatever --jobs. "
+            "Ctrl-C prints the figures of the games finished so far."
+        ),
+    )
+    selfplay_arguments(sp)
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -463,6 +476,18 @@ def _play(args: argparse.Namespace) -> int:
         return _fail(f"play: {e}")
 
 
+# ----------------------------------------------------------------------------- selfplay
+
+
+def _selfplay(args: argparse.Namespace) -> int:
+    from termpool.selfplay import SelfplayError, run
+
+    try:
+        return run(args)
+    except SelfplayError as e:
+        return _fail(str(e))
+
+
 # --------------------------------------------------------------------------------- main
 
 
@@ -486,6 +511,8 @@ def main(argv: list[str] | None = None) -> int:
             return _rules(args)
         if args.command == "stats":
             return _stats(args)
+        if args.command == "selfplay":
+            return _selfplay(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

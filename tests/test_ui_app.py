@@ -225,6 +225,16 @@ def test_menu_picks_a_game() -> None:
     assert app.match.mode == "9ball" and app.cpu == (False, True)
 
 
+def test_settings_offer_every_level_of_the_computer() -> None:
+    from termpool import ai
+    from termpool.ui.settings import BY_KEY
+
+    assert BY_KEY["level"].values == tuple(ai.LEVELS)  # the levels the AI has, pro too
+    app = App(Options(colors="mono", level="pro"))
+    run_script(app, "1")  # 8-ball vs computer, at that level
+    assert app.match.mode == "8ball" and app.match.levels == (None, "pro")
+
+
 def test_tiny_window_gets_a_message_and_the_game_survives() -> None:
     app = app_for()
     assert "make the window at least" in screen_text(app.cells(30, 10)[0])
@@ -752,6 +762,11 @@ def test_referee_words_take_the_theme_s_group_names():
     assert app.names("not one of the solids") == "not one of the reds"
 
 
+def test_the_record_keeps_the_computer_s_level():
+    assert app_for(mode="9ball", opponent="cpu", level="hard").match.levels == (None, "hard")
+    assert app_for(mode="9ball", opponent="human", level="hard").match.levels == (None, None)
+
+
 def test_the_eight_on_the_break_variant_reaches_the_match():
     assert app_for(mode="8ball", eight_break="rerack").match.eight_break == "rerack"
     assert app_for(mode="8ball").match.eight_break == "respot"
@@ -837,7 +852,7 @@ def cpu_to_shoot(monkeypatch, note="3 in the foot_left pocket"):
 
     plan = ai.Plan(1.5, 20.0, 0.0, 0.2, None, 1.0, note)
     monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
-    monkeypatch.setattr(ai, "with_error", lambda p, *a, **k: p)
+    monkeypatch.setattr(ai, "as_struck", lambda p, *a, **k: p)
     app = app_for(mode="8ball", opponent="cpu")
     app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
                                                         is_break=False)

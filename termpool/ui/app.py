@@ -36,8 +36,6 @@ DEFAULT_POWER = 0.5  # the aid's power (and the digits') before a match's first 
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
-CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
-# computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
 CPU_AIM_S = 0.6  # the computer turns its stick onto its aim over this long ...
 CPU_SHOW_S = 1.2  # ... then holds it there, its aid and plan on show, this long before it
 # shoots (a key shoots at once)
@@ -173,7 +171,8 @@ class App:
         self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
                            seed=seed, theme=self.opts.theme,
                            three_foul=self.opts.three_foul and mode == "9ball",
-                           eight_break=self.opts.eight_break)
+                           eight_break=self.opts.eight_break,
+                           levels=tuple(self.opts.level if c else None for c in self.cpu))
         self._geom = None
         self.run = None
         self.message = []
@@ -471,7 +470,7 @@ class App:
 
         m = self.match
         if m.option is not None:
-            return _cpu_option(m.option)
+            return ai.choose_option(m.option)
         args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
         seed = m.seed * 1000 + len(m.history)
         if m.ball_in_hand:
@@ -480,9 +479,7 @@ class App:
                 x, y = m.waiting_spot()
             m.place_cue(x, y)
         plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
-        aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
-        if not m.state.is_break:
-            plan = ai.with_error(plan, aim_sd, speed_sd, seed)
+        plan = ai.as_struck(plan, self.opts.level, seed)
         foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
         note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
@@ -635,6 +632,10 @@ class App:
             self._menu_pick()
         elif action in ("confirm", "shoot"):
             self._menu_pick()
+
+    def menu_label(self, k: int) -> str:
+        """Menu entry k as shown."""
+        return MENU[k][0]
 
     def _menu_pick(self) -> None:
         what = MENU[self.menu_index][1]
@@ -936,6 +937,3 @@ OPTION_KEYS = {
     "shoot_or_pass": {"s": "shoot", "p": "pass"},
 }
 
-
-def _cpu_option(option: str) -> str:
-    return {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}.get(option, option)

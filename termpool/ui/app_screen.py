@@ -348,8 +348,8 @@ def _menu_cells(app, cols: int, rows: int, mono: bool):
 
     cells = blank_cells(cols, rows, mono)
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
-    for k, (label, _) in enumerate(MENU):
-        sel = k == app.menu_index
+    for k in range(len(MENU)):
+        label, sel = app.menu_label(k), k == app.menu_index
         lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]

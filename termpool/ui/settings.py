@@ -102,8 +102,9 @@ def check_name(text: str) -> str:
 # physics.table, rules.themes, ui.predict and ui.output); written here too because the command
 # line is parsed before numpy is imported.
 SETTINGS: tuple[Setting, ...] = (
-    Setting("level", "Computer's level", "the computer's skill", "normal",
-            values=("easy", "normal", "hard"), later=True),
+    Setting("level", "Computer's level", "the computer's skill: easy (a beginner), normal (a "
+            "club player), hard (a strong amateur), pro", "normal",
+            values=("easy", "normal", "hard", "pro"), later=True),
     Setting("table", "Table", "table size", "9ft", values=("7ft", "8ft", "9ft"), later=True),
     Setting("frames", "Frames to win", "a match is a race to this many frames", 1,
             kind="count", lo=1, hi=MAX_FRAMES, later=True),
