@@ -218,7 +218,6 @@ class SlowContacts:
         # Undo sub-micrometre sinks: the smallest mass-weighted moves that leave no contact
         # overlapping (the same complementarity problem, on positions), so a light ball
         # squeezed against a rail by a heavy one moves the heavy one back.
-        A_pos = J.matrix(inv_m)
         ball = J.ball
         for _ in range(3):
             gaps = np.empty(nc)
@@ -227,7 +226,7 @@ class SlowContacts:
             gaps[cush] = rg[cush] + ((p[ra[cush]] - p0[ra[cush]]) * rn[cush]).sum(axis=1)
             if not (gaps < -1e-12).any():  # rounding is not an overlap
                 break
-            lam = solve_inelastic(A_pos, np.minimum(gaps, 0.0))
+            lam = solve_inelastic(J.matrix(inv_m), np.minimum(gaps, 0.0))
             p = p + J.spread(lam, inv_m)
         # Contacts that neither close nor part are resting: friction may press them together,
         # and then they carry a steady force (joined.py). Their curvature (balls rolling
