@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import time
 from typing import Any, NoReturn
@@ -36,6 +37,23 @@ class _Parser(argparse.ArgumentParser):
         if message:
             sys.stderr.write(message)
         raise _Exit(status)
+
+
+# The thread pools of the BLAS libraries numpy may be built with. termpool needs none: its
+# engine writes out its small solves and products (only 4x4 eigenvalue problems reach LAPACK,
+# on the calling thread), and a pool's idle workers spin for a while after it starts, which
+# burns a second core while the game only waits.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
+
+
+def one_blas_thread() -> None:
+    """Have numpy's BLAS start with one thread in termpool's own processes, unless the user
+    set a number. It must run before numpy is imported; a program that imports termpool as
+    a library keeps its own settings."""
+    if "numpy" not in sys.modules:
+        for name in BLAS_THREADS:
+            os.environ.setdefault(name, "1")
 
 
 def _fail(message: str) -> int:
@@ -494,6 +512,7 @@ def _selfplay(args: argparse.Namespace) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `termpool` command; returns the exit status."""
     argv = sys.argv[1:] if argv is None else list(argv)
+    one_blas_thread()
     try:
         if argv and argv[0] == "bench":
             return _bench(argv[1:])
