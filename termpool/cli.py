@@ -361,11 +361,16 @@ def _sim(args: argparse.Namespace) -> int:
         )
     except ValueError as e:
         return _fail(str(e))
+    from termpool.physics.engine import WorkLimit
+
     t0 = time.perf_counter()
-    if args.method == "fixed":
-        samples = eng.run(args.dt, duration=args.duration, sample_hz=args.sample_hz)
-    else:
-        samples = eng.run_events(duration=args.duration, sample_hz=args.sample_hz)
+    try:
+        if args.method == "fixed":
+            samples = eng.run(args.dt, duration=args.duration, sample_hz=args.sample_hz)
+        else:
+            samples = eng.run_events(duration=args.duration, sample_hz=args.sample_hz)
+    except WorkLimit as e:
+        return _fail(str(e))
     wall = time.perf_counter() - t0
     dt = args.dt if args.method == "fixed" else None
     samples = (samples or []) if args.sample_hz is not None else None
@@ -486,11 +491,14 @@ def _bench(argv: list[str]) -> int:
 
 
 def _play(args: argparse.Namespace) -> int:
+    from termpool.physics.engine import WorkLimit
     from termpool.ui.play import PlayError, run
 
     try:
         return run(args)
     except PlayError as e:
+        return _fail(f"play: {e}")
+    except WorkLimit as e:  # the record is saved on the way out
         return _fail(f"play: {e}")
 
 

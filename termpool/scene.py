@@ -17,7 +17,7 @@ import numpy as np
 
 from termpool.files import MAX_SCENE_BYTES, FileError, parse_json, read_text
 from termpool.physics.cue import strike
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach, within
 from termpool.physics.table import PRESETS, Table
 
 
@@ -56,14 +56,7 @@ TABLE_RANGES = {
     "corner_hole_radius": (0.001, 1.0), "side_hole_radius": (0.001, 1.0),
     "hole_depth": (0.0, 1.0), "corner_jaw_angle": (1.0, 180.0), "side_jaw_angle": (1.0, 180.0),
 }
-# Physics values: (low, high); the friction coefficients in FRICTIONLESS_OK may also be 0.
-PHYSICS_RANGES = {
-    "mu_slide": (1e-4, 1.0), "mu_roll": (1e-4, 1.0), "mu_spin": (1e-4, 1.0),
-    "mu_cushion": (0.0, 1.0), "e_ball": (0.0, 1.0), "e_cushion": (0.0, 1.0),
-    "cushion_height": (0.0, 1.0), "g": (0.1, 100.0), "v_inelastic": (0.0, 1.0),
-}
-FRICTIONLESS_OK = ("mu_slide", "mu_roll", "mu_spin")
-PHYSICS_UNITS = {"g": "m/s^2", "cushion_height": "m", "v_inelastic": "m/s"}
+# Physics values: params.PHYSICS_RANGES, checked by Physics.from_dict.
 
 # Rows from the apex (on the foot spot) towards the foot rail; within a row, ids by increasing y.
 RACK_ROWS = {
@@ -130,12 +123,10 @@ def _number(val: Any, path: str, *, positive: bool = False, nonneg: bool = False
 
 
 def _within(val: float, limits: tuple[float, float], path: str, unit: str = "") -> None:
-    lo, hi = limits
-    unit = f" {unit}" if unit else ""
-    if val < lo:
-        raise SceneError(f"{path}: must be at least {lo:g}{unit}, not {val:g}")
-    if val > hi:
-        raise SceneError(f"{path}: must be at most {hi:g}{unit}, not {val:g}")
+    try:
+        within(val, limits, path, unit)
+    except ValueError as e:
+        raise SceneError(str(e)) from None
 
 
 def _reject_duplicates(pairs: list[tuple[str, Any]]) -> dict:
@@ -214,18 +205,6 @@ def _check_pockets(t: Table) -> None:
 
 def table_to_dict(t: Table) -> dict:
     return {name: getattr(t, name) for name in TABLE_FIELDS}
-
-
-def _check_physics(physics: Physics) -> None:
-    for key, limits in PHYSICS_RANGES.items():
-        val = getattr(physics, key)
-        if val == 0 and key in FRICTIONLESS_OK:
-            continue
-        try:
-            _within(val, limits, f"physics.{key}", PHYSICS_UNITS.get(key, ""))
-        except SceneError as e:
-            raise SceneError(f"{e} (or 0, frictionless)" if key in FRICTIONLESS_OK
-                             else str(e)) from None
 
 
 # ------------------------------------------------------------------------------------ balls
@@ -501,7 +480,6 @@ def load_scene(src: str | os.PathLike | dict) -> Scene:
         physics = Physics.from_dict(phys_spec)
     except ValueError as e:
         raise SceneError(str(e)) from None
-    _check_physics(physics)
     balls = _balls(raw.get("balls", "8ball"), table)
     _check_layout(balls, table, physics)
     if "shot" in raw:

@@ -582,6 +582,10 @@ def test_save_and_load_goes_on_identically() -> None:
         (lambda d: d.update(shots={}), "shots"),
         (lambda d: d["match"].update(levels="hard"), "^match.levels: must be a list of two"),
         (lambda d: d["match"].update(levels=["hard", "expert"]), "^levels: must be two of"),
+        # The physics of a saved match has the same limits as a scene's.
+        (lambda d: d["match"]["physics"].update(mu_slide=5e-324),
+         "physics.mu_slide: must be at least"),
+        (lambda d: d["match"]["physics"].update(g=1e6), "physics.g: must be at most 100"),
     ],
 )
 def test_bad_saved_match(change, words) -> None:

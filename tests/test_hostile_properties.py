@@ -19,12 +19,11 @@ from hypothesis import strategies as st
 from termpool import cli, files
 from termpool.game import Match, Shot
 from termpool.physics.cue import MISCUE_OFFSET, clamp_tip, strike
+from termpool.physics.params import FRICTIONLESS_OK, PHYSICS_RANGES
 from termpool.scene import (
-    FRICTIONLESS_OK,
     MASS_RANGE,
     MAX_SPEED,
     MAX_SURFACE_SPEED,
-    PHYSICS_RANGES,
     RADIUS_RANGE,
     TABLE_RANGES,
     SceneError,

@@ -5,13 +5,14 @@ from __future__ import annotations
 import itertools
 import json
 import math
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from termpool.physics.cue import strike
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, PHYSICS_RANGES, Physics
 from termpool.physics.table import Table
 from termpool.scene import SceneError, load_scene, loads_scene, scene_to_dict
 
@@ -178,14 +179,18 @@ ONE = {"id": "cue", "x": 0.6, "y": 0.6}
         ({"balls": [{**ONE, "x": 10 ** 400}]}, "balls[0].x: must be finite"),
         (two_balls(speed=1e10), "shot.speed: must be at most 25 m/s, not 1e+10"),
         (two_balls(speed=1e308), "shot.speed: must be at most 25 m/s"),
-        ({"physics": {"mu_slide": 5e-324}}, "physics.mu_slide: must be at least 0.0001, "
+        ({"physics": {"mu_slide": 5e-324}}, "physics.mu_slide: must be at least 0.1, "
                                             "not 4.94066e-324 (or 0, frictionless)"),
+        # The old lower ends, at which the slip completion set a ball 2 mm into a rail.
+        ({"physics": {"mu_slide": 1e-4}}, "physics.mu_slide: must be at least 0.1"),
+        ({"physics": {"g": 0.1}}, "physics.g: must be at least 1 m/s^2"),
         ({"physics": {"mu_slide": 1e15}}, "physics.mu_slide: must be at most 1"),
         ({"physics": {"mu_slide": 1e308}}, "physics.mu_slide: must be at most 1"),
         ({"physics": {"mu_roll": 2}}, "physics.mu_roll: must be at most 1"),
-        ({"physics": {"mu_spin": 1e-9}}, "physics.mu_spin: must be at least 0.0001"),
+        ({"physics": {"mu_spin": 1e-9}}, "physics.mu_spin: must be at least 0.001"),
+        ({"physics": {"mu_roll": 1e-4}}, "physics.mu_roll: must be at least 0.001"),
         ({"physics": {"mu_cushion": 3}}, "physics.mu_cushion: must be at most 1"),
-        ({"physics": {"g": 5e-324}}, "physics.g: must be at least 0.1 m/s^2"),
+        ({"physics": {"g": 5e-324}}, "physics.g: must be at least 1 m/s^2"),
         ({"physics": {"g": 1e4}}, "physics.g: must be at most 100 m/s^2"),
         ({"physics": {"cushion_height": 1e308}}, "physics.cushion_height: must be at most 1 m"),
         ({"physics": {"v_inelastic": 50}}, "physics.v_inelastic: must be at most 1 m/s"),
@@ -202,13 +207,21 @@ def test_values_without_physical_meaning_are_refused(scene: dict, expected: str)
     assert error(scene) == expected or error(scene).startswith(expected)
 
 
+def test_every_number_of_the_physics_has_its_range() -> None:
+    numbers = {f.name for f in fields(Physics) if "float" in str(f.type)}
+    assert numbers == set(PHYSICS_RANGES)
+    for key, (lo, hi) in PHYSICS_RANGES.items():  # and the defaults lie within them
+        assert lo <= getattr(Physics(), key) <= hi, key
+
+
 @pytest.mark.parametrize("ok", [
     {"balls": [{**ONE, "radius": 0.001, "mass": 0.001}]},
     {"balls": [{**ONE, "radius": 0.5, "mass": 100, "x": 1.0}]},
     {"balls": [{**ONE, "vx": 25.0}]},
     two_balls(speed=25.0, top=0.5),
     {"physics": {"mu_slide": 0, "mu_roll": 0, "mu_spin": 0}},
-    {"physics": {"mu_slide": 1e-4, "mu_roll": 1, "g": 0.1, "e_cushion": 0}},
+    {"physics": {"mu_slide": 0.1, "mu_roll": 1, "mu_spin": 1e-3, "g": 1, "e_cushion": 0}},
+    {"physics": {"mu_slide": 1, "mu_roll": 1e-3, "e_ball": 0, "mu_cushion": 0}},
     {"physics": {"g": 100, "mu_cushion": 1, "v_inelastic": 1, "cushion_height": 1}},
     {"table": {"pockets": "none", "length": 0.1, "width": 0.1},
      "balls": [{"x": 0.05, "y": 0.05, "radius": 0.01}]},

@@ -62,13 +62,18 @@ def start_engine(scene: Scene) -> Engine:
                   scene.mass, record=True)
 
 
-def run_to_rest(engine: Engine, dt: float) -> None:
+def run_to_rest(engine: Engine, dt: float, max_steps: int | None = None) -> bool:
     """Drive `engine` in fixed steps of dt until every ball is at rest (the shot's one driver,
-    live and in replays, so both take exactly the same steps)."""
+    live and in replays, so both take exactly the same steps). With `max_steps` (a replay's
+    recorded count: its work budget) it stops there and returns False if the balls still
+    move."""
     while not engine.at_rest().all():
+        if max_steps is not None and engine.steps >= max_steps:
+            return False
         if engine.time > MAX_SHOT_TIME:
             raise RuntimeError(f"shot: still moving after {MAX_SHOT_TIME:g} s")
         engine.step(dt)
+    return True
 
 
 def results(scene: Scene, engine: Engine, dt: float) -> dict:
@@ -199,10 +204,14 @@ def replay_shot(rec: Any, path: str = "shot") -> dict:
     scene, dt = _check_record(rec, path)
     engine = start_engine(scene)
     try:
-        run_to_rest(engine, dt)
-    except RuntimeError as e:
+        rested = run_to_rest(engine, dt, max_steps=rec["steps"])
+    except RuntimeError as e:  # the engine's work limit, or a shot that never ends
         raise _fail(path, str(e)) from None
     fresh = results(scene, engine, dt)
+    if not rested:
+        return {"ok": False, "events": len(fresh["events"]), "reason": "",
+                "differences": [f"steps: still moving after the recorded {rec['steps']} steps "
+                                "(a replay takes no more)"]}
     fresh["outcome"] = judge_json(scene, engine)
     diffs = []
     for k in ("time", "steps", "events", "final", "outcome"):

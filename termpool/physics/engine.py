@@ -45,7 +45,15 @@ from termpool.physics.table import Table
 
 FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
-MAX_PASSES = 1_000_000  # guard against a run that would never finish a step
+# The work limit (docs/limits.md): an engine that has done WORK_LIMIT units of work raises
+# WorkLimit at its next step or event pass, so that no input makes a run endless. The units
+# are counted, not timed, so a run meets the limit at the same point on every machine; each
+# is roughly 3 us of computing here: a step, 1/PASS_WORK of an event pass, one ball's
+# contact predictions against one ball, or 1/CLUSTER_WORK of k^3 for a cluster of k balls
+# solved together (a dense solve).
+WORK_LIMIT = 20_000_000
+PASS_WORK = 64
+CLUSTER_WORK = 32
 # Work bound: after BUDGET events of one table within a WINDOW of simulated time, its further
 # contacts in that window are solved as clusters, inelastically (a light ball squeezed
 # between a heavy one and a rail would otherwise bounce without end). Windows are fixed in
@@ -66,6 +74,10 @@ _NONE = np.zeros(0, dtype=np.int64)
 _NCOL, _RATE, _RADIUS, _MASS = 15, 12, 13, 14  # Engine._motion: columns, and constants' places
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
+
+
+class WorkLimit(RuntimeError):
+    """A run that met the work limit; the message is one line naming it."""
 
 
 def _batch(x, shape: tuple, name: str) -> np.ndarray:
@@ -90,6 +102,7 @@ class Engine(SlowContacts):
         mass=BALL_MASS,
         record: bool = True,
         horizon: float = HORIZON,
+        max_work: float | None = None,
     ) -> None:
         pos = np.asarray(pos, dtype=float)
         if pos.ndim not in (2, 3) or pos.shape[-1] != 2:
@@ -147,7 +160,9 @@ class Engine(SlowContacts):
         self._ngroup = np.zeros(B, dtype=np.int64)
         self.time = 0.0
         self.steps = 0
-        self.passes = 0  # event passes run: the engine's measure of work
+        self.passes = 0  # event passes run
+        self.work = 0  # units of work done, and the limit (see WORK_LIMIT)
+        self.max_work = WORK_LIMIT if max_work is None else max_work
         self.events: list[list[dict]] = [[] for _ in range(B)]
         self._nseg, self._npt = len(table.seg_a), len(table.points)
         seg_d = table.seg_b - table.seg_a
@@ -276,6 +291,7 @@ class Engine(SlowContacts):
     # ----------------------------------------------------------------- predictions
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
+        self.work += b.size * self.N
         t = self.tb[b]
         st = self.state[b, i]
         moving = _MOVING[st]
@@ -407,6 +423,7 @@ class Engine(SlowContacts):
     # ----------------------------------------------------------------- events
     def _run_until(self, t_end: float) -> None:
         """Run every table's events up to t_end in time order; clocks end at t_end."""
+        self._spend(1)
         if (self.t_next <= t_end).any():
             with np.errstate(all="ignore"):  # infinities stand for "never"
                 self._run_events(t_end)
@@ -414,16 +431,23 @@ class Engine(SlowContacts):
             self.tb[:] = t_end
 
     def _run_events(self, t_end: float) -> None:
-        for _ in range(MAX_PASSES):
+        while True:
             tabs = np.nonzero((self.t_next <= t_end) & (self.t_next < math.inf))[0]
             if tabs.size == 0:
                 break
+            self._spend(PASS_WORK)
             self.passes += 1
             self.tb[tabs] = self.t_next[tabs]
             self._handle(tabs, self.c_next[tabs])
             self._refresh(tabs)
-        else:
-            raise RuntimeError("engine: too many events in one step (a contact never resolves)")
+
+    def _spend(self, units: int) -> None:
+        """Count work before a step or a pass; raise WorkLimit past the limit (between
+        passes, so the engine's state stays whole)."""
+        self.work += units
+        if self.work > self.max_work:
+            raise WorkLimit(f"engine: the run met its work limit of {self.max_work:,.0f} units "
+                            f"at {float(self.tb.max()):.6g} s of simulated time (docs/limits.md)")
 
     def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
         N = self.N
@@ -528,6 +552,7 @@ class Engine(SlowContacts):
             b = int(tabs[n])
             before = self.state[b].copy()
             members, moved = self._cluster(b, seeds, every)
+            self.work += len(members) ** 3 // CLUSTER_WORK
             if own and not moved:
                 quiet.add(n)
             more_b.append(np.full(len(members), b))

@@ -21,6 +21,33 @@ def nose_reach(radius, cushion_height: float):
     return radius * np.sqrt(1.0 - sin_t * sin_t)
 
 
+# What a scene or a saved match may set (docs/limits.md): (low, high) for each number of
+# Physics. Values beyond them mean nothing on a pool table, and the extreme ones only overflow
+# or ask the engine for unbounded work. The friction coefficients in FRICTIONLESS_OK may also
+# be 0. The lower ends keep a run finite and the engine's tolerances true: a slip under
+# state.EPS_U is completed at once, and the path it stands for strays from the slide by
+# EPS_U^2 / (24.5 mu_slide g), under roots.SINK (0.45 um) only while mu_slide g >= 0.1 m/s^2
+# (at 1e-4 x 0.1 a ball was set 2 mm into a rail, and the run never ended); with mu_roll and
+# mu_spin at 1e-3 a ball stops or stops spinning within hours of simulated time, not weeks.
+PHYSICS_RANGES = {
+    "mu_slide": (0.1, 1.0), "mu_roll": (1e-3, 1.0), "mu_spin": (1e-3, 1.0),
+    "mu_cushion": (0.0, 1.0), "e_ball": (0.0, 1.0), "e_cushion": (0.0, 1.0),
+    "cushion_height": (0.0, 1.0), "g": (1.0, 100.0), "v_inelastic": (0.0, 1.0),
+}
+FRICTIONLESS_OK = ("mu_slide", "mu_roll", "mu_spin")
+PHYSICS_UNITS = {"g": "m/s^2", "cushion_height": "m", "v_inelastic": "m/s"}
+
+
+def within(val: float, limits: tuple[float, float], path: str, unit: str = "") -> None:
+    """Raise ValueError naming `path` and the limit when val lies outside limits (low, high)."""
+    lo, hi = limits
+    unit = f" {unit}" if unit else ""
+    if val < lo:
+        raise ValueError(f"{path}: must be at least {lo:g}{unit}, not {val:g}")
+    if val > hi:
+        raise ValueError(f"{path}: must be at most {hi:g}{unit}, not {val:g}")
+
+
 # The cushion of records and saved matches written before scenes could choose one.
 LEGACY_CUSHION = "simple"
 
@@ -62,7 +89,8 @@ class Physics:
 
     @classmethod
     def from_dict(cls, d: dict) -> Physics:
-        """Build from a scene's `physics` object; raises ValueError naming a bad key."""
+        """Build from a scene's or a saved match's `physics` object, every number within
+        PHYSICS_RANGES; raises ValueError naming a bad key."""
         names = {f.name for f in fields(cls)}
         kw = {}
         for key, val in d.items():
@@ -78,15 +106,20 @@ class Physics:
                 continue
             if isinstance(val, bool) or not isinstance(val, (int, float)):
                 raise ValueError(f"physics.{key}: must be a number")
-            val = float(val)
+            try:
+                val = float(val)
+            except OverflowError:  # an integer beyond any float
+                val = float("inf")
             if not (val == val and abs(val) != float("inf")):
                 raise ValueError(f"physics.{key}: must be finite")
             if val < 0:
                 raise ValueError(f"physics.{key}: must not be negative")
-            if key in ("e_ball", "e_cushion") and val > 1:
-                raise ValueError(f"physics.{key}: must be at most 1")
-            if key == "g" and val == 0:
-                raise ValueError("physics.g: must be positive")
+            if not (val == 0 and key in FRICTIONLESS_OK):
+                try:
+                    within(val, PHYSICS_RANGES[key], f"physics.{key}", PHYSICS_UNITS.get(key, ""))
+                except ValueError as e:
+                    extra = " (or 0, frictionless)" if key in FRICTIONLESS_OK else ""
+                    raise ValueError(f"{e}{extra}") from None
             kw[key] = val
         return cls(**kw)
 
