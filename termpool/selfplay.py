@@ -29,26 +29,27 @@ MAX_GAMES = 100_000
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    from termpool.ui.play import MAX_SEED, TABLES, _whole
+    from termpool.ui.play import MAX_SEED, whole_number
+    from termpool.ui.settings import BY_KEY
 
-    p.add_argument("--games", type=_whole(1, MAX_GAMES), default=10, metavar="N",
+    p.add_argument("--games", type=whole_number(1, MAX_GAMES), default=10, metavar="N",
                    help="games to play (default 10)")
     p.add_argument("--mode", choices=MODES, default="8ball", help="the game (default 8ball)")
     p.add_argument("--levels", default="normal,normal", metavar="A,B",
                    help="the two levels, e.g. hard,normal (default normal,normal)")
-    p.add_argument("--seed", type=_whole(0, MAX_SEED), default=None, metavar="S",
+    p.add_argument("--seed", type=whole_number(0, MAX_SEED), default=None, metavar="S",
                    help="racks and every choice; without it a new seed, which is printed")
-    p.add_argument("--table", choices=TABLES, default="9ft", help="table size (default 9ft)")
+    p.add_argument("--table", choices=BY_KEY["table"].values, default="9ft", help="table size (default 9ft)")
     p.add_argument("--json", action="store_true", help="print the figures as JSON")
     p.add_argument("--record-dir", metavar="DIR",
                    help="save every game as a replay file in DIR (created if need be)")
     p.add_argument("--force", action="store_true",
                    help="let --record-dir replace game files already there")
-    p.add_argument("--jobs", type=_whole(1, 256), default=None, metavar="N",
+    p.add_argument("--jobs", type=whole_number(1, 256), default=None, metavar="N",
                    help="games played at once, in separate processes (default: one per core)")
-    p.add_argument("--candidates", type=_whole(8, 4096), default=256, metavar="N",
+    p.add_argument("--candidates", type=whole_number(8, 4096), default=256, metavar="N",
                    help="the computer's candidate budget per shot (default 256, as in play)")
-    p.add_argument("--max-shots", type=_whole(1, 10_000), default=None, metavar="N",
+    p.add_argument("--max-shots", type=whole_number(1, 10_000), default=None, metavar="N",
                    help="stop a game without a winner after this many shots (default 300)")
 
 

@@ -14,7 +14,7 @@ INPUTS = ("auto", "kitty", "repeat", "classic")
 MAX_SEED = 2 ** 64 - 1  # a seed is saved in the record, and read back
 
 
-def _whole(lo: int, hi: int):
+def whole_number(lo: int, hi: int):
     """An argparse type: a whole number from lo to hi (the text is not echoed whole)."""
     def parse(text: str) -> int:
         digits = text.strip().removeprefix("-")
@@ -35,7 +35,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mode", choices=MODES, help="skip the menu and play this game")
     p.add_argument("--opponent", choices=OPPONENTS, default="cpu",
                    help="the computer or a second player on the same keyboard (default cpu)")
-    p.add_argument("--seed", type=_whole(0, MAX_SEED), default=None,
+    p.add_argument("--seed", type=whole_number(0, MAX_SEED), default=None,
                    help=f"racks and the computer's choices (0 to {MAX_SEED}); without it "
                         "every game deals a new rack (its seed is in the --record)")
     p.add_argument("--three-foul", action="store_true",
