@@ -39,7 +39,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the two levels, e.g. hard,normal (default normal,normal)")
     p.add_argument("--seed", type=whole_number(0, MAX_SEED), default=None, metavar="S",
                    help="racks and every choice; without it a new seed, which is printed")
-    p.add_argument("--table", choices=BY_KEY["table"].values, default="9ft", help="table size (default 9ft)")
+    p.add_argument("--table", choices=BY_KEY["table"].values, default="9ft",
+                   help="table size (default 9ft)")
     p.add_argument("--json", action="store_true", help="print the figures as JSON")
     p.add_argument("--record-dir", metavar="DIR",
                    help="save every game as a replay file in DIR (created if need be)")

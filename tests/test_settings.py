@@ -100,7 +100,7 @@ def test_a_save_keeps_what_the_file_had_and_adds_the_changes() -> None:
 
 
 @pytest.mark.parametrize(("text", "line", "key", "says"), [
-    ("level = expert", 1, "level", "must be one of easy, normal, hard, not 'expert'"),
+    ("level = expert", 1, "level", "must be one of easy, normal, hard, pro, not 'expert'"),
     ("\n\nframes = 0", 3, "frames", "from 1 to 1000, not '0'"),
     ("frames = 1001", 1, "frames", "from 1 to 1000"),
     ("frames = three", 1, "frames", "not 'three'"),
