@@ -8,7 +8,9 @@ python benchmarks/render.py
 - idle frames (nothing moved): bytes written;
 - aiming at 200x60: frames of the rack at rest with the aim sweeping one quarter degree a
   frame, the stick charging and the spin face and power bar in the panel; the whole frame and
-  the overlays alone (aim_trace, draw_aim / mono_aim, draw_cue_stick, the two widgets).
+  the overlays alone (draw_prediction / mono_prediction of the aid's prediction for that aim
+  (a rack: the ghost ball), draw_cue_stick, the two widgets; the prediction itself is timed
+  in benchmarks/aid.py).
 
 - the game itself: the app breaking in practice mode, with its panel, at 200x60 (time per
   frame, and the strike, when the whole shot is simulated) and 80x24 (bytes per frame).
@@ -29,14 +31,13 @@ if __name__ == "__main__":
 
 from termpool.physics.engine import Engine  # noqa: E402
 from termpool.scene import load_scene  # noqa: E402
-from termpool.ui.aim import aim_trace  # noqa: E402
 from termpool.ui.canvas import to_cells  # noqa: E402
 from termpool.ui.frame import Renderer, draw_panel  # noqa: E402
 from termpool.ui.overlay import (  # noqa: E402
     blit_cells,
-    draw_aim,
     draw_cue_stick,
-    mono_aim,
+    draw_prediction,
+    mono_prediction,
     power_meter_cells,
     spin_face_cells,
 )
@@ -77,27 +78,31 @@ def frame_bytes(scene, samples, cols: int, rows: int, depth: str):
 
 def aim_times(scene, cols: int, rows: int, depth: str, frames: int = 240):
     """Per-frame build time of aiming frames, whole and overlays only (s)."""
+    from termpool.game import Match, Shot
+    from termpool.ui.predict import Predictor
+
     r = Renderer(scene.table, cols, rows, depth)
     lay, view = r.layout, r.view
-    ids, pos, rad = scene.ids, scene.pos, scene.radius
+    m = Match("8ball")
+    predictor = Predictor(m)
+    ids, pos, rad = m.ids, m.pos, m.radius
     cue = ids.index("cue")
-    on = [True] * len(ids)
     col, row, ncols, _nrows = lay.panel_rect
     whole, over = [], []
     r.frame(ids, pos, None, rad)
     for k in range(frames):
         angle, pull = -30.0 + 0.25 * k, (k % 60) / 60
+        aim = predictor.shot(Shot(6.0, angle))
         t0 = time.perf_counter()
         if r.mono:
             cells = (view.mono(ids, pos, None, rad), None, None)
         else:
             cv = view.draw(ids, pos, None, rad)
         t1 = time.perf_counter()
-        aim = aim_trace(scene.table, pos, rad, on, cue, angle)
         if r.mono:
-            mono_aim(cells[0], lay, aim, pos[cue])
+            mono_prediction(cells[0], lay, aim)
         else:
-            draw_aim(cv, lay, aim, pos[cue], rad[cue])
+            draw_prediction(cv, lay, aim, rad[cue])
             draw_cue_stick(cv, lay, pos[cue], rad[cue], angle, pull)
         face = spin_face_cells(0.2, -0.1, mono=r.mono)
         power = power_meter_cells(pull, ncols - 2, "power")

@@ -72,7 +72,7 @@ def _image(frames: list[str], cols: int, rows: int) -> np.ndarray:
 def main() -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     for cols, rows in SIZES:
-        opts = dict(mode="8ball", opponent="human")
+        opts = dict(mode="8ball", opponent="human", seed=0)  # the same rack every time
         text = play(App(Options(colors="mono", **opts)), parse_script(SCRIPT), cols, rows)
         write_atomic(OUT / f"{cols}x{rows}.txt", text + "\n")
         frames: list[str] = []

@@ -32,7 +32,7 @@ from typing import NamedTuple
 import numpy as np
 
 from termpool import ai_geometry as geo
-from termpool.physics.cue import strike
+from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
@@ -51,41 +51,69 @@ class Plan(NamedTuple):
     called: tuple[str, str] | None  # (ball, pocket name) when the rules need a call (the 8)
     score: float
     note: str  # why, in words ("3 in the foot_left pocket")
+    kind: str = ""  # "break", "pot", "combo", "safety", "kick" ("": none of them)
+    ball: str | None = None  # pots and combinations: the ball meant to drop ...
+    pocket: str | None = None  # ... and the pocket it is sent to
 
 
 class Level(NamedTuple):
+    """Everything that makes a level, in one place (docs/ai.md has the figures they give)."""
+
+    # What it tries.
     share: float  # fraction of max_candidates used
-    speeds: tuple[float, ...]  # multiples of the slowest speed that reaches the pocket
-    spins: tuple[tuple[float, float], ...]  # (side, top) tip offsets
-    sigma: float  # notional aim error (degrees) that weighs how risky a pot is
-    noise: bool  # add that aim error (and a speed error) to the chosen plan
-    spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+    speeds: tuple[float, ...]  # pot speeds: multiples of the slowest that reaches the pocket
+    spins: tuple[tuple[float, float], ...]  # (side, top) tip offsets of pots
     combos: int  # candidates kept for combinations (two speeds each)
-    verify: int  # best candidates re-simulated under aim error before choosing
+    verify: int  # best candidates simulated again under its errors before choosing
+    spots: int  # ball in hand: distances behind the ghost ball tried per cut angle
+    break_spots: tuple[float, ...]  # where it may break from: across the head string, as
+    # shares of the width (0.5: the head spot); with several, it tries its break from each
+    # How it weighs a shot.
+    position: float  # weight of its next shot's chance from where the cue ball stops after a
+    # pot (0: it plans no position, only the pot)
+    leave: float  # weight of the opponent's best chance when the turn passes, a miss
+    # included (0: it never plays safe while a pot is possible)
+    # How it strikes: the sd of each error, drawn from a normal distribution per shot.
+    aim_sd: float  # degrees of aim (also the error it weighs a pot's risk with)
+    speed_sd: float  # relative speed
+    tip_sd: float  # tip position, in ball radii, across and along
+    spot_sd: float  # m, where it puts the cue ball in hand
 
 
+STUN, FOLLOW, DRAW = (0.0, 0.0), (0.0, 0.3), (0.0, -0.3)
 LEVELS = {
-    "easy": Level(0.25, (1.3, 2.4), ((0.0, 0.0), (0.0, 0.3)), 1.0, True, 1, 0, 6),
-    "normal": Level(1.0, (1.0, 1.8, 3.0), ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3)), 0.3, False, 2,
-                    16, 8),
-    "hard": Level(2.0, (1.0, 1.5, 2.2, 3.2),
-                  ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1)),
-                  0.2, False, 3, 32, 12),
+    # A beginner: the pot in front of it, hit firmly; no position, no safeties.
+    "easy": Level(0.25, (1.3, 2.4), (STUN, FOLLOW), 0, 4, 1, (0.5,),
+                  0.0, 0.0, 0.9, 0.10, 0.10, 0.03),
+    # A club player: a sound choice of pot, some thought of what a miss leaves.
+    "normal": Level(0.8, (1.0, 1.8, 3.0), (STUN, FOLLOW, DRAW), 8, 8, 2, (0.5,),
+                    0.0, 30.0, 0.3, 0.06, 0.06, 0.01),
+    # A strong amateur: plays position for the next ball, safe when the pot is poor, and
+    # breaks from where its break works best on the rack.
+    "hard": Level(1.2, (1.0, 1.4, 1.9, 2.6, 3.4),
+                  (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1), (0.25, -0.3),
+                   (-0.25, -0.3)), 16, 10, 3, (0.5, 0.16, 0.275, 0.35, 0.65, 0.725, 0.84),
+                  100.0, 200.0, 0.25, 0.035, 0.035, 0.0),
+    # A professional: a steadier stroke, more of the batch.
+    "pro": Level(1.5, (1.0, 1.4, 1.9, 2.6, 3.4),
+                 (STUN, (0.0, 0.35), (0.0, -0.4), (0.3, 0.1), (-0.3, 0.1), (0.25, -0.3),
+                  (-0.25, -0.3)), 24, 12, 3, (0.5, 0.16, 0.275, 0.35, 0.65, 0.725, 0.84),
+                 150.0, 300.0, 0.07, 0.02, 0.015, 0.0),
 }
 WIN, LOSS, CONTINUE, PASS, FOUL = 1000.0, -1000.0, 300.0, 0.0, -250.0
-MISS = -60.0  # value of a pot that misses in play: the opponent usually gets a shot
+MISS_LEAVE = 0.7  # what a missed pot usually leaves the opponent, as a leave value (0..1)
+LEAVE_SIGMA = 0.5  # degrees: the aim error a table left behind is valued with, for the
+# shooter's next shot and for the opponent alike (a club player's, whatever the level: an
+# error as small as a pro's would call every open shot certain, and tell no leave from another)
 FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
-POSITION = 100.0  # weight of the next shot's chance after a pot
-LEAVE = 60.0  # weight of the opponent's best chance after the turn passes
 SIM_SECONDS = 8.0  # simulated time per candidate; a table still moving is judged as it is
 SPEED_RANGE = (0.4, 6.0)  # m/s for pots, safeties and kicks
-BREAK_SPEEDS = (8.0, 8.5, 9.0)
+BREAK_SPEEDS = (7.0, 8.0, 9.0)
+BREAK_SAMPLES = 12  # each break is judged over this many strikes with the level's errors
 KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's aim
-BREAK_AIMS = (-0.4, 0.0, 0.4)  # degrees off the line to the apex
-BREAK_SPINS = ((0.0, 0.0), (0.0, -0.2))
+BREAK_SPINS = ((0.0, 0.0),)
 MIN_CANDIDATES = 8
-EASY_SPEED_ERROR = 0.05  # relative sd of the easy level's speed
-EASY_SPOT_ERROR = 0.03  # m, sd of the easy level's cue ball placement
+OPTION_ANSWERS = {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}
 
 
 # ------------------------------------------------------------------------------ inputs
@@ -190,8 +218,12 @@ class _Cands:
         return len(self.speed)
 
 
-def _break_cands(t: _Table, targets: list[str]) -> _Cands:
-    """Hard shots at the rack's apex: the legal ball nearest the cue ball."""
+def _break_cands(t: _Table, targets: list[str], lv: Level) -> _Cands:
+    """Hard shots at the rack's apex (the legal ball nearest the cue ball), at each of
+    BREAK_SPEEDS and BREAK_SPINS, each struck BREAK_SAMPLES times with the level's errors (the
+    same draws every time: a player's break is theirs). A break scatters the rack chaotically,
+    so it is judged by its average over the samples, not by one exact outcome; the samples
+    of a break are consecutive."""
     cands = _Cands()
     p = t.pos
     choice = [t.ids.index(b) for b in targets] or [k for k in range(len(t.ids)) if k != t.cue]
@@ -199,10 +231,13 @@ def _break_cands(t: _Table, targets: list[str]) -> _Cands:
         return cands
     apex = min(choice, key=lambda k: float(np.linalg.norm(p[k] - p[t.cue])))
     base = geo.deg(p[apex] - p[t.cue])
+    rng = np.random.default_rng(0)
     for speed in BREAK_SPEEDS:
-        for aim in BREAK_AIMS:
-            for side, top in BREAK_SPINS:
-                cands.add(speed, base + aim, side, top, apex, -1, "break", 1.0)
+        for side, top in BREAK_SPINS:
+            for e_aim, e_speed, e_side, e_top in rng.normal(0.0, 1.0, (BREAK_SAMPLES, 4)):
+                tip = clamp_tip(side + lv.tip_sd * e_side, top + lv.tip_sd * e_top)
+                cands.add(speed * (1 + lv.speed_sd * e_speed), base + lv.aim_sd * e_aim, *tip,
+                          apex, -1, "break", 1.0)
     return cands
 
 
@@ -212,7 +247,7 @@ def _pot_cands(t, targets, pockets, table, physics, lv: Level, budget: int) -> _
     alive = np.ones((1, n), bool)
     tmask = np.array([[b in targets for b in t.ids]])
     chance, u = geo.pot_chances(t.pos[t.cue][None], t.pos[None], alive, tmask, t.radius,
-                                t.cue, pockets, table, lv.sigma)
+                                t.cue, pockets, table, lv.aim_sd)
     chance, u = chance[0], u[0]
     # Pairs by chance; a blocked pair (chance 0) is left to the safeties.
     order = [(float(chance[i, k]), i, k) for i, k in zip(*np.nonzero(chance > 1e-4), strict=True)]
@@ -272,8 +307,8 @@ def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int
                     continue
                 tol = max(float(pockets.half[k]) * float(np.dot(uj, pockets.out[k])) - 0.6 * rc,
                           0.004)
-                p2 = geo.pot_chance(tol, d2, d3, cos2, ri + rj, lv.sigma)  # the second ball's cut
-                p1 = geo.pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.sigma)
+                p2 = geo.pot_chance(tol, d2, d3, cos2, ri + rj, lv.aim_sd)  # the second ball's cut
+                p1 = geo.pot_chance(0.25 * ri, d1, d2, cos1, rc + ri, lv.aim_sd)
                 speed = geo.pot_speed(d1, d2 + d3, cos1 * cos2, physics)
                 rows.append((p1 * p2, i, j, k, speed, geo.deg(c), spot))
     rows.sort(key=lambda r: (-r[0], r[1], r[2], r[3]))
@@ -287,11 +322,13 @@ def _combo_cands(t, targets, mode: str, pockets, physics, lv: Level, budget: int
 
 def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
                   budget: int) -> _Cands:
-    """Fallbacks at each legal ball, most useful first: soft full and half-ball hits, one-rail
-    kicks (two guesses of the rebound: the cushion's restitution, and halfway to a mirror), a
-    harder one-rail kick, two-rail kicks, then fans of one- and two-rail kicks aimed up to a
-    few degrees to either side (the rebound of a spinning ball is only roughly known: the
-    batch finds the one that hits)."""
+    """Safeties and kicks at each legal ball, most useful first: touches (full and half-ball
+    hits about hard enough to send the ball to a rail: the cue ball stays near where it is),
+    soft full and half-ball hits, one-rail kicks (two guesses of the rebound: the cushion's
+    restitution, and halfway to a mirror), a harder one-rail kick, two-rail kicks, more hits
+    (thin cuts, firmer half-ball hits, a firm full hit: the batch finds the one that leaves
+    least), then fans of one- and two-rail kicks aimed up to a few degrees to either side (the
+    rebound of a spinning ball is only roughly known: the batch finds the one that hits)."""
     cands = _Cands()
     pc = t.pos[t.cue]
     rc = geo.contact_offset(table, physics, float(t.radius[t.cue]))
@@ -301,15 +338,21 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
         i = t.ids.index(b)
         d = t.pos[i] - pc
         base = geo.deg(d)
-        half = math.degrees(math.asin(min(
-            (t.radius[i] + t.radius[t.cue]) / 2 / max(float(np.linalg.norm(d)), 1e-9), 1.0)))
-        rows = [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
-                (1.3, base - half, "safety")]
+        reach = (t.radius[i] + t.radius[t.cue]) / max(float(np.linalg.norm(d)), 1e-9)
+        half = math.degrees(math.asin(min(reach / 2, 1.0)))
+        thin = math.degrees(math.asin(min(0.85 * reach, 1.0)))
+        rows = [(speed, angle, "safety") for speed, angle in
+                _touches(pc, t.pos[i], base, half, table, physics)]
+        rows += [(0.9, base, "safety"), (1.8, base, "safety"), (1.3, base + half, "safety"),
+                 (1.3, base - half, "safety")]
+        more = [(1.0, base + thin), (1.0, base - thin), (2.4, base + half), (2.4, base - half),
+                (1.8, base + thin), (1.8, base - thin), (2.8, base)]
         one = geo.kick_aims(pc, t.pos[i], table, rc, e)
         two = geo.kick_aims(pc, t.pos[i], table, rc, mid, 2)
         rows += [(2.2, a, "kick") for a in one + geo.kick_aims(pc, t.pos[i], table, rc, mid)]
         rows += [(3.5, a, "kick") for a in one]
         rows += [(3.0, a, "kick") for a in two]
+        rows += [(speed, angle, "safety") for speed, angle in more]
         rows += [(2.5, a + s * f, "kick") for f in KICK_FAN for s in (1, -1) for a in one]
         rows += [(3.0, a + s * 1.5, "kick") for s in (1, -1) for a in two]
         per_ball.append([(speed, angle, i, kind) for speed, angle, kind in rows])
@@ -324,18 +367,42 @@ def _safety_cands(t: _Table, targets: list[str], table: Table, physics: Physics,
     return cands
 
 
+def _touches(pc: np.ndarray, pt: np.ndarray, base: float, half: float, table: Table,
+             physics: Physics) -> list[tuple[float, float]]:
+    """(speed, angle) of a full hit and the two half-ball hits (which send the object ball
+    30 degrees off the cue's line) about hard enough for the object ball to reach a rail
+    (1.3 times `geo.pot_speed` to it), and a little harder."""
+    out = []
+    d1 = float(np.linalg.norm(pt - pc))
+    for aim, turn in ((base, 0.0), (base + half, -30.0), (base - half, 30.0)):
+        a = math.radians(base + turn)
+        u = np.array([math.cos(a), math.sin(a)])
+        # How far the object ball rolls along u before it meets a cushion line.
+        reach = min((hi - pt[k]) / u[k] if u[k] > 1e-9 else (pt[k] - 0.0) / -u[k]
+                    if u[k] < -1e-9 else math.inf
+                    for k, hi in ((0, table.length), (1, table.width)))
+        v = geo.pot_speed(d1, max(reach - 0.3, 0.0), math.cos(math.radians(turn)), physics)
+        out += [(1.3 * v, aim), (1.8 * v, aim)]
+    return out
+
+
 def _calibrate(t: _Table, cands: _Cands, table: Table, physics: Physics,
                rounds: int = 2) -> None:
     """Correct the aim of every pot for throw, in place.
 
     Each round simulates the cue ball and its target alone on a table without pockets,
     measures where the object ball actually heads, and turns the contact normal by the
-    error (a fixed-point iteration: the throw changes little with the normal).
+    error (a fixed-point iteration: the throw changes little with the normal). A pot whose
+    ball (or the cue ball) sits in a pocket's mouth, beyond the line the cushion takes on a
+    table without pockets, keeps its aim: there it would overlap that cushion.
     """
-    pots = [k for k, kind in enumerate(cands.kind) if kind in ("pot", "combo")]
+    plain = Table(length=table.length, width=table.width, pockets="none")
+    inside = [plain.inside(float(x), float(y), float(r))
+              for (x, y), r in zip(t.pos, t.radius, strict=True)]
+    pots = [k for k, kind in enumerate(cands.kind)
+            if kind in ("pot", "combo") and inside[cands.target[k]] and inside[t.cue]]
     if not pots:
         return
-    plain = Table(length=table.length, width=table.width, pockets="none")
     tgt = np.array([cands.target[k] for k in pots])
     want = np.array([geo.deg(np.array(cands.aim[k]) - t.pos[cands.target[k]]) for k in pots])
     normal = want.copy()
@@ -392,9 +459,13 @@ def _heading_point(events: list[dict]) -> np.ndarray | None:
 # ------------------------------------------------------------------------------ judging
 
 
-def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics) -> Engine:
+def _simulate(t: _Table, cands: _Cands, table: Table, physics: Physics,
+              cue_at: np.ndarray | None = None) -> Engine:
+    """All candidates in one batch; `cue_at` (B, 2) puts the cue ball elsewhere per table."""
     B, n = len(cands), len(t.ids)
     pos = np.broadcast_to(t.pos, (B, n, 2)).copy()
+    if cue_at is not None:
+        pos[:, t.cue] = cue_at
     vel = np.zeros((B, n, 2))
     w = np.zeros((B, n, 3))
     for b in range(B):
@@ -433,6 +504,9 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
     notes: list = []
     leave_for: list[tuple[int, float, State]] = []  # (table, pot chance or -1, next state)
     practice = state.mode == "practice"
+    # A pot that misses in play: the opponent gets the table (in practice, nobody does).
+    miss = 0.0 if practice else -lv.leave * MISS_LEAVE
+    foul = FOUL - (0.0 if practice else lv.leave)  # ball in hand: the best table to leave
     for b in range(B):
         summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
         called = _call(state, targets, t, cands, b, summary, pockets)
@@ -448,13 +522,13 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
         p = 1.0 if cands.kind[b] == "break" or sampled else cands.chance[b] if intended \
             else FLUKE
         if out.winner is not None:
-            scores[b] = p * WIN + (1 - p) * MISS if out.winner == state.shooter else LOSS
+            scores[b] = p * WIN + (1 - p) * miss if out.winner == state.shooter else LOSS
             notes.append(out.reason)
         elif out.foul is not None or (practice and out.ball_in_hand):
-            scores[b] = FOUL
+            scores[b] = foul
             notes.append(f"foul: {out.reason}" if out.foul else out.reason)
         elif out.continue_turn and potted:
-            scores[b] = p * CONTINUE + (1 - p) * MISS
+            scores[b] = p * CONTINUE + (1 - p) * miss
             leave_for.append((b, p, nxt))
             if intended and cands.kind[b] == "combo":
                 notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {aimed} "
@@ -482,14 +556,14 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
             tmask[r] = [bid in nxt_t for bid in t.ids]
         cue_alive = alive[rows, t.cue]
         chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask,
-                                    t.radius, t.cue, pockets, table, lv.sigma)
+                                    t.radius, t.cue, pockets, table, LEAVE_SIGMA)
         value = geo.leave_value(chance)
         for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
             # After a pot (p >= 0): the shooter's next shot, as likely as the pot itself.
             # After the turn passes (p < 0): the opponent's.
-            scores[b] += p * POSITION * value[r] if p >= 0 else -LEAVE * value[r]
+            scores[b] += p * lv.position * value[r] if p >= 0 else -lv.leave * value[r]
     return scores, calls, notes
 
 
@@ -518,7 +592,7 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
     targets = legal_targets(state, t.ids)
     pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
     if state.is_break:
-        cands = _break_cands(t, targets)
+        cands = _break_cands(t, targets, lv)
     else:
         reserve = min(budget // 3, 24 * max(len(targets), 1))
         cands = _pot_cands(t, targets, pockets, table, physics, lv,
@@ -540,8 +614,12 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
 
 def _plan(ev: _Eval, b: int, score: float) -> Plan:
     c = ev.cands
+    ball = pocket = None
+    if c.kind[b] in ("pot", "combo"):
+        ball = ev.t.ids[c.via[b] if c.via[b] >= 0 else c.target[b]]
+        pocket = ev.pockets.names[c.pocket[b]]
     return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
-                ev.calls[b], float(score), ev.notes[b])
+                ev.calls[b], float(score), ev.notes[b], c.kind[b], ball, pocket)
 
 
 def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
@@ -555,23 +633,31 @@ def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     return [_plan(ev, b, ev.scores[b]) for b in range(len(ev.cands))]
 
 
-def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
-    """The best of the top few candidates once aim errors are taken into account.
+# The check under errors: the centre and one step either side in aim, then in speed. Each
+# side step is the three-point Gauss-Hermite rule's (sqrt(3) sd, weight 1/6); the two rules
+# share their centre, which keeps the rest (an additive sum of the two one-dimensional rules).
+VERIFY_POINTS = ((0.0, 0.0, 1 / 3), (1.0, 0.0, 1 / 6), (-1.0, 0.0, 1 / 6),
+                 (0.0, 1.0, 1 / 6), (0.0, -1.0, 1 / 6))
 
-    Each is simulated again aimed sigma*sqrt(3) to either side (the three-point Gauss-Hermite
-    rule for a normal error: weights 1/6, 2/3, 1/6), all in one batch, and scored as played
-    (a pot counts in full where it goes in). Returns (candidate, its expected score)."""
+
+def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
+    """The best of the top few candidates once the level's errors are taken into account.
+
+    Each is simulated again at VERIFY_POINTS, aim and speed off by sqrt(3) of the level's
+    error, all in one batch, and scored as played (a pot counts in full where it goes in).
+    Returns (candidate, its expected score)."""
     c, lv = ev.cands, ev.lv
     top = [int(k) for k in np.argsort(-ev.scores, kind="stable")[:lv.verify]]
     sub = _Cands()
-    offset = math.sqrt(3.0) * lv.sigma
+    da, dv = math.sqrt(3.0) * lv.aim_sd, math.sqrt(3.0) * lv.speed_sd
     for k in top:
-        for d in (0.0, offset, -offset):
-            sub.add(c.speed[k], c.angle[k] + d, c.side[k], c.top[k], c.target[k], c.pocket[k],
-                    c.kind[k], 1.0, c.via[k], c.aim[k])
+        for fa, fv, _ in VERIFY_POINTS:
+            sub.add(c.speed[k] * (1 + fv * dv), c.angle[k] + fa * da, c.side[k], c.top[k],
+                    c.target[k], c.pocket[k], c.kind[k], 1.0, c.via[k], c.aim[k])
     eng = _simulate(ev.t, sub, table, physics)
     s, _, _ = _score(state, ev.targets, ev.t, sub, eng, table, ev.pockets, lv, sampled=True)
-    expect = (4 * s[0::3] + s[1::3] + s[2::3]) / 6
+    n = len(VERIFY_POINTS)
+    expect = sum(w * s[j::n] for j, (_, _, w) in enumerate(VERIFY_POINTS))
     best = int(np.argmax(expect))  # the first of equal scores
     return top[best], float(expect[best])
 
@@ -583,36 +669,60 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
 
     `ids`, `pos` (N, 2), `radius`, `mass` (numbers or one per ball) describe the balls;
     `on_table` (N booleans) says which are on the table. The best few candidates of the
-    batch are checked under the level's aim error and the best of them is played; "easy"
-    plays it with a seeded aim and speed error. Deterministic for a given seed.
+    batch are checked under the level's aim error and the best of them is returned, as meant
+    (`as_struck` adds the level's errors in striking it). Deterministic.
     """
     _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
     ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
                    max_candidates)
     if len(ev.cands) == 0:  # nothing to aim at: roll the cue ball up the table
         return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, "no object ball on the table")
-    if state.is_break or ev.lv.verify == 0:  # a break is chaos either way: take the batch's
+    if state.is_break:  # the break whose samples did best on average, as meant
+        mean = ev.scores.reshape(-1, BREAK_SAMPLES).mean(axis=1)
+        k = int(np.argmax(mean))
+        speed, (side, top) = BREAK_SPEEDS[k // len(BREAK_SPINS)], BREAK_SPINS[k % len(BREAK_SPINS)]
+        angle = (geo.deg(ev.t.pos[ev.cands.target[0]] - ev.t.pos[ev.t.cue]) + 180.0) % 360.0 \
+            - 180.0
+        return Plan(speed, angle, side, top, None, float(mean[k]), "break", "break")
+    if ev.lv.verify == 0:
         best = int(np.argmax(ev.scores))
         score = float(ev.scores[best])
     else:
         best, score = _verify(ev, state, table, physics)
-    plan = _plan(ev, best, score)
-    if ev.lv.noise:
-        plan = with_error(plan, ev.lv.sigma, EASY_SPEED_ERROR, seed)
-    return plan
+    return _plan(ev, best, score)
 
 
-def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0) -> Plan:
-    """The plan as a player with these errors (degrees of aim, relative speed; seeded) would
-    play it. The physics is deterministic, so a plan that pots in the batch pots in play: the
-    game gives its "normal" opponent a small error so that it can miss."""
-    if aim_sd <= 0 and speed_sd <= 0:
-        return plan
+def as_struck(plan: Plan, level: str, seed: int = 0) -> Plan:
+    """The plan as the level strikes it: its errors of aim, speed and tip position drawn
+    (seeded) from normal distributions and added (the tip kept within the miscue limit). The
+    physics is deterministic, so a plan that pots in the batch pots in play: these errors
+    are what makes a level miss."""
+    if level not in LEVELS:
+        raise ValueError(f"level: must be one of {', '.join(LEVELS)}, not {level!r}")
+    lv = LEVELS[level]
+    return with_error(plan, lv.aim_sd, lv.speed_sd, seed, lv.tip_sd)
+
+
+def choose_option(option: str) -> str:
+    """The computer's answer to an option: it accepts the table after an illegal 8-ball break
+    and shoots after a push-out."""
+    if option not in OPTION_ANSWERS:
+        raise ValueError(f"option: must be one of {', '.join(OPTION_ANSWERS)}, not {option!r}")
+    return OPTION_ANSWERS[option]
+
+
+def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0,
+               tip_sd: float = 0.0) -> Plan:
+    """The plan as a player with these errors would strike it: normal errors of sd `aim_sd`
+    degrees, `speed_sd` of the speed and `tip_sd` radii of tip position (seeded)."""
     rng = np.random.default_rng(seed)
-    angle = plan.angle + float(rng.normal(0.0, aim_sd)) if aim_sd > 0 else plan.angle
-    speed = plan.speed * (1 + float(rng.normal(0.0, speed_sd))) if speed_sd > 0 else plan.speed
-    speed = float(np.clip(speed, 0.1, BREAK_SPEEDS[-1]))
-    return plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0)
+    e_aim, e_speed = rng.normal(0.0, 1.0, 2)  # always drawn: each error has its own draw
+    e_side, e_top = rng.normal(0.0, 1.0, 2)
+    angle = plan.angle + aim_sd * float(e_aim)
+    speed = float(np.clip(plan.speed * (1 + speed_sd * float(e_speed)), 0.1, BREAK_SPEEDS[-1]))
+    side, top = clamp_tip(plan.side + tip_sd * float(e_side), plan.top + tip_sd * float(e_top))
+    return plan._replace(speed=speed, angle=(angle + 180.0) % 360.0 - 180.0, side=side,
+                         top=top)
 
 
 def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
@@ -649,29 +759,51 @@ def _cue_in_hand(ids, pos, on_table, table: Table):
     return pos, on_table
 
 
-def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
-                     on_table, state: State, area: str, *, level: str = "normal",
-                     seed: int = 0) -> tuple[float, float]:
-    """Where to put the cue ball in hand: `area` "anywhere" or "kitchen" (behind the head
-    string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
-    distances, and a coarse grid as a fallback, are scored by the shots they leave.
+def _string_spot(t: _Table, table: Table, area: str, share: float) -> np.ndarray | None:
+    """The free point of the head string nearest the one `share` of the width across."""
+    hx, hy = table.head_spot[0], share * table.width
+    xy = np.array([[hx, hy + s * k * 0.01] for k in range(130) for s in (1, -1)])
+    ok = np.nonzero(_spot_ok(xy, t, table, area))[0]
+    return xy[ok[0]] if len(ok) else None
 
-    The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
-    scratch it is still in a pocket); it must be in `ids`.
-    """
-    if area not in AREAS:
-        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
-    pos, on_table = _cue_in_hand(ids, pos, on_table, table)
-    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
-    lv = LEVELS[level]
+
+def _break_spot(t: _Table, table: Table, physics: Physics, state: State, area: str,
+                lv: Level) -> np.ndarray:
+    """Where the level breaks from: the free point of the head string nearest each of its
+    break spots; with several, the one whose best break (`_break_cands`, all in one batch)
+    scores best on average over its samples."""
+    spots = [xy for f in lv.break_spots if (xy := _string_spot(t, table, area, f)) is not None]
+    if not spots:
+        raise ValueError(f"area: no free spot for the cue ball in the {area}")
+    if len(spots) == 1:
+        return spots[0]
+    targets = legal_targets(state, t.ids)
+    cands, cue_at = _Cands(), []
+    for xy in spots:
+        here = t._replace(pos=t.pos.copy())
+        here.pos[t.cue] = xy
+        one = _break_cands(here, targets, lv)
+        cands.extend(one)
+        cue_at += [xy] * len(one)
+    if len(cands) == 0:
+        return spots[0]
+    eng = _simulate(t, cands, table, physics, np.array(cue_at))
+    pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
+    scores, _, _ = _score(state, targets, t, cands, eng, table, pockets, lv)
+    mean = scores.reshape(len(spots), -1, BREAK_SAMPLES).mean(axis=2).max(axis=1)
+    return spots[int(np.argmax(mean))]
+
+
+def _spot_chances(t: _Table, table: Table, state: State, area: str, distances: int,
+                  sigma: float) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """Legal spots for the cue ball in hand (M, 2) and the pot chances (M, N, P) each leaves:
+    spots behind the ghost ball of each pot at a few cut angles and `distances` distances,
+    then a coarse grid of the area. Also returns the legal targets."""
     r = float(t.radius[t.cue])
     pockets = geo.pocket_geometry(table, r)
     targets = legal_targets(state, t.ids)
     spots = []
-    if state.is_break:  # the head spot, else the nearest free point of the head string
-        hx, hy = table.head_spot
-        spots += [np.array([hx, hy + s * k * 0.02]) for k in range(25) for s in (1, -1)]
-    dists = (0.3, 0.15, 0.5)[: lv.spots]
+    dists = (0.3, 0.15, 0.5)[:distances]
     for b in targets:
         i = t.ids.index(b)
         for k in range(len(pockets.names)):
@@ -694,14 +826,35 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
     xy = xy[_spot_ok(xy, t, table, area)]
     if len(xy) == 0:
         raise ValueError(f"area: no free spot for the cue ball in the {area}")
-    if state.is_break:
-        return float(xy[0, 0]), float(xy[0, 1])
     M, n = len(xy), len(t.ids)
     balls = np.broadcast_to(t.pos, (M, n, 2)).copy()
     balls[:, t.cue] = xy
     tmask = np.broadcast_to(np.array([b in targets for b in t.ids]), (M, n))
     chance, _ = geo.pot_chances(xy, balls, np.ones((M, n), bool), tmask, t.radius, t.cue,
-                                pockets, table, lv.sigma)
+                                pockets, table, sigma)
+    return xy, chance, targets
+
+
+def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                     on_table, state: State, area: str, *, level: str = "normal",
+                     seed: int = 0) -> tuple[float, float]:
+    """Where to put the cue ball in hand: `area` "anywhere" or "kitchen" (behind the head
+    string, x <= length / 4). Spots behind the ghost ball of each pot at a few cut angles and
+    distances, and a coarse grid as a fallback, are scored by the shots they leave. On a
+    break, the level's break spot on the head string (`_break_spot`).
+
+    The cue ball's entries in `pos` and `on_table` are ignored (it is being placed: after a
+    scratch it is still in a pocket); it must be in `ids`.
+    """
+    if area not in AREAS:
+        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    pos, on_table = _cue_in_hand(ids, pos, on_table, table)
+    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, level, seed)
+    lv = LEVELS[level]
+    if state.is_break:
+        spot = _break_spot(t, table, physics, state, area, lv)
+        return float(spot[0]), float(spot[1])
+    xy, chance, targets = _spot_chances(t, table, state, area, lv.spots, LEAVE_SIGMA)
     value = geo.leave_value(chance)
     # Between spots of equal value (say, no pot anywhere), the one nearest a legal ball.
     legal = [k for k, b in enumerate(t.ids) if b in targets]
@@ -710,9 +863,31 @@ def choose_placement(table: Table, physics: Physics, ids: Sequence[str], pos, ra
         value = value - 1e-3 * near / table.length
     best = int(np.argmax(value))
     spot = xy[best]
-    if lv.noise:
+    if lv.spot_sd > 0:
         rng = np.random.default_rng(seed)
-        moved = spot + rng.normal(0.0, EASY_SPOT_ERROR, 2)
+        moved = spot + rng.normal(0.0, lv.spot_sd, 2)
         if _spot_ok(moved[None], t, table, area)[0]:
             spot = moved
     return float(spot[0]), float(spot[1])
+
+
+def best_chance(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
+                on_table, state: State, *, area: str | None = None,
+                sigma: float = LEAVE_SIGMA) -> float:
+    """The best chance (0..1) of a straight pot for `state.shooter` under an aim error of
+    `sigma` degrees: from where the cue ball lies, or with `area` ("anywhere", "kitchen") from
+    the best spot for the cue ball in hand there. It measures what a shot leaves."""
+    if area is not None and area not in AREAS:
+        raise ValueError(f"area: must be one of {', '.join(AREAS)}, not {area!r}")
+    if area is not None:
+        pos, on_table = _cue_in_hand(ids, pos, on_table, table)
+    t = _inputs(table, physics, ids, pos, radius, mass, on_table, state, "normal", 0)
+    if area is not None:
+        _, chance, _ = _spot_chances(t, table, state, area, 3, sigma)
+        return float(chance.max(initial=0.0))
+    pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
+    targets = legal_targets(state, t.ids)
+    tmask = np.array([[b in targets for b in t.ids]])
+    chance, _ = geo.pot_chances(t.pos[t.cue][None], t.pos[None], np.ones((1, len(t.ids)), bool),
+                                tmask, t.radius, t.cue, pockets, table, sigma)
+    return float(chance.max(initial=0.0))

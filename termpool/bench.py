@@ -442,6 +442,7 @@ def _help() -> str:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `termpool bench`; argv is what follows `bench`. Returns the exit status."""
     argv = sys.argv[1:] if argv is None else list(argv)
+    cli.one_blas_thread()
     if not argv:
         _say(f"bench: missing subcommand (use {', '.join(SUBCOMMANDS)})")
         return 2

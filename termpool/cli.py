@@ -1,6 +1,7 @@
 """Command line: `termpool` (or `termpool play`) plays; `termpool sim SCENE` runs a scene and
 prints JSON; `termpool bench` benchmarks; `termpool replay FILE` re-simulates a saved match and
-checks it bit for bit.
+checks it bit for bit (`--watch`: plays it on screen); `termpool rules` prints the rules;
+`termpool stats` sums up the history of play; `termpool selfplay` plays the computer against itself.
 
 Kept light: numpy, the scene loader and the engine are imported only inside the handlers.
 """
@@ -9,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from typing import Any, NoReturn
@@ -34,6 +36,23 @@ class _Parser(argparse.ArgumentParser):
         if message:
             sys.stderr.write(message)
         raise _Exit(status)
+
+
+# The thread pools of the BLAS libraries numpy may be built with. termpool needs none: its
+# engine writes out its small solves and products (only 4x4 eigenvalue problems reach LAPACK,
+# on the calling thread), and a pool's idle workers spin for a while after it starts, which
+# burns a second core while the game only waits.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
+
+
+def one_blas_thread() -> None:
+    """Have numpy's BLAS start with one thread in termpool's own processes, unless the user
+    set a number. It must run before numpy is imported; a program that imports termpool as
+    a library keeps its own settings."""
+    if "numpy" not in sys.modules:
+        for name in BLAS_THREADS:
+            os.environ.setdefault(name, "1")
 
 
 def _fail(message: str) -> int:
@@ -74,11 +93,14 @@ def bundled_example(name: str = "break.json") -> str:
 def _parser() -> _Parser:
     p = _Parser(
         prog=PROG,
-        description="Pool in the terminal on an exact, batched physics core.",
+        description="Pool in the terminal: 8-ball, 9-ball and practice, against the computer "
+                    "or a friend at the same keyboard.",
         epilog=(
-            "With no arguments, termpool starts the game in the terminal (the same as "
-            "`termpool play`). Without a terminal, try `termpool sim` on the bundled example "
-            "break scene: termpool sim " + bundled_example() + "."
+            "With no arguments, termpool starts the game (the same as `termpool play`). "
+            "`termpool play --record match.json` keeps your matches; `termpool replay "
+            "match.json --watch` shows one again on screen. Without a terminal, try "
+            "`termpool sim` on the bundled example break scene: termpool sim "
+            + bundled_example() + "."
         ),
     )
     from termpool import __version__
@@ -122,6 +144,7 @@ def _parser() -> _Parser:
         help="also output ball positions sampled N times per simulated second",
     )
     from termpool.ui.play import add_arguments
+    from termpool.ui.settings import BY_KEY
 
     pl = sub.add_parser(
         "play",
@@ -132,7 +155,7 @@ def _parser() -> _Parser:
     add_arguments(pl)
     r = sub.add_parser(
         "replay",
-        help="re-simulate every shot of a saved match and check it is identical",
+        help="watch a saved match again (--watch), or check that it replays identically",
         description=(
             "Re-simulate every shot of a replay file (a saved match, see docs/rules.md) from its "
             "scene and shot parameters and check that the events, the final balls and the "
@@ -142,6 +165,50 @@ def _parser() -> _Parser:
     )
     r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
     r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
+    r.add_argument("--watch", action="store_true",
+                   help="play the match on screen as it was played (Space pauses, ← → step "
+                        "a shot, F ×4, H help, Q quits)")
+    r.add_argument("--colors", choices=BY_KEY["colors"].values,
+                   default=None, help="--watch: colour depth (default: from the terminal)")
+    r.add_argument("--headless", action="store_true",
+                   help="--watch without a terminal: play --keys on a virtual screen, print "
+                        "the last screen")
+    r.add_argument("--size", help="--headless: screen size (default 100x32)")
+    r.add_argument("--keys", metavar="KEYS", help="--headless: key script ('-' for stdin), "
+                   "e.g. 'wait 5 right space'")
+    ru = sub.add_parser(
+        "rules",
+        help="print the rules of 8-ball, 9-ball or practice (the page H shows in the game)",
+        description="Print the rules the referee plays by, in plain words: the page the "
+                    "game's help (H) shows. Without a game, all three.",
+    )
+    ru.add_argument("game", nargs="?", choices=("8ball", "9ball", "practice"),
+                    help="the game (default: all)")
+    st = sub.add_parser(
+        "stats",
+        help="the history of play: totals, per opponent, the last 20 matches",
+        description=(
+            "Sum up the history of play (one line per player per match, in the data directory: "
+            "$XDG_DATA_HOME/termpool/history.jsonl, else ~/.local/share/termpool/): the totals, "
+            "the totals per opponent (the computer's level, a second player, practice), a chart "
+            "of the pot rate and the last 20 matches, as the menu's Stats screen shows them. "
+            "Corrupt lines are skipped with one line of warning."
+        ),
+    )
+    st.add_argument("--json", action="store_true", help="print the same figures as JSON")
+    from termpool.selfplay import add_arguments as selfplay_arguments
+
+    sp = sub.add_parser(
+        "selfplay",
+        help="play the computer against itself and print how each level played",
+        description=(
+            "Play N games between two levels of the computer (the break alternating) and "
+            "print each level's wins, pot rate, fouls, break-and-run rate, safeties and "
+            "decision times (see docs/ai.md). Deterministic for a --seed, whatever --jobs. "
+            "Ctrl-C prints the figures of the games finished so far."
+        ),
+    )
+    selfplay_arguments(sp)
     sub.add_parser(
         "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
     )
@@ -328,6 +395,22 @@ def _sim(args: argparse.Namespace) -> int:
 def _replay(args: argparse.Namespace) -> int:
     from termpool.game.record import ReplayError, read_replay, replay
 
+    if args.watch:
+        if args.json:
+            return _fail("--json: not with --watch")
+        from termpool.ui.watch import WatchError, run
+
+        if args.colors is None:
+            args.colors = "auto"
+        try:
+            return run(args)
+        except WatchError as e:
+            return _fail(f"replay: {e}")
+    given = [f for f, v in (("--headless", args.headless), ("--size", args.size),
+                            ("--keys", args.keys), ("--colors", args.colors)) if v]
+    if given:
+        return _fail(f"{given[0]}: only with --watch")
+
     try:
         data = read_replay(args.file)
         shots = replay(data)
@@ -367,6 +450,45 @@ def _replay(args: argparse.Namespace) -> int:
     return 1 if bad else 0
 
 
+# -------------------------------------------------------------------------------- rules
+
+
+def _rules(args: argparse.Namespace) -> int:
+    from termpool.rules.words import MODE_NAMES, rules_text
+
+    pages = [rules_text(m) for m in ([args.game] if args.game else MODE_NAMES)]
+    sys.stdout.write("\n\n".join("\n".join(p) for p in pages) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
+# -------------------------------------------------------------------------------- stats
+
+
+def _stats(args: argparse.Namespace) -> int:
+    from termpool.game.history import history_path, read_history, summary
+    from termpool.text import shown
+    from termpool.ui.stats import stats_lines
+
+    path = history_path()
+    lines, warning, readable = read_history(path)
+    if warning:
+        say(f"warning: {warning}")
+    figures = summary(lines)
+    if args.json:
+        from termpool.files import to_json
+
+        try:
+            text = to_json({"file": str(path), **figures}, indent=1) + "\n"
+        except ValueError as e:
+            return _fail(f"stats: the figures cannot be written: {e}")
+    else:
+        text = "".join(shown(line) + "\n" for line in stats_lines(figures))
+    sys.stdout.write(text)
+    sys.stdout.flush()
+    return 0 if readable else 1
+
+
 # -------------------------------------------------------------------------------- bench
 
 
@@ -398,12 +520,25 @@ def _play(args: argparse.Namespace) -> int:
         return _fail(f"play: {e}")
 
 
+# ----------------------------------------------------------------------------- selfplay
+
+
+def _selfplay(args: argparse.Namespace) -> int:
+    from termpool.selfplay import SelfplayError, run
+
+    try:
+        return run(args)
+    except SelfplayError as e:
+        return _fail(str(e))
+
+
 # --------------------------------------------------------------------------------- main
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `termpool` command; returns the exit status."""
     argv = sys.argv[1:] if argv is None else list(argv)
+    one_blas_thread()
     try:
         if argv and argv[0] == "bench":
             return _bench(argv[1:])
@@ -417,6 +552,12 @@ def main(argv: list[str] | None = None) -> int:
             return _play(args)
         if args.command == "replay":
             return _replay(args)
+        if args.command == "rules":
+            return _rules(args)
+        if args.command == "stats":
+            return _stats(args)
+        if args.command == "selfplay":
+            return _selfplay(args)
         return _fail("missing command (try termpool --help)")
     except _Exit as e:
         return e.code

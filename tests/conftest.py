@@ -21,3 +21,12 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "repeatable"))
 def _contacts_are_checked(monkeypatch):
     """Every contact the engine applies in any test must be between touching bodies."""
     monkeypatch.setattr(Engine, "_handle", checked_handle(Engine._handle))
+
+
+@pytest.fixture(autouse=True)
+def _own_config_and_data(monkeypatch, tmp_path_factory):
+    """No test reads the user's settings or keys, or writes to their history: the config and
+    data directories are fresh temporary ones (a test that needs them sets its own)."""
+    base = tmp_path_factory.mktemp("xdg")
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(base / "config"))
+    monkeypatch.setenv("XDG_DATA_HOME", str(base / "data"))

@@ -4,6 +4,7 @@ Engine and asks the referee what happened, so the tests judge real simulated sho
 from __future__ import annotations
 
 import math
+import signal
 from dataclasses import replace
 
 import numpy as np
@@ -85,6 +86,7 @@ def test_straight_in_on_an_empty_table_goes_in():
     assert not summary.scratch
     assert out.continue_turn
     assert "foot_left" in plan.note
+    assert (plan.kind, plan.ball, plan.pocket) == ("pot", "1", "foot_left")
 
 
 def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -> float:
@@ -102,13 +104,36 @@ def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -
     return math.degrees(math.atan2(d[1], d[0]))
 
 
+def test_a_ball_in_a_pocket_s_mouth_is_potted_without_a_throw_check():
+    # The 8 rests in the side pocket's mouth, past the line a pocketless table's cushion
+    # takes: the throw check (on such a table) would put it inside that cushion, where the
+    # engine never comes to rest. Its pot keeps the plain ghost-ball aim, and goes in.
+    lay = Layout({"cue": (0.8896873861826116, 0.9283221346986271),
+                  "8": (1.2716042757780244, 1.245003496498775)})
+    assert not TABLE.inside(*lay.pos[1], R) and TABLE.on_bed(*lay.pos[1], R)
+    state = State(mode="8ball", groups={0: "solids", 1: "stripes"},
+                  pocketed=tuple(b for b in (*SOLIDS, *STRIPES)))
+    signal.signal(signal.SIGALRM, _hang)
+    signal.alarm(300)  # a guard: the engine stuck on the overlap would never return
+    try:
+        plan = ai.choose_shot(*lay.args(), state, level="hard")
+    finally:
+        signal.alarm(0)
+    summary, out, _ = play(lay, plan, state)
+    assert plan.kind == "pot" and out.winner == 0, out.reason
+
+
+def _hang(*_):
+    raise AssertionError("choose_shot did not return")
+
+
 def test_cut_shots_are_aimed_through_the_throw():
     # A 35 degree cut, the object ball on the diagonal 1.2 m from the foot_left corner: it
     # must leave at 45 degrees. Aiming at the ghost ball alone is thrown more than a degree
     # off (ball-ball friction); every pot the AI tries at that pocket leaves within 0.4.
     ball, _ = corner_line(1.2, 0.0)
     u = np.array([1.0, 1.0]) / math.sqrt(2)
-    cut = math.radians(35)
+    cut = math.radians(-35)  # from the table's side of the diagonal (the cue ball on the cloth)
     d = np.array([u[0] * math.cos(cut) - u[1] * math.sin(cut),
                   u[0] * math.sin(cut) + u[1] * math.cos(cut)])
     ghost = np.array(ball) - 2 * R * u
@@ -124,7 +149,8 @@ def test_cut_shots_are_aimed_through_the_throw():
 
 
 def test_runs_a_rack_of_nine_ball_from_a_real_break_without_a_foul():
-    # A whole game: break, then shot after shot until the 9 drops; every shot is legal.
+    # A whole game: break, then shot after shot until the 9 drops; every shot is legal (the
+    # plans played exactly, so no level's errors).
     sc = load_scene({"table": "9ft", "balls": "9ball"})
     lay = Layout({b: tuple(sc.pos[k]) for k, b in enumerate(sc.ids)})
     state = State(mode="9ball", is_break=True)
@@ -139,7 +165,7 @@ def test_runs_a_rack_of_nine_ball_from_a_real_break_without_a_foul():
         lay.on[keep] = eng.state[0] != POCKETED
         _, state = judge(state, summary)
         state = replace(state, push_out="none")
-    assert out.winner == 0
+    assert out.winner is not None
 
 
 # ------------------------------------------------------------------ legal targets first
@@ -296,7 +322,7 @@ def test_break_is_hard_at_the_apex_and_legal(mode):
     lay = Layout({b: tuple(sc.pos[k]) for k, b in enumerate(sc.ids)})
     state = State(mode=mode, is_break=True)
     plan = ai.choose_shot(*lay.args(), state)
-    assert 8.0 <= plan.speed <= 9.0
+    assert plan.speed in ai.BREAK_SPEEDS and plan.kind == "break"
     summary, out, _ = play(lay, plan, state)
     assert summary.first_contact == "1"  # the apex, on the foot spot
     assert out.foul is None
@@ -317,7 +343,7 @@ def _placement_ok(lay: Layout, xy, area: str) -> None:
 
 
 @pytest.mark.parametrize("area", ["anywhere", "kitchen"])
-@pytest.mark.parametrize("level", ["easy", "normal", "hard"])
+@pytest.mark.parametrize("level", list(ai.LEVELS))
 def test_ball_in_hand_placement_is_legal(area, level):
     lay, down = after_break()
     state = State(mode="8ball", pocketed=tuple(down), shooter=1)
@@ -357,13 +383,20 @@ def test_break_placement_is_on_the_head_string():
     sc = load_scene({"table": "9ft", "balls": "9ball"})
     lay = Layout({b: tuple(sc.pos[k]) for k, b in enumerate(sc.ids)})
     state = State(mode="9ball", is_break=True)
-    assert ai.choose_placement(*lay.args(), state, "kitchen") == TABLE.head_spot
-    # A ball on the head spot (a contrived table): the cue ball goes beside it on the string.
+    # Each level breaks from one of its spots on the head string; the beginner from the head
+    # spot, stronger levels try a cut break nearer a side rail too.
+    for level, lv in ai.LEVELS.items():
+        x, y = ai.choose_placement(*lay.args(), state, "kitchen", level=level)
+        assert x == TABLE.head_spot[0]
+        assert min(abs(y - f * W) for f in lv.break_spots) < 1e-9, level
+    assert ai.LEVELS["easy"].break_spots == (0.5,)
+    assert len(ai.LEVELS["pro"].break_spots) > 1
+    # A ball on the spot (a contrived table): the cue ball goes beside it on the string.
     lay = Layout({**{b: tuple(sc.pos[k]) for k, b in enumerate(sc.ids)},
                   "9": TABLE.head_spot, "8": (1.0, 1.0)})
-    x, y = ai.choose_placement(*lay.args(), state, "kitchen")
+    x, y = ai.choose_placement(*lay.args(), state, "kitchen", level="easy")
     _placement_ok(lay, (x, y), "kitchen")
-    assert x == TABLE.head_spot[0]
+    assert x == TABLE.head_spot[0] and y != TABLE.head_spot[1]
 
 
 def test_table_without_pockets_still_hits_a_legal_ball():
@@ -413,7 +446,9 @@ def test_same_seed_same_plan():
         a = ai.choose_shot(*lay.args(), state, level=level, seed=7)
         b = ai.choose_shot(*lay.args(), state, level=level, seed=7)
         assert a == b
-    easy = {ai.choose_shot(*lay.args(), state, level="easy", seed=s).angle for s in range(3)}
+        assert ai.as_struck(a, level, 7) == ai.as_struck(b, level, 7)
+    plan = ai.choose_shot(*lay.args(), state, level="easy")
+    easy = {ai.as_struck(plan, "easy", s).angle for s in range(3)}
     assert len(easy) == 3  # the seed drives the easy level's aim error
 
 
@@ -435,17 +470,16 @@ def _pots(level: str, seeds: range) -> int:
         lay = Layout({"cue": cue, "4": ball})
         for seed in seeds:
             plan = ai.choose_shot(*lay.args(), state, level=level, seed=seed)
-            summary, _, _ = play(lay, plan, state)
+            summary, _, _ = play(lay, ai.as_struck(plan, level, seed), state)
             made += "4" in summary.pocketed and not summary.scratch
     return made
 
 
 def test_easy_misses_more_than_normal():
     seeds = range(4)
-    normal = _pots("normal", range(1))  # no aim error: the seed does not matter
+    normal = _pots("normal", seeds)
     easy = _pots("easy", seeds)
-    assert normal == len(MEDIUM)
-    assert easy <= 0.75 * len(MEDIUM) * len(seeds)
+    assert easy < normal
 
 
 def test_plans_are_finite_and_never_a_miscue():
@@ -578,3 +612,145 @@ def test_with_error_is_seeded_and_zero_error_keeps_the_plan():
     assert (a.side, a.top, a.called) == (plan.side, plan.top, plan.called)
     angles = [ai.with_error(plan, 0.25, 0.0, seed=s).angle - 30.0 for s in range(400)]
     assert 0.2 < float(np.std(angles)) < 0.3
+
+
+def test_plans_say_what_kind_of_shot_they_are():
+    lay, down = after_break()
+    plans = ai.score_shots(*lay.args(), State(mode="8ball", pocketed=tuple(down)),
+                           level="hard", max_candidates=1024)
+    assert {"pot", "safety", "kick"} <= {p.kind for p in plans}
+    for p in plans:
+        assert (p.ball is not None) == (p.kind in ("pot", "combo"))
+        assert (p.pocket in TABLE.hole_names) == (p.kind in ("pot", "combo"))
+    brk = Layout({b: tuple(xy) for b, xy in zip(*_rack("8ball"), strict=True)})
+    assert ai.choose_shot(*brk.args(), State(mode="8ball", is_break=True)).kind == "break"
+
+
+def _rack(mode):
+    sc = load_scene({"table": "9ft", "balls": mode})
+    return sc.ids, sc.pos
+
+
+def test_options_are_answered_and_unknown_ones_refused():
+    assert ai.choose_option("rerack_or_accept") == "accept"
+    assert ai.choose_option("shoot_or_pass") == "shoot"
+    with pytest.raises(ValueError, match="^option: must be one of"):
+        ai.choose_option("sometimes")
+
+
+# ------------------------------------------------------------------------------ levels
+
+
+def test_levels_strike_with_errors_drawn_at_their_own_sd_and_each_better_than_the_last():
+    plan = ai.Plan(2.0, 30.0, 0.0, 0.1, None, 0.0, "", "pot", "1", "foot_left")
+    last = None
+    for name, lv in ai.LEVELS.items():
+        shots = [ai.as_struck(plan, name, seed) for seed in range(2000)]
+        aim = np.array([p.angle for p in shots]) - 30.0
+        speed = np.array([p.speed for p in shots]) / 2.0 - 1.0
+        side = np.array([p.side for p in shots])
+        top = np.array([p.top for p in shots]) - 0.1
+        for errors, sd in ((aim, lv.aim_sd), (speed, lv.speed_sd), (side, lv.tip_sd),
+                           (top, lv.tip_sd)):
+            # 2000 draws: the sample sd within 6 % (4 standard errors), the mean near 0.
+            assert abs(errors.std() / sd - 1) < 0.06, name
+            assert abs(errors.mean()) < 4 * sd / math.sqrt(2000), name
+        assert all(math.hypot(p.side, p.top) <= MISCUE_OFFSET for p in shots)
+        assert shots[7] == ai.as_struck(plan, name, 7)  # seeded
+        if last is not None:
+            assert lv.aim_sd < last.aim_sd and lv.speed_sd < last.speed_sd
+            assert lv.tip_sd < last.tip_sd and lv.share >= last.share
+        last = lv
+    with pytest.raises(ValueError, match="^level: must be one of easy, normal, hard, pro"):
+        ai.as_struck(plan, "expert")
+
+
+def _after(lay: Layout, plan: ai.Plan, state: State) -> tuple[Layout, object]:
+    """The layout after the plan is played exactly, and the outcome."""
+    summary, out, eng = play(lay, plan, state)
+    keep = np.nonzero(lay.on)[0]
+    balls = {lay.ids[k]: tuple(eng.pos[0, j]) for j, k in enumerate(keep)
+             if eng.state[0, j] != POCKETED}
+    return Layout(balls), out
+
+
+def test_position_play_leaves_a_better_next_shot(monkeypatch):
+    # The same level with and without its position term, on random three-ball practice
+    # tables: the pots it chooses with it leave the next shot likelier, on average.
+    monkeypatch.setitem(ai.LEVELS, "flat", ai.LEVELS["hard"]._replace(position=0.0))
+    rng = np.random.default_rng(3)
+    state = State(mode="practice")
+    gain = []
+    for _ in range(6):
+        balls: dict[str, tuple[float, float]] = {}
+        for b in ("cue", "1", "2", "3"):
+            while True:
+                x, y = rng.uniform(0.2, L - 0.2), rng.uniform(0.2, W - 0.2)
+                if all(math.hypot(x - p[0], y - p[1]) > 0.15 for p in balls.values()):
+                    balls[b] = (x, y)
+                    break
+        lay = Layout(balls)
+        nxt = []
+        for level in ("hard", "flat"):
+            plan = ai.choose_shot(*lay.args(), state, level=level, max_candidates=96)
+            left, out = _after(lay, plan, state)
+            potted = out.continue_turn and len(left.ids) < len(lay.ids)
+            nxt.append(ai.best_chance(*left.args(), state) if potted and "cue" in left.ids
+                       else None)
+        if None not in nxt:
+            gain.append(nxt[0] - nxt[1])
+    assert len(gain) >= 4
+    assert np.mean(gain) > 0.1, gain
+
+
+def test_safeties_lower_the_opponent_s_best_chance():
+    # Random 8-ball tables where the shooter (solids) has no likely pot and the opponent
+    # (stripes) has one from where the cue ball lies: the level's defensive shot, played
+    # exactly, leaves the opponent a worse best chance than the table had before.
+    rng = np.random.default_rng(5)
+    seen = 0
+    for _ in range(200):
+        balls: dict[str, tuple[float, float]] = {}
+        for b in ("cue", "2", "10", "12", "8"):
+            while True:
+                x, y = rng.uniform(0.1, L - 0.1), rng.uniform(0.1, W - 0.1)
+                if all(math.hypot(x - p[0], y - p[1]) > 0.1 for p in balls.values()):
+                    balls[b] = (x, y)
+                    break
+        lay = Layout(balls)
+        down = tuple(b for b in (*SOLIDS, *STRIPES) if b not in balls)
+        state = State(mode="8ball", pocketed=down, groups={0: "solids", 1: "stripes"})
+        opp = replace(state, shooter=1)
+        before = ai.best_chance(*lay.args(), opp)
+        if ai.best_chance(*lay.args(), state, sigma=0.2) > 0.2 or before < 0.4:
+            continue
+        plan = ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64)
+        left, out = _after(lay, plan, state)
+        if out.continue_turn:  # it potted after all (a kick that went in)
+            continue
+        assert plan.kind in ("safety", "kick") and out.foul is None
+        assert ai.best_chance(*left.args(), opp) < before - 0.2, balls
+        seen += 1
+        if seen == 2:
+            break
+    assert seen == 2
+
+
+def test_the_levels_table_in_the_docs_is_the_levels():
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parent.parent / "docs" / "ai.md").read_text()
+    rows = {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
+            for line in doc.splitlines() if line.startswith("| ") and line.count("|") == 6}
+    assert rows[""] == list(ai.LEVELS)  # the header: a column per level, in order
+    want = {
+        "candidates (share of `max_candidates`)": lambda lv: f"{100 * lv.share:g} %",
+        "aim error, sd (`aim_sd`)": lambda lv: f"{lv.aim_sd:g}°",
+        "speed error, sd (`speed_sd`)": lambda lv: f"{100 * lv.speed_sd:g} %",
+        "tip error, sd (`tip_sd`, R)": lambda lv: f"{lv.tip_sd:g}",
+        "position: weight of its next shot (`position`)": lambda lv: f"{lv.position:g}:",
+        "safety: weight of what it leaves (`leave`)": lambda lv: f"{lv.leave:g}",
+    }
+    for row, cell in want.items():
+        for got, lv in zip(rows[row], ai.LEVELS.values(), strict=True):
+            assert got.startswith(cell(lv)), (row, got)

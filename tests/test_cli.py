@@ -309,3 +309,12 @@ def test_scene_that_never_rests_needs_a_duration(tmp_path: Path) -> None:
     out = sim(str(path), "--duration", "2")
     assert out["time"] == pytest.approx(2.0)
     assert out["balls"][0]["state"] in ("sliding", "rolling")
+
+
+def test_the_top_help_speaks_to_players_and_names_watching_a_match() -> None:
+    p = run("--help")
+    assert p.returncode == 0
+    out = " ".join(p.stdout.split())
+    assert "8-ball, 9-ball and practice" in out
+    assert "--record match.json" in out and "replay match.json --watch" in out
+    assert "batched" not in out and "physics core" not in out

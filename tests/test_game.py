@@ -521,12 +521,28 @@ def test_take_back_and_rerack_only_in_practice() -> None:
         ({"table": Table(pockets="none")}, "table"),
         ({"dt": 1e-300}, "dt: must be from 0.0001 to 1 seconds"),  # no replay would take it
         ({"dt": 2.0}, "dt: must be from 0.0001 to 1 seconds"),
+        ({"levels": (None, "expert")}, "^levels: must be two of None"),
+        ({"levels": ("hard",)}, "^levels: must be two of None"),
     ],
 )
 def test_bad_settings(kw, words) -> None:
     kw = {"mode": "8ball", **kw}
     with pytest.raises(ValueError, match=words):
         Match(kw.pop("mode"), **kw)
+
+
+@pytest.mark.parametrize("levels", [None, [None, "easy"], ["normal", None], ["hard", "hard"],
+                                    ["pro", "easy"]])
+def test_records_load_and_replay_with_every_level_and_from_before_levels(levels) -> None:
+    # None: a record from before the match kept the computer's level (no "levels" key).
+    m = Match("9ball", seed=3, levels=tuple(levels) if levels else (None, None))
+    m.begin(Shot(7.5, 0.5)).finish()
+    data = json.loads(json.dumps(m.to_json()))
+    if levels is None:
+        del data["match"]["levels"]
+    again = Match.from_json(data)
+    assert list(again.levels) == (levels or [None, None])
+    assert all(r["ok"] for r in replay(data))
 
 
 def test_save_and_load_goes_on_identically() -> None:
@@ -564,6 +580,8 @@ def test_save_and_load_goes_on_identically() -> None:
         (lambda d: d["current"].update(winner=2), "current.winner"),
         (lambda d: d["current"].update(rng={"x": 1}), "current.rng"),
         (lambda d: d.update(shots={}), "shots"),
+        (lambda d: d["match"].update(levels="hard"), "^match.levels: must be a list of two"),
+        (lambda d: d["match"].update(levels=["hard", "expert"]), "^levels: must be two of"),
         # The physics of a saved match has the same limits as a scene's.
         (lambda d: d["match"]["physics"].update(mu_slide=5e-324),
          "physics.mu_slide: must be at least"),

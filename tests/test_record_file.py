@@ -156,7 +156,7 @@ def test_a_failed_write_at_the_end_goes_to_the_data_directory(capsys, tmp_path,
     rc = cli.main([*PLAY, "--keys", keys(tmp_path, "enter space-hold 1.0 wait 1"), "--record",
                    str(rec)])
     err = capsys.readouterr().err
-    (spare,) = (tmp_path / "data" / "termpool").iterdir()
+    (spare,) = (tmp_path / "data" / "termpool").glob("record-*")  # beside the history
     assert rc == 1 and not rec.exists()
     assert err == f"termpool: cannot write the record to '{rec}' (No space left on device); " \
                   f"it was saved to {spare} (1 shot)\n"
@@ -183,7 +183,8 @@ def test_a_file_size_limit_leaves_the_old_file_whole(tmp_path) -> None:
     assert p.stderr.endswith(": it is lost\n")
     assert rec.read_text() == '{"an": "earlier match"}'
     assert sorted(os.listdir(tmp_path)) == ["data", "keys.txt", "x.json"]  # no partial files
-    assert list(data.rglob("*")) in ([], [data / "termpool"])
+    # nor in the data directory, where only the history of play (a short line) may be
+    assert [f.name for f in data.rglob("*") if f.is_file()] in ([], ["history.jsonl"])
 
 
 def test_record_to_stdout_follows_the_screen(capsys, tmp_path) -> None:
@@ -223,4 +224,182 @@ def test_a_record_holding_a_nan_is_not_written_as_bad_json(capsys, tmp_path,
     err = capsys.readouterr().err
     assert rc == 1 and not rec.exists()
     assert err == ("termpool: cannot write the record: current.balls[0].x is nan, not a finite "
-                   "number (JSON has no NaN or Infinity)\n")
+                   "number (JSON has no NaN or Infinity): it is lost\n")
+
+
+# ------------------------------------------------------------- every match of a session
+
+def nine_alone(app: App) -> None:
+    """The match in play comes down to the 9 alone in front of the cue ball, on the aim."""
+    m = app.match
+    m.ball_in_hand = None
+    for k, b in enumerate(m.ids):
+        m.on_table[k] = b in ("cue", "9")
+    m.state = m.state.__class__(mode="9ball", shooter=0, pocketed=tuple("12345678"))
+    m.pos[m.index("9")] = (m.table.length - 0.3, m.table.width - 0.3)
+    m.pos[m.index("cue")] = (m.table.length - 0.8, m.table.width - 0.8)
+    app._turn_start()
+
+
+def session(tmp_path: Path, force: bool = False):
+    from termpool.ui.app import Options
+    from termpool.ui.records import Records
+
+    app = App(Options(mode="9ball", opponent="human", colors="mono", seed=0))
+    app.records = Records(str(tmp_path / "m.json"), force)
+    return app
+
+
+def win(app: App, t: float) -> float:
+    from termpool.ui.headless import play as play_keys
+    from termpool.ui.keys import parse_script
+
+    nine_alone(app)
+    play_keys(app, parse_script("down*4 space-hold 0.5 wait 20"), 100, 32)
+    assert app.phase == "over" and app.match.winner == 0
+    return t + 30.0
+
+
+def leave(app: App, capsys, tmp_path: Path) -> list[str]:
+    import argparse
+
+    from termpool.ui.play import _leave
+
+    capsys.readouterr()
+    assert _leave(app, argparse.Namespace(record=str(tmp_path / "m.json"), force=False)) == 0
+    return capsys.readouterr().err.splitlines()
+
+
+def test_a_match_won_is_saved_at_once_and_kept_after_the_menu(capsys, tmp_path) -> None:
+    from termpool.ui.keys import Key
+
+    app = session(tmp_path)
+    t = win(app, 0.0)
+    rec = tmp_path / "m.json"
+    assert replays(rec, capsys) == "1 shot: all identical"  # on disk before anything else
+    app.key(Key("m"), t)
+    app.key(Key("q"), t + 1)  # the menu's Q quits
+    assert app.done and app.match is None
+    assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]
+    assert replays(rec, capsys) == "1 shot: all identical"
+
+
+def test_a_new_game_after_a_win_keeps_both_matches(capsys, tmp_path) -> None:
+    from termpool.ui.keys import Key
+
+    app = session(tmp_path)
+    t = win(app, 0.0)
+    app.key(Key("n"), t)
+    from termpool.ui.headless import play as play_keys
+    from termpool.ui.keys import parse_script
+
+    play_keys(app, parse_script("enter space-hold 1.0 wait 20 q y"), 100, 32)
+    first, second = tmp_path / "m.json", tmp_path / "m-2.json"
+    assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {first} (1 shot)",
+                                            f"termpool: record saved to {second} (1 shot)"]
+    assert json.loads(first.read_text())["shots"][0]["outcome"]["winner"] == 0
+    assert replays(second, capsys) == "1 shot: all identical"
+
+
+def test_a_new_game_left_without_a_shot_keeps_the_match_won(capsys, tmp_path) -> None:
+    from termpool.ui.keys import Key
+
+    app = session(tmp_path)
+    t = win(app, 0.0)
+    app.key(Key("n"), t)
+    app.key(Key("q"), t + 1)
+    app.key(Key("y"), t + 2)
+    assert app.done
+    rec = tmp_path / "m.json"
+    assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]
+    assert replays(rec, capsys) == "1 shot: all identical"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.json"]
+
+
+def test_q_on_the_game_over_box_keeps_the_match(capsys, tmp_path) -> None:
+    from termpool.ui.keys import Key
+
+    app = session(tmp_path)
+    t = win(app, 0.0)
+    app.key(Key("q"), t)
+    assert app.done
+    rec = tmp_path / "m.json"
+    assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]
+    assert replays(rec, capsys) == "1 shot: all identical"
+
+
+def test_a_later_match_never_replaces_a_file_without_force(capsys, tmp_path,
+                                                           monkeypatch) -> None:
+    from termpool.ui.keys import Key
+
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "data"))
+    (tmp_path / "m-2.json").write_text("an earlier match")
+    app = session(tmp_path)
+    t = win(app, 0.0)
+    app.key(Key("n"), t)
+    t = win(app, t)
+    app.key(Key("q"), t)
+    capsys.readouterr()
+    import argparse
+
+    from termpool.ui.play import _leave
+
+    assert _leave(app, argparse.Namespace(record=str(tmp_path / "m.json"), force=False)) == 1
+    err = capsys.readouterr().err.splitlines()
+    (spare,) = (tmp_path / "data" / "termpool").glob("record-*")
+    assert err == [f"termpool: record saved to {tmp_path / 'm.json'} (1 shot)",
+                   f"termpool: cannot write the record to '{tmp_path / 'm-2.json'}' (exists "
+                   f"(pass --force to replace it)); it was saved to {spare} (1 shot)"]
+    assert (tmp_path / "m-2.json").read_text() == "an earlier match"
+    assert replays(spare, capsys) == "1 shot: all identical"
+
+
+def test_a_signal_after_two_matches_keeps_both(capsys, tmp_path, monkeypatch) -> None:
+    new_match, tick = App.new_match, App.tick
+    ended = []
+
+    def comes_down_to_the_9(self, mode, opponent):
+        new_match(self, mode, opponent)
+        nine_alone(self)
+
+    def term_after_two_wins(self, t):
+        tick(self, t)
+        if self.phase == "over" and self.match not in ended:
+            ended.append(self.match)
+            if len(ended) == 2:
+                os.kill(os.getpid(), signal.SIGTERM)
+
+    monkeypatch.setattr(App, "new_match", comes_down_to_the_9)
+    monkeypatch.setattr(App, "tick", term_after_two_wins)
+    rec = tmp_path / "m.json"
+    script = "down*4 space-hold 0.5 wait 20 n down*4 space-hold 0.5 wait 20 wait 20"
+    rc = cli.main(["play", "--headless", "--mode", "9ball", "--opponent", "human", "--keys",
+                   keys(tmp_path, script), "--record", str(rec)])
+    err = capsys.readouterr().err
+    monkeypatch.undo()
+    assert rc == 128 + signal.SIGTERM and len(ended) == 2
+    assert err == (f"termpool: record saved to {rec} (1 shot)\n"
+                   f"termpool: record saved to {tmp_path / 'm-2.json'} (1 shot)\n")
+    assert replays(rec, capsys) == "1 shot: all identical"
+    assert replays(tmp_path / "m-2.json", capsys) == "1 shot: all identical"
+
+
+def test_m_in_the_quit_question_goes_to_the_menu_and_keeps_the_match(capsys,
+                                                                       tmp_path) -> None:
+    from termpool.ui.app import Options
+    from termpool.ui.headless import play as play_keys
+    from termpool.ui.headless import screen_text
+    from termpool.ui.keys import Key, parse_script
+    from termpool.ui.records import Records
+
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
+    app.records = Records(str(tmp_path / "m.json"))
+    play_keys(app, parse_script("enter space-hold 1.0 wait 20 q"), 80, 24)
+    assert "m: menu" in screen_text(app.cells(80, 24)[0])
+    app.key(Key("m"), 100.0)
+    assert app.phase == "menu" and app.match is None and not app.done
+    rec = tmp_path / "m.json"
+    assert replays(rec, capsys) == "1 shot: all identical"  # saved on the way to the menu
+    app.key(Key("q"), 101.0)
+    assert app.done
+    assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]

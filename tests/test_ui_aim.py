@@ -16,15 +16,13 @@ from termpool.physics.table import Table
 from termpool.ui.aim import Aim, aim_direction, aim_trace
 from termpool.ui.canvas import Canvas
 from termpool.ui.overlay import (
-    CUE_LINE_M,
-    OBJECT_LINE_M,
     PULL_M,
     STICK_GAP_M,
     blit_cells,
-    draw_aim,
     draw_cue_stick,
     draw_placement,
-    mono_aim,
+    draw_prediction,
+    mono_prediction,
     power_meter_cells,
     spin_face_cells,
 )
@@ -45,6 +43,7 @@ from termpool.ui.palette import (
     STRIPE,
     TIP_C,
 )
+from termpool.ui.predict import Leg, Prediction
 from termpool.ui.table_view import TableView, layout
 
 R = BALL_RADIUS
@@ -378,13 +377,37 @@ def _coloured(cv, colour):
     return np.stack([ii + 0.5, jj + 0.5], axis=1)  # pixel centres
 
 
+def straight(a: Aim, cue) -> Prediction:
+    """A prediction along a straight cast (the cue ball to the ghost; the first ball along
+    the line of centres and the cue ball along the tangent, 0.3 and 0.2 m): the drawing
+    tests' paths, known exactly."""
+    g = np.array(a.ghost)
+    if a.ball is None:
+        return Prediction(Leg(np.array([cue, g]), a.hit))
+    o = g + 2 * R * np.array(a.object_dir)
+    obj = Leg(np.array([o, o + 0.3 * np.array(a.object_dir)]), "rest")
+    after = Leg(np.array([g, g + 0.2 * np.array(a.cue_dir)]), "rest")
+    return Prediction(Leg(np.array([cue, g]), "ball"), a.ball, a.ghost, obj, after)
+
+
+def on_path(pts, path, lay) -> np.ndarray:
+    """Each pixel centre's distance (pixels) from a polyline given in table metres."""
+    P = np.array([_px(lay, p) for p in path])
+    best = np.full(len(pts), np.inf)
+    for a, b in zip(P, P[1:], strict=False):
+        ab = b - a
+        t = np.clip(((pts - a) @ ab) / (ab @ ab), 0.0, 1.0)
+        best = np.minimum(best, np.linalg.norm(pts - (a + t[:, None] * ab), axis=1))
+    return best
+
+
 def test_aim_line_pixels_lie_on_the_ray(view):
     lay = view.layout
     pos = [[0.5, 0.3], [2.0, 1.0]]
     a = trace(pos, math.degrees(math.atan2(0.7, 1.5)) + 1.0)
     assert a.hit == "ball"
     cv = view.background.copy()
-    draw_aim(cv, lay, a, pos[0], R, object_line=False)
+    draw_prediction(cv, lay, straight(a, pos[0]), R, "ghost")
     c, g = _px(lay, pos[0]), _px(lay, a.ghost)
     u = (g - c) / np.linalg.norm(g - c)
     pts = _coloured(cv, AIM_C)
@@ -406,7 +429,7 @@ def test_ghost_outline_is_centred_on_the_ghost(view):
     pos = [[0.7, 0.4]]
     a = trace(pos, 30.0)
     cv = view.background.copy()
-    draw_aim(cv, lay, a, pos[0], R)
+    draw_prediction(cv, lay, straight(a, pos[0]), R)
     g = _px(lay, a.ghost)
     r_px = R * lay.scale
     pts = _coloured(cv, AIM_C)
@@ -416,35 +439,61 @@ def test_ghost_outline_is_centred_on_the_ghost(view):
     assert np.linalg.norm(ring.mean(axis=0) - g) < 0.5
 
 
-def test_object_and_tangent_lines_follow_their_directions(view):
+def test_the_paths_follow_the_prediction_even_where_they_bend(view):
     lay = view.layout
-    pos = [[0.5, 0.6], [1.3, 0.6 + R]]  # the 30 degree cut
-    a = trace(pos, 0.0)
+    ghost = np.array([1.2, 0.6])
+    obj = Leg(np.array([ghost + [2 * R, 0.0], [1.8, 0.6], [2.1, 0.9]]), "cushion")
+    bend = [ghost + [0.3 * (1 - math.cos(t)), 0.3 * math.sin(t)] for t in np.linspace(0, 1, 12)]
+    pred = Prediction(Leg(np.array([[0.4, 0.6], ghost]), "ball"), 1, tuple(ghost), obj,
+                      Leg(np.array(bend), "rest"))
     cv = view.background.copy()
-    draw_aim(cv, lay, a, pos[0], R)
-    g = _px(lay, a.ghost)
-    for direction, colour, length in ((a.object_dir, AIM_C, OBJECT_LINE_M),
-                                      (a.cue_dir, GUIDE_C, CUE_LINE_M)):
-        u = np.array([direction[0], -direction[1]])  # pixel y runs down
-        pts = _coloured(cv, colour)
-        rel = pts - g
-        along = rel @ u
-        mine = pts[(along > R * lay.scale + 0.5)
-                   & (np.abs(rel[:, 0] * u[1] - rel[:, 1] * u[0]) <= math.sqrt(0.5) + 1e-9)]
-        assert len(mine) >= 0.8 * length * lay.scale
+    draw_prediction(cv, lay, pred, R)
+    r_px = R * lay.scale
+    from termpool.ui.palette import OBJECT_C
+
+    # The cue ball's path and the ghost in white, the first ball's path and its end in pink.
+    solid = np.concatenate([_coloured(cv, AIM_C), _coloured(cv, OBJECT_C)])
+    assert on_path(_coloured(cv, OBJECT_C), obj.points, lay).max() <= r_px + 0.5 + 1e-9
+    rings = np.zeros(len(solid), bool)
+    for p in (ghost, obj.points[-1]):
+        rings |= np.abs(np.linalg.norm(solid - _px(lay, p), axis=1) - r_px) <= 0.5 + 1e-9
+    lines = solid[~rings]
+    d = np.minimum(on_path(lines, obj.points, lay), on_path(lines, pred.cue.points, lay))
+    assert d.max() <= math.sqrt(0.5) + 1e-9
+    # The first ball's path is solid: nearly every pixel of its length is drawn.
+    length = sum(np.linalg.norm(_px(lay, q) - _px(lay, p))
+                 for p, q in zip(obj.points, obj.points[1:], strict=False)) - 2 * r_px
+    assert (on_path(lines, obj.points, lay) <= 0.75).sum() >= 0.8 * length
+    guide = _coloured(cv, GUIDE_C)
+    ring = np.abs(np.linalg.norm(guide - _px(lay, bend[-1]), axis=1) - r_px) <= 0.5 + 1e-9
+    assert len(guide[~ring]) > 5 and on_path(guide[~ring], bend, lay).max() <= math.sqrt(0.5) + 1e-9
     assert not _coloured(view.background.copy(), GUIDE_C).size
 
 
-def test_no_object_line_when_asked(view):
+def test_ghost_level_draws_the_cue_path_and_the_ghost_only(view):
     lay = view.layout
     pos = [[0.5, 0.6], [1.3, 0.6 + R]]
     a = trace(pos, 0.0)
+    pred = straight(a, pos[0])
     cv = view.background.copy()
-    draw_aim(cv, lay, a, pos[0], R, object_line=False)
+    draw_prediction(cv, lay, pred, R, "ghost")
     assert not len(_coloured(cv, GUIDE_C))
     u = np.array([a.object_dir[0], -a.object_dir[1]])
     pts = _coloured(cv, AIM_C) - _px(lay, a.ghost)
     assert not ((pts @ u) > 4 * R * lay.scale).any()
+    off = view.background.copy()
+    draw_prediction(off, lay, pred, R, "off")
+    assert (off.rgb == view.background.rgb).all()
+
+
+def test_a_path_into_a_pocket_has_no_ring(view):
+    lay = view.layout
+    hole = TABLE.hole_c.reshape(-1, 2)[0]
+    pred = Prediction(Leg(np.array([[0.6, 0.6], hole]), "pocket", "head_right"))
+    cv = view.background.copy()
+    draw_prediction(cv, lay, pred, R)
+    pts = _coloured(cv, AIM_C)
+    assert len(pts) and on_path(pts, pred.cue.points, lay).max() <= math.sqrt(0.5) + 1e-9
 
 
 def test_overlays_leave_the_balls_alone(view):
@@ -455,7 +504,7 @@ def test_overlays_leave_the_balls_alone(view):
     before = cv.copy()
     balls = np.isin(before.tag, [SOLID, STRIPE, EIGHT, CUE])
     a = trace(pos, 0.0)
-    draw_aim(cv, lay, a, pos[0], R)
+    draw_prediction(cv, lay, straight(a, pos[0]), R)
     draw_cue_stick(cv, lay, pos[0], R, 0.0, 0.5)
     draw_placement(cv, lay, pos[0], R, False)
     assert (cv.rgb[balls] == before.rgb[balls]).all()
@@ -517,7 +566,8 @@ def test_overlays_clip_at_the_canvas_edge():
     small = layout(40, 12, TABLE)
     cv = TableView(TABLE, small).background.copy()
     draw_cue_stick(cv, small, (0.05, 0.05), R, 45.0, 1.0)  # the stick runs off the canvas
-    draw_aim(cv, small, Aim((50.0, 50.0), "none", None, None, None, None), (0.05, 0.05), R)
+    draw_prediction(cv, small, Prediction(Leg(np.array([[0.05, 0.05], [50.0, 50.0]]), "open")),
+                    R)
     draw_placement(cv, small, (-5.0, -5.0), R, True)
     assert (cv.tag == AIM).any()
 
@@ -525,28 +575,29 @@ def test_overlays_clip_at_the_canvas_edge():
 def test_mono_aim_off_the_grid_is_clipped(view):
     chars = view.mono(["cue"], np.array([[0.7, 0.4]]), None, R)
     before = chars.copy()
-    mono_aim(chars, view.layout, Aim((60.0, -40.0), "cushion", None, (1.0, 0.0), None, None),
-             (0.7, 0.4))
+    mono_prediction(chars, view.layout,
+                    Prediction(Leg(np.array([[0.7, 0.4], [60.0, -40.0]]), "cushion")))
     assert (chars != before).any() and (before[chars != before] == " ").all()
 
 
-def test_mono_aim_marks_the_line_and_the_ghost(view):
+def test_mono_aim_marks_the_paths_and_the_ghost(view):
     lay = view.layout
     pos = [[0.5, 0.6], [1.3, 0.6 + R]]
     a = trace(pos, 0.0)
     chars = view.mono(["cue", "1"], np.array(pos), None, R)
     before = chars.copy()
-    mono_aim(chars, lay, a, pos[0])
+    mono_prediction(chars, lay, straight(a, pos[0]))
     gx, gy = _px(lay, a.ghost)
     cx, cy = _px(lay, pos[0])
     assert chars[int(gy) // 2, int(gx)] == "o"
     dots = np.argwhere(chars == ".")
     assert len(dots) > 0.8 * (gx - cx) - 3
     assert (dots[:, 0] == int(cy) // 2).all()  # a flat shot: one row of dots
-    assert (dots[:, 1] > cx).all() and (dots[:, 1] < gx).all()
-    assert ((chars == "-") | (chars == "/") | (chars == "\\")).any()  # object ball's line
-    changed = chars != before
-    assert (before[changed] == " ").all()  # only blank cells were marked
+    # the first ball leaves at 30 degrees up-right: on screen, cells twice as tall as wide
+    assert set(chars[chars != before]) == {".", "o", "-", ":"} | ({"/"} & set(chars.ravel()))
+    ghost_only = before.copy()
+    mono_prediction(ghost_only, lay, straight(a, pos[0]), "ghost")
+    assert set(ghost_only[ghost_only != before]) == {".", "o"}
 
 
 # ------------------------------------------------------------------ panel widgets
@@ -665,7 +716,33 @@ def test_same_inputs_give_the_same_pixels(view):
         cv = Canvas(*view.layout.canvas_size)
         cv.copy_from(view.background)
         a = trace(pos, 3.3)
-        draw_aim(cv, view.layout, a, pos[0], R)
+        draw_prediction(cv, view.layout, straight(a, pos[0]), R)
         draw_cue_stick(cv, view.layout, pos[0], R, 3.3, 0.4)
         out.append(cv.rgb.tobytes())
     assert out[0] == out[1]
+
+
+def test_at_80x24_the_two_paths_differ_and_no_line_shares_a_balls_cell():
+    from termpool.ui.palette import OBJECT_C
+
+    lay = layout(80, 24, TABLE)
+    small = TableView(TABLE, lay)
+    for k in range(12):  # the object ball on even and odd pixel rows and columns
+        obj = np.array([1.3 + 0.013 * k, 0.6 + 0.011 * k])
+        cue = obj - np.array([0.6, 0.05 * (k % 3 - 1)])
+        pos = np.array([cue, obj])
+        cv = small.draw(["cue", "3"], pos, None, R, canvas=small.background.copy())
+        balls = np.isin(cv.tag, [SOLID, STRIPE, EIGHT, CUE])
+        cell_has_ball = balls[0::2] | balls[1::2]
+        aim_at = obj + np.array([0.0, 1.6 * R * (k % 4 - 1.5) / 1.5])  # cuts either way
+        a = trace(pos, math.degrees(math.atan2(*(aim_at - cue)[::-1])))
+        assert a.ball == 1
+        draw_prediction(cv, lay, straight(a, pos[0]), R)
+        aid = cv.tag == AIM
+        assert not (cell_has_ball & (aid[0::2] | aid[1::2])).any()
+        cue_px, obj_px = _coloured(cv, AIM_C), _coloured(cv, OBJECT_C)
+        assert len(cue_px) and len(obj_px)
+        ring = max(1.0, R * lay.scale) + 0.5  # the ring where the first ball stops
+        assert on_path(obj_px, straight(a, pos[0]).object.points, lay).max() <= ring + 0.71
+    assert np.linalg.norm(np.subtract(OBJECT_C.rgb, AIM_C.rgb)) > 100
+    assert OBJECT_C.c16 != AIM_C.c16 and OBJECT_C.c256 != AIM_C.c256

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from termpool.physics.cue import MISCUE_OFFSET, strike
-from termpool.ui.app import App, Options, power_to_speed
+from termpool.physics.params import BALL_RADIUS
+from termpool.ui.app import CPU_AIM_S, CPU_SHOW_S, App, Options, power_to_speed
 from termpool.ui.controls import PowerCharge
 from termpool.ui.headless import play, screen_text
 from termpool.ui.keys import Key, legacy_events, parse_script
@@ -21,6 +22,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def app_for(mode="practice", opponent="human", colors="mono", input_mode="release", **kw) -> App:
+    kw.setdefault("seed", 0)  # the same rack every time, for tests
     return App(Options(mode=mode, opponent=opponent, colors=colors, **kw), input_mode=input_mode)
 
 
@@ -50,8 +52,9 @@ def test_held_space_on_a_legacy_terminal_is_inferred_from_auto_repeat() -> None:
     run_script(app, "enter wait 0.2 space-hold 0.9 wait 1", legacy=True)
     (shot,) = shots(app)
     full = PowerCharge("repeat").full_time
-    # The inferred release is one repeat interval after the last repeat: within 0.05 s.
-    lo, hi = power_to_speed((0.9 - 0.05) / full), power_to_speed((0.9 + 0.05) / full)
+    # The charge runs from the first repeat (0.3 s after the press in scripts); the inferred
+    # release is one repeat interval after the last repeat: within 0.05 s.
+    lo, hi = power_to_speed((0.6 - 0.05) / full), power_to_speed((0.6 + 0.05) / full)
     assert lo <= shot["speed"] <= hi
 
 
@@ -207,7 +210,9 @@ def test_help_lists_the_key_bindings() -> None:
     assert isinstance(app.keymap, KeyMap)
     app.key(Key("enter"), 0.0)
     text = screen_text(app.cells(120, 40)[0])
-    assert "Z shoot" in text and "hold z, release to shoot" in text
+    assert "Z: hold to charge" in text
+    app.key(Key("z"), 1.0)
+    assert "keep z down to charge" in screen_text(app.cells(120, 40)[0])
     app.key(Key("h"), 1.0)
     assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
 
@@ -218,6 +223,16 @@ def test_menu_picks_a_game() -> None:
     assert "8-ball vs computer" in screen_text(app.cells(100, 32)[0])
     run_script(app, "down down enter")
     assert app.match.mode == "9ball" and app.cpu == (False, True)
+
+
+def test_settings_offer_every_level_of_the_computer() -> None:
+    from termpool import ai
+    from termpool.ui.settings import BY_KEY
+
+    assert BY_KEY["level"].values == tuple(ai.LEVELS)  # the levels the AI has, pro too
+    app = App(Options(colors="mono", level="pro"))
+    run_script(app, "1")  # 8-ball vs computer, at that level
+    assert app.match.mode == "8ball" and app.match.levels == (None, "pro")
 
 
 def test_tiny_window_gets_a_message_and_the_game_survives() -> None:
@@ -595,7 +610,8 @@ def test_help_box_fits_80x24_and_says_how_to_close_it():
     app = app_for()
     app.key(Key("h"), 0.0)
     text = screen_text(app.cells(80, 24)[0])
-    assert "any key closes this" in text and "rerack" in text and "mouse" in text
+    assert "any other key closes" in text and "rerack" in text and "mouse" in text
+    assert "← → pages" in text  # the rules of the game come after the keys
 
 
 def test_quit_question_shows_even_when_the_window_is_too_small():
@@ -645,6 +661,7 @@ def eight_on_the_8(app: App):
     m.pos[0] = (L - 0.9, W - 0.8)  # cue, 8 and the foot_left corner in line
     app.phase, app.angle, app._aim_cache = "aim", 45.0, None
     assert m.needs_call()
+    return app
 
 
 def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
@@ -745,8 +762,564 @@ def test_referee_words_take_the_theme_s_group_names():
     assert app.names("not one of the solids") == "not one of the reds"
 
 
+def test_the_record_keeps_the_computer_s_level():
+    assert app_for(mode="9ball", opponent="cpu", level="hard").match.levels == (None, "hard")
+    assert app_for(mode="9ball", opponent="human", level="hard").match.levels == (None, None)
+
+
 def test_the_eight_on_the_break_variant_reaches_the_match():
     assert app_for(mode="8ball", eight_break="rerack").match.eight_break == "rerack"
     assert app_for(mode="8ball").match.eight_break == "respot"
     p = cli("play", "--headless", "--keys", "-", "--eight-break", "sometimes", stdin="q y")
     assert p.returncode == 2 and "--eight-break" in p.stderr
+
+
+# ------------------------------------------------------------ power without key releases
+
+@pytest.mark.parametrize("delay", [0.25, 0.5, 0.66])
+def test_legacy_terminal_softest_hold_is_gentle_and_strikes_within_100_ms(delay) -> None:
+    # A terminal without key releases (tmux, most terminals), emulated by the script's
+    # `repeat` token: the softest hold is the press and its first repeat.
+    for hold, most in ((delay + 0.01, 0.15), (delay + 0.5, 1.0)):
+        app = app_for(input_mode="repeat")
+        events = legacy_events(parse_script(f"repeat {delay} 0.033 enter wait 0.2 "
+                                            f"space-hold {hold} wait 1"))
+        play(app, events, 100, 32)
+        (shot,) = shots(app)
+        assert shot["speed"] <= power_to_speed(most)
+        last = max(t for t, k in events if k.name == "space")
+        assert 0.0 < app.struck_at - last <= 0.1
+
+
+def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() -> None:
+    for mode in ("release", "repeat", "classic"):
+        app = app_for(input_mode=mode)
+        run_script(app, "enter wait 0.2", legacy=mode != "release")
+        hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+        assert {"release": "Space: hold, let go", "repeat": "Space: hold to charge",
+                "classic": "Space: meter"}[mode] in hint
+        play(app, [(1.0, Key("3")), (1.1, Key("space"))] if mode != "release" else
+             [(1.0, Key("3")), (1.1, Key("space")), (1.15, Key("space", "release"))], 100, 32)
+        (shot,) = shots(app)
+        assert shot["speed"] == power_to_speed(0.3)
+        hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+        assert "Space: strike at 30%" in hint and "Esc hold" in hint
+        app.key(Key("esc"), 100.0)  # back to holding
+        assert "Space: strike" not in screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2 0 space wait 5", legacy=True)
+    assert shots(app)[0]["speed"] == power_to_speed(1.0)
+
+
+def test_headless_repeat_input_is_a_legacy_terminal_with_the_script_s_repeat(tmp_path) -> None:
+    rec = tmp_path / "m.json"
+    p = cli("play", "--headless", "--mode", "practice", "--input", "repeat", "--keys", "-",
+            "--record", str(rec), "--colors", "mono",
+            stdin="repeat 0.66 0.04 enter wait 0.2 space-hold 0.68 wait 5 7 space wait 5")
+    assert p.returncode == 0, p.stderr
+    first, second = (s["shot"]["speed"] for s in json.loads(rec.read_text())["shots"])
+    assert first <= power_to_speed(0.15) and second == power_to_speed(0.7)
+    p = cli("play", "--headless", "--keys", "-", stdin="repeat 0.5")
+    assert p.returncode == 2 and "repeat needs" in p.stderr
+
+
+def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> None:
+    from dataclasses import replace
+
+    app = app_for(mode="8ball", opponent="human")
+    m = app.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    m.on_table[:] = False
+    place = {"cue": (0.5, 0.6), "1": (1.0, 0.6), "9": (0.75, 0.6), "2": (1.1, 1.0),
+             "8": (2.2, 0.3)}
+    for b, p in place.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    app._turn_start()
+    # The 1 is nearer, but the 9 (not the shooter's) is in its way: the aim goes to the 2.
+    assert app.angle == pytest.approx(math.degrees(math.atan2(0.4, 0.6)))
+    m.pos[m.ids.index("9")] = (0.75, 0.2)  # out of the way: the nearest again
+    app._turn_start()
+    assert app.angle == pytest.approx(0.0)
+
+
+# -------------------------------------------------------------------- the computer's turn
+
+def cpu_to_shoot(monkeypatch, note="3 in the foot_left pocket"):
+    """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
+    from termpool import ai
+
+    plan = ai.Plan(1.5, 20.0, 0.0, 0.2, None, 1.0, note)
+    monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
+    monkeypatch.setattr(ai, "as_struck", lambda p, *a, **k: p)
+    app = app_for(mode="8ball", opponent="cpu")
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
+                                                        is_break=False)
+    app.match.ball_in_hand = None
+    app._turn_start()
+    assert app.phase == "cpu"
+    return app, plan
+
+
+def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monkeypatch):
+    app, plan = cpu_to_shoot(monkeypatch)
+    t, aimed = 0.0, None
+    while app.phase == "cpu":
+        app.tick(t)
+        screen = screen_text(app.cells(120, 40)[0])
+        if app._cpu_plan not in (None, "done"):
+            assert "Computer: 3 in the foot left pocket" in screen
+            assert app.prediction() is not None and "o" in screen  # its ghost ball
+            if aimed is None and app.angle == plan.angle:
+                aimed = t
+        t += 1 / 60
+    assert aimed is not None and app.struck_at - aimed >= 1.2
+    while app.phase == "run":  # its words stay up while the shot runs ...
+        assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+        app.tick(t)
+        t += 1 / 60
+    # ... and when it is over, beside the verdict, until the next shot
+    assert app.message[0][0] == "Computer: 3 in the foot left pocket" and len(app.message) == 2
+    assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+
+
+def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monkeypatch):
+    app, plan = cpu_to_shoot(monkeypatch)
+    t = 0.0
+    while app.phase in ("cpu", "run"):
+        app.tick(t)
+        t += 1 / 60
+    verdict = app.message[-1]
+    m = app.match
+    m.state = __import__("dataclasses").replace(m.state, shooter=1)
+    m.ball_in_hand = None
+    m.on_table[:] = False
+    for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    monkeypatch.setattr(__import__("termpool").ai, "choose_shot",
+                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
+    app._turn_start()
+    app.angle = 90.0  # its stick starts away from its aim, on the 8
+    app.tick(t)
+    app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
+    assert app.message == [verdict, ("Computer: 3 in the side", "turn")]
+    # While its stick turns it names no ball (the stick sweeps past others); on its aim, the 3.
+    assert app.angle != 0.0 and "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
+    app.tick(t + 0.2)  # the first frame with its plan: the stick starts to turn
+    app.tick(t + 0.2 + 0.7)
+    assert app.angle == 0.0 and "Computer is aiming at the 3" in \
+        screen_text(app.cells(120, 40)[0])
+
+
+def test_the_computer_s_thinking_time_does_not_eat_its_aim(monkeypatch):
+    # Its plan takes a second of wall time, so the next frame comes a second after the last:
+    # the turn and the 1.2 s hold are timed from the first frame that shows the plan.
+    app, plan = cpu_to_shoot(monkeypatch)
+    app.tick(0.0)
+    app.tick(0.1)  # it plans (here at once; in play this tick blocks for about a second)
+    shown = 1.1
+    t, aimed = shown, None
+    while app.phase == "cpu":
+        app.tick(t)
+        if aimed is None and app.angle == plan.angle:
+            aimed = t
+        t += 1 / 60
+    assert aimed - shown >= CPU_AIM_S - 1e-9 and app.struck_at - aimed >= CPU_SHOW_S - 1e-9
+
+
+def test_a_key_skips_the_computer_s_wait(monkeypatch):
+    app, plan = cpu_to_shoot(monkeypatch)
+    app.tick(0.0)
+    app.tick(0.1)  # it has its plan, and starts turning its stick
+    assert app._cpu_plan not in (None, "done")
+    app.key(Key("x"), 0.2)
+    app.tick(0.2)
+    assert app.phase == "run" and app.struck_at == 0.2
+    assert shots(app) == [] and app.match.running.shot.angle == plan.angle
+
+
+def test_the_computer_says_what_it_chose(monkeypatch):
+    # After the human's push-out, the computer shoots or passes, and says which.
+    app = app_for(mode="9ball", opponent="cpu")
+    app.match.option = "shoot_or_pass"
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
+                                                        is_break=False)
+    app.match.ball_in_hand = None
+    app._turn_start()
+    for k in range(5):
+        app.tick(k / 60)
+    assert app.match.option is None
+    words = screen_text(app.cells(120, 40)[0])
+    assert "Computer chose to shoot" in words
+    # After an illegal break the computer accepts the table, in words too.
+    app = app_for(mode="8ball", opponent="cpu")
+    app.match.option = "rerack_or_accept"
+    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
+                                                        is_break=False)
+    app._turn_start()
+    for k in range(5):
+        app.tick(k / 60)
+    assert "Computer chose to accept the table" in screen_text(app.cells(120, 40)[0])
+
+
+# ------------------------------------------------------------------------------ the table
+
+def test_racks_differ_from_game_to_game_unless_a_seed_is_given(tmp_path) -> None:
+    racks = set()
+    seeds = set()
+    for _ in range(3):
+        app = App(Options(mode="8ball", opponent="human", colors="mono"))
+        racks.add(app.match.pos.round(9).tobytes())
+        seeds.add(app.match.seed)
+    assert len(racks) == 3 and len(seeds) == 3
+    app = App(Options(mode="8ball", opponent="human", colors="mono"))
+    first = app.match.pos.copy()
+    app.new_match("8ball", "human")  # a new game (N on the game-over screen) deals anew
+    assert not np.array_equal(app.match.pos, first)
+    same = [App(Options(mode="9ball", colors="mono", seed=7)).match.pos for _ in range(2)]
+    assert np.array_equal(*same)
+    # The seed goes into the record, and deals the same rack again.
+    rec = tmp_path / "m.json"
+    p = cli("play", "--headless", "--mode", "8ball", "--opponent", "human", "--keys", "-",
+            "--record", str(rec), stdin="enter space wait 20")
+    assert p.returncode == 0, p.stderr
+    data = json.loads(rec.read_text())
+    from termpool.game import Match
+
+    again = Match("8ball", seed=data["match"]["seed"])
+    first_scene = {b["id"]: (b["x"], b["y"]) for b in data["shots"][0]["scene"]["balls"]}
+    assert all(first_scene[b] == tuple(again.pos[k]) for k, b in enumerate(again.ids)
+               if b != "cue")
+
+
+@pytest.mark.parametrize("cols, rows, numbered", [(200, 60, True), (160, 50, True),
+                                                  (120, 40, False)])
+def test_balls_three_cells_wide_carry_their_numbers(cols, rows, numbered) -> None:
+    from termpool.ui.palette import ball_style
+
+    app = app_for(mode="9ball", opponent="human", colors="truecolor")
+    # Spread the rack out so that no two balls share a cell row and column span.
+    for k in range(1, len(app.match.ids)):
+        app.match.pos[k] = (0.4 + 0.2 * k, 0.3 + 0.07 * k)
+    chars, fg, bg = app.cells(cols, rows)
+    lay, _ = app._geometry(cols, rows)
+    wide = 2 * BALL_RADIUS * lay.scale >= 3
+    assert wide == numbered
+    for k, b in enumerate(app.match.ids):
+        if b == "cue":
+            continue
+        x, y = lay.to_pixels(*app.match.pos[k])
+        r = int(y) // 2
+        line = "".join(chars[r])
+        at = line.find(b, int(x) - 2)
+        if not numbered:
+            assert at < 0 or abs(at - x) > 3  # no number on a two-cell ball
+            continue
+        assert 0 <= at and abs(at + len(b) / 2 - x) <= 1.0, (b, line)
+        assert (bg[r, at] == ball_style(b).colour.rgb).all()  # on the ball's own colour
+
+
+def test_the_called_pocket_is_marked_on_the_table_and_follows_c() -> None:
+    from termpool.ui.palette import CALL_C
+
+    app = eight_on_the_8(app_for(mode="8ball", opponent="human", colors="truecolor"))
+    lay, _ = app._geometry(120, 40)
+
+    def marked():
+        _, fg, bg = app.cells(120, 40)
+        hits = (fg == CALL_C.rgb).all(axis=2) | (bg == CALL_C.rgb).all(axis=2)
+        rr, cc = np.nonzero(hits)
+        holes = app.table.hole_c.reshape(-1, 2)
+        px = np.array([lay.to_pixels(*h) for h in holes])
+        near = [np.hypot(cc + 0.5 - px[k, 0], 2 * rr + 1 - px[k, 1]).min() for k in range(6)]
+        return int(np.argmin(near)), len(rr)
+
+    k, n = marked()
+    assert n > 0 and app.table.hole_names[k] == app._called()[1]
+    app.key(Key("c"), 1.0)
+    k2, _ = marked()
+    assert k2 != k and app.table.hole_names[k2] == app._called()[1]
+    mono = eight_on_the_8(app_for(mode="8ball", opponent="human"))
+    assert "*" in screen_text(mono.cells(120, 40)[0])
+
+
+def test_the_head_string_shows_while_the_ball_in_hand_must_stay_behind_it() -> None:
+    from termpool.ui.palette import GUIDE_C
+
+    for mode, kitchen in (("8ball", True), ("practice", False)):
+        app = app_for(mode=mode, opponent="human", colors="truecolor")
+        assert app.phase == "place"
+        lay, _ = app._geometry(120, 40)
+        chars, fg, bg = app.cells(120, 40)
+        guide = (fg == GUIDE_C.rgb).all(axis=2) | (bg == GUIDE_C.rgb).all(axis=2)
+        col = int(lay.to_pixels(app.table.length / 4, 0.0)[0])
+        rows = np.nonzero(guide[:, col])[0]
+        if kitchen:
+            assert len(rows) >= 0.4 * lay.ph / 2  # dotted, from rail to rail
+            assert guide.sum() == guide[:, col].sum()  # one straight column
+        else:
+            assert not guide.any()
+    mono = app_for(mode="8ball", opponent="human")
+    text = screen_text(mono.cells(120, 40)[0]).splitlines()
+    col = int(mono._geometry(120, 40)[0].to_pixels(mono.table.length / 4, 0.0)[0])
+    assert sum(line[col:col + 1] == ":" for line in text) >= 10
+
+
+# ------------------------------------------------------------------- the panel and words
+
+def grouped(app: App, frames_won=(0, 0)) -> App:
+    from dataclasses import replace
+
+    m = app.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    m.scores = list(frames_won)
+    app.phase = "aim"
+    return app
+
+
+def panel_text(app: App, cols: int, rows: int) -> list[str]:
+    lay, _ = app._geometry(cols, rows)
+    text = screen_text(app.cells(cols, rows)[0]).split("\n")
+    c, r, w, _ = lay.panel_rect
+    return [line[c:c + w] for line in text[r:]]
+
+
+@pytest.mark.parametrize("colors", ["mono", "256"])
+@pytest.mark.parametrize("frames", [1, 3])
+def test_at_80x24_both_players_groups_are_listed_whole(colors, frames) -> None:
+    for names in ("cpu", "human"):
+        app = grouped(app_for(mode="8ball", opponent=names, colors=colors, frames=frames))
+        app.side, app.top = 0.1, -0.2
+        panel = panel_text(app, 80, 24)
+        rows = " ".join(panel)
+        for k in range(1, 16):
+            if k != 8:
+                assert f"{k}" in rows.replace("10", " ").replace("11", " ") or k > 9
+        for p in (0, 1):  # each player's row holds all their balls, in order
+            row = next(line for line in panel if app.match.players[p] in line)
+            want = "1 2 3 4 5 6 7" if p == 0 else "9 10 11 12 13 14 15"
+            got = " ".join(row.replace("●", " ").replace("◐", " ").split())
+            assert want in got, row
+            if frames > 1:
+                assert "0/3" in row
+        assert any(line.strip().startswith(f"{app.match.players[0]} to shoot") for line in panel)
+        # the spin, in words where no face fits
+        assert "tip +0.1 side -0.2 top" in " ".join(rows.split())
+
+
+def test_at_200x60_the_spin_readout_shows() -> None:
+    for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
+                         ("mono", ("tip +0.3 side -0.1 top",))):
+        app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
+        app.message = [("Computer: 12 in the head right pocket", "dim"),
+                       ("legal break: the 6 and the 7 pocketed; the table is open", "plain")]
+        app.side, app.top = 0.3, -0.1
+        for size in ((200, 60), (120, 40), (100, 32)):
+            text = " ".join(" ".join(panel_text(app, *size)).split())
+            for w in want:
+                assert w in text, (size, colors)
+
+
+@pytest.mark.parametrize("size", [(40, 12), (45, 14), (60, 16)])
+@pytest.mark.parametrize("mode", ["release", "repeat", "classic"])
+def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
+    from termpool.ui.app_screen import hint_lines
+    from termpool.ui.panel import fit_hint
+
+    app = grouped(app_for(mode="8ball", opponent="human", input_mode=mode))
+    hint = panel_text(app, *size)[-1].strip()
+    parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app)]
+    assert hint == fit_hint(hint_lines(app), size[0] - 3)  # the panel's text width
+    assert hint.endswith("Q quit") and hint.startswith("←→ aim")
+    assert {"release": "Space:hold", "repeat": "Space:hold",
+            "classic": "Space:meter"}[mode] in hint.replace(": ", ":").replace(", let go", "")
+    assert parts  # every piece shown is whole: the line is pieces joined, none cut
+    for piece in hint.split("  ") if "  " in hint else [hint]:
+        assert piece
+
+
+def test_game_over_says_you_win_and_q_quits_at_once() -> None:
+    app = app_for(mode="8ball", opponent="cpu")
+    app.match.winner = 0
+    app.message = [("the 8 went into the foot left pocket: You win", "good")]
+    app._turn_start()
+    assert app.phase == "over"
+    text = screen_text(app.cells(120, 40)[0])
+    assert "You win!" in text and "You wins" not in text
+    app.key(Key("q"), 1.0)
+    assert app.done and app.overlay is None  # no second "Quit termpool?" on top
+    app = app_for(mode="8ball", opponent="human")
+    app.match.winner = 1
+    app._turn_start()
+    assert "Player 2 wins!" in screen_text(app.cells(120, 40)[0])
+
+
+@pytest.mark.parametrize("cols, rows", [(80, 24), (45, 14)])
+def test_a_verdict_too_long_for_the_panel_ends_in_an_ellipsis(cols, rows) -> None:
+    # A foul from a real game, three lines at 80 columns, under "ball in hand anywhere".
+    words = ("Foul: the cue ball hit the 14 first; with the solids cleared it must be the 8; "
+             "no ball reached a cushion after contact and nothing was pocketed; you have ball "
+             "in hand")
+    app = app_for(mode="8ball")
+    app.message = [(words, "foul")]
+    text = screen_text(app.cells(cols, rows)[0])
+    assert any(s.rstrip().endswith("…") for s in text.splitlines())
+    assert "ball in hand" in text  # the status still says it
+    if cols == 80:  # the verdict's first two lines, the second cut at a word
+        shown = [s.strip() for s in text.splitlines() if s.strip().rstrip("…") in words]
+        assert len(shown) == 2 and words.startswith(shown[0]) and shown[1].endswith("…")
+
+
+# ----------------------------------------------------- power on terminals without releases
+
+def test_a_tap_without_key_releases_starts_the_meter_from_nothing() -> None:
+    ch = PowerCharge("repeat")
+    assert ch.key(Key("space"), 10.0) is None
+    assert ch.waiting and ch.level(10.5) == 0.0  # a tap or a hold: nothing known yet
+    t = 10.0 + PowerCharge.INITIAL_DELAY_MAX + 0.2  # no repeat came: a tap
+    assert ch.poll(t) is None and ch.fallback and not ch.waiting
+    # The meter rises from 0 at the moment the tap was known, not from the press.
+    known = 10.0 + PowerCharge.INITIAL_DELAY_MAX
+    assert ch.level(known) == 0.0
+    assert ch.level(t) == pytest.approx(0.2 / ch.full_time)
+    power = ch.key(Key("space"), known + 0.1)  # a quick second press: a soft shot
+    assert power == pytest.approx(0.1 / ch.full_time)
+
+
+def test_the_screen_says_what_a_tap_is_waiting_for() -> None:
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2", legacy=True)
+    app.key(Key("space"), 1.0)
+    app.tick(1.4)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "keep space down to charge, or let go for a meter" in text
+    assert "release space" not in text and "power 0%" not in text
+    app.tick(1.0 + PowerCharge.INITIAL_DELAY_MAX + 0.06)
+    text = screen_text(app.cells(80, 24)[0])
+    assert "power 5%" in text and "space again to strike" in text
+
+
+def test_power_set_with_a_digit_does_not_carry_into_the_next_game() -> None:
+    for power in ("hold", "digits"):
+        app = app_for(mode="8ball", opponent="human", power=power)
+        run_script(app, "enter 2 space wait 20")
+        assert shots(app)[0]["speed"] == power_to_speed(0.2)
+        app.key(Key("2"), 100.0)  # set for the next shot ...
+        app.match.winner = 0
+        app._turn_start()
+        app.key(Key("n"), 101.0)  # ... but a new game starts afresh
+        assert app.charge.preset_level == (0.5 if power == "digits" else None)
+        assert app.last_power == 0.5
+
+
+def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    run_script(app, "enter")
+    text = screen_text(app.cells(120, 40)[0])
+    assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
+    run_script(app, "space-hold 0.6 wait 20")
+    while app.phase != "aim":  # the next shooter may have ball in hand
+        app.key(Key("enter"), app.now + 1.0)
+    text = screen_text(app.cells(120, 40)[0])
+    assert "aid at 50% power (the last shot's)" in text
+
+
+# -------------------------------------------------------------- what the panel keeps in view
+
+def _to_the_computer(app: App) -> float:
+    """The player breaks and the balls stop; the computer's turn, its plan made."""
+    app.key(Key("enter"), 0.0)
+    app.key(Key("space"), 1.0)
+    app.key(Key("space", "release"), 2.0)
+    t = 2.0
+    while not (app.phase == "cpu" and app._cpu_plan is not None) and t < 100:
+        t += 1 / 30
+        app.tick(t)
+    assert app.phase == "cpu"
+    return t
+
+
+def test_the_verdict_on_the_players_shot_stays_through_the_computers_turn() -> None:
+    app = app_for(mode="8ball", opponent="cpu", seed=3)
+    _to_the_computer(app)
+    (verdict,) = [x for x in app.message if x not in app._cpu_note]
+    assert "Computer's turn" in verdict[0]  # the referee on the player's break
+    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
+    # The computer's first shot ends and leaves it at the table: its next plan keeps the
+    # player's verdict in view, not the computer's own.
+    note = app._cpu_note
+    app._shot_note = note
+    app.message = [*note, ("the 6 went in: Computer's turn again", "good")]
+    app._cpu_plan = app._plan()
+    assert app.message[0] == verdict
+    assert "the 6 went in" not in screen_text(app.cells(120, 40)[0])
+    # ... and while its shot runs.
+    app._cpu_skip = True
+    t = app.now
+    while app.phase == "cpu":
+        t += 1 / 30
+        app.tick(t)
+    assert app.phase == "run" and app.message[0] == verdict
+    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
+
+
+def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> None:
+    app = app_for(mode="8ball", opponent="cpu", seed=4)
+    app.key(Key("enter"), 0.0)
+    run_script(app, "")
+    app._shot_note = [("Computer: 3 in the side right pocket", "turn")]
+    app.message = [*app._shot_note, ("nothing pocketed: your turn", "plain")]
+    assert app.phase in ("aim", "place")
+    app.phase = "aim"
+    lines = screen_text(app.cells(80, 24)[0]).splitlines()[-5:]
+    assert lines[1].strip().startswith("You to")
+    assert lines[2].strip().startswith("aid at 50% power") and "first ball" in lines[2]
+    assert lines[3].strip().startswith("nothing pocketed: your turn")
+
+
+@pytest.mark.parametrize("cols, rows", [(120, 40), (100, 32), (160, 50)])
+def test_the_second_players_name_stays_put_from_ball_in_hand_to_aim_to_charge(cols, rows):
+    app = app_for(mode="8ball", opponent="human", colors="256")
+
+    def column() -> int:
+        (line,) = [x for x in screen_text(app.cells(cols, rows)[0]).splitlines()
+                   if "Player 1" in x and "Player 2" in x]
+        return line.index("Player 2")
+
+    where = [column()]  # ball in hand
+    app.key(Key("enter"), 0.0)
+    where.append(column())  # aiming, the spin face up
+    app.key(Key("space"), 1.0)
+    app.tick(1.5)
+    assert app.charge.active
+    where.append(column())  # charging, the power meter up too
+    assert len(set(where)) == 1, where
+
+
+def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
+    from termpool.ui.app_screen import panel_info
+
+    app = app_for(mode="8ball", opponent="human", colors="256")
+    app.key(Key("enter"), 0.0)
+    chars, fg, bg = app.cells(80, 24)
+    lines = screen_text(chars).splitlines()
+    (row,) = [r for r, line in enumerate(lines) if line.strip().startswith("balls ")]
+    assert lines[row].split()[1:] == [str(n) for n in range(1, 16)]
+    # Each number in its ball's colour, as the players' lines show a group's balls.
+    from termpool.ui.frame import _ball_tokens
+
+    m = app.match
+    want = _ball_tokens(m.ids, [m.index(str(n)) for n in range(1, 16)], False)
+    col = lines[row].index("balls ") + len("balls")
+    for text, f, b in want:
+        col += 1
+        assert "".join(chars[row, col:col + len(text)]) == text
+        assert tuple(bg[row, col]) == tuple(b) and tuple(fg[row, col + len(text) - 1]) == f
+        col += len(text)
+    # Once the groups are set, the players' lines show them instead.
+    app.match.state = app.match.state.__class__(mode="8ball", shooter=0,
+                                                groups={0: "solids", 1: "stripes"})
+    assert panel_info(app).legend == []

@@ -175,7 +175,7 @@ def test_kitty_terminal_hold_space_and_release_to_shoot(game) -> None:
     g.pump(0.5)
     assert b"\x1b[>11u" in g.raw  # disambiguate + event types + all keys as escapes
     g.send("\x1b[13u", pause=0.3)  # Enter (as kitty reports it): place the cue ball
-    assert g.wait_for("hold space, release to shoot"), g.text()
+    assert g.wait_for("Space:hold "), g.text()  # the power mode, in the key help (short)
     g.send("\x1b[32u", pause=0.2)  # Space pressed ...
     g.send("\x1b[32;1:2u" * 3, pause=0.4)  # ... held (repeats) ...
     g.send("\x1b[32;1:3u", pause=0.2)  # ... released: the shot goes
@@ -313,3 +313,17 @@ def test_leaving_while_the_balls_roll_keeps_the_record(game, tmp_path, capsys, h
     assert f"record saved to {rec} (1 shot)".encode() in g.raw
     assert cli.main(["replay", str(rec)]) == 0  # the shot, played out, replays identically
     assert capsys.readouterr().out.endswith("1 shot: all identical\n")
+
+
+def test_a_terminal_without_an_alternate_screen_is_left_clean(game) -> None:
+    # The Linux console (TERM=linux) has no alternate screen: the game's last frame, quit box
+    # and all, would stay under the shell's prompt unless leaving clears it.
+    g = game("play", "--mode", "practice", cols=100, rows=32, env={"TERM": "linux"})
+    assert g.wait_for("You to break"), g.text()
+    assert b"\x1b[?1049h" not in g.raw  # no alternate screen was asked for
+    g.send("q", pause=0.3)
+    assert "Quit termpool?" in g.text()
+    g.send("y")
+    assert g.wait() == 0
+    assert g.text().strip() == "", g.text()
+    assert b"\x1b[?25h" in g.raw[-16:] and cooked(g.fd)  # the cursor is back

@@ -413,3 +413,56 @@ def test_half_block_of_equal_quantised_colours_becomes_blank():
     out = scr.render(np.array([["▀"]]), np.array([[FELT_C.rgb]], np.uint8),
                      np.array([[(30, 140, 40)]], np.uint8))
     assert "▀" not in out and out.count(" ") == 1
+
+
+# The two 16-colour palettes most terminals start from: xterm's defaults and the VGA colours
+# of the Linux console (ui.output.ANSI16).
+XTERM16 = [(0, 0, 0), (205, 0, 0), (0, 205, 0), (205, 205, 0), (0, 0, 238), (205, 0, 205),
+           (0, 205, 205), (229, 229, 229), (127, 127, 127), (255, 0, 0), (0, 255, 0),
+           (255, 255, 0), (92, 92, 255), (255, 0, 255), (0, 255, 255), (255, 255, 255)]
+
+
+def _lab(rgb) -> np.ndarray:
+    """sRGB (0..255) to CIE L*a*b* (D65), for colour differences as the eye sees them."""
+    c = np.asarray(rgb, float) / 255
+    c = np.where(c > 0.04045, ((c + 0.055) / 1.055) ** 2.4, c / 12.92)
+    xyz = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722],
+                    [0.0193, 0.1192, 0.9505]]) @ c / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > 0.008856, np.cbrt(xyz), 7.787 * xyz + 16 / 116)
+    return np.array([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
+
+
+@pytest.mark.parametrize("palette", ["xterm", "vga"])
+def test_every_ball_stands_out_from_the_felt_cushions_and_rails_in_16_colours(palette):
+    from termpool.ui.output import ANSI16
+    from termpool.ui.palette import CLASSIC_RED_C, CLASSIC_YELLOW_C, CUE_C, CUSHION_C, RAIL_C
+
+    rgb = XTERM16 if palette == "xterm" else ANSI16
+    # A colour difference (CIE76) of 35: far apart; the green 6 drawn bright green on the
+    # green felt was 24 in xterm's palette and 31 in the VGA one, the 5 on the rails 0.
+    for ball in [*BALL_C.values(), CUE_C, CLASSIC_RED_C, CLASSIC_YELLOW_C]:
+        for ground in (FELT_C, CUSHION_C, RAIL_C):
+            d = np.linalg.norm(_lab(rgb[HAND16[pack(ball.rgb)]])
+                               - _lab(rgb[HAND16[pack(ground.rgb)]]))
+            assert d >= 35, (ball, ground, d)
+    assert HAND16[pack(FELT_C.rgb)] == 2  # and the felt is green
+
+
+def _contrast(a, b) -> float:
+    """WCAG contrast ratio of two sRGB colours (1 to 21)."""
+    def lum(rgb) -> float:
+        c = np.asarray(rgb, float) / 255
+        c = np.where(c > 0.04045, ((c + 0.055) / 1.055) ** 2.4, c / 12.92)
+        return float(c @ [0.2126, 0.7152, 0.0722])
+    hi, lo = sorted((lum(a), lum(b)), reverse=True)
+    return (hi + 0.05) / (lo + 0.05)
+
+
+def test_ball_numbers_take_the_ink_that_reads_best_on_their_ball():
+    from termpool.ui.palette import NUMBER_DARK_C, NUMBER_LIGHT_C, number_colour
+
+    # Light ink on the mid-green 6 read at 2.2:1; dark ink reads at 8:1.
+    for ball in BALL_C.values():
+        ink = number_colour(ball)
+        other = NUMBER_LIGHT_C if ink == NUMBER_DARK_C else NUMBER_DARK_C
+        assert _contrast(ball.rgb, ink.rgb) >= max(4.5, _contrast(ball.rgb, other.rgb)), ball

@@ -18,7 +18,9 @@ No terminal code. The game loop of a UI::
     json.dump(m.to_json(), f)                   # a replay file: `termpool replay FILE`
 
 `Match(mode="8ball" | "9ball" | "practice", *, table="9ft", frames=1, players=(..), seed=0,
-physics=None, three_foul=False, theme="standard", dt=1/60)`:
+physics=None, three_foul=False, theme="standard", dt=1/60, eight_break="respot",
+levels=(None, None))`; `levels` names the computer's level (`ai.LEVELS`) of each player, None
+for a person (kept in the record only: the match plays whatever shots it is given):
 
 - `ids` (cue first, then "1".."15", or "1".."9"), `radius`, `mass`, `pos` (N, 2) and `on_table`
   (N,) describe the table between shots (a pocketed ball's `pos` is meaningless).

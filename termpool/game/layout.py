@@ -13,6 +13,7 @@ import numpy as np
 from termpool.physics.params import BALL_RADIUS
 from termpool.physics.table import Table
 from termpool.rules.common import SOLIDS, STRIPES
+from termpool.rules.words import KITCHEN
 from termpool.scene import RACK_ROWS, rack
 
 # Balls closer than this overlap; a little slack so balls set exactly touching (a rack, a
@@ -146,7 +147,7 @@ def placement_error(table: Table, x: float, y: float, r: float, area: str,
         return (f"off the table: the centre must lie within [{r:.3f}, {table.length - r:.3f}] x "
                 f"[{r:.3f}, {table.width - r:.3f}] m")
     if area == "kitchen" and x > table.length / 4:
-        return (f"not in the kitchen: behind the head string the centre must be at "
+        return (f"not in the kitchen: {KITCHEN} the centre must be at "
                 f"x <= {table.length / 4:.3f} m")
     for name, p, n in mouth_lines(table):
         if float(np.dot(np.array([x, y]) - p, n)) < r - TOUCH_TOL:

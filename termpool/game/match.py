@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from termpool.ai import LEVELS
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.table import PRESETS, Table
@@ -18,6 +19,7 @@ from termpool.rules.common import GROUPS, MODE_BALLS, MODES, Outcome, State
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
 from termpool.rules.themes import THEMES
+from termpool.rules.words import FOUL_LIMIT, count_word, ordinal
 from termpool.scene import table_to_dict
 
 from . import layout, record
@@ -35,7 +37,8 @@ class Match:
     def __init__(self, mode: str = "8ball", *, table: str | Table = "9ft", frames: int = 1,
                  players: tuple[str, str] = ("Player 1", "Player 2"), seed: int = 0,
                  physics: Physics | None = None, three_foul: bool = False,
-                 theme: str = "standard", dt: float = DT, eight_break: str = "respot") -> None:
+                 theme: str = "standard", dt: float = DT, eight_break: str = "respot",
+                 levels: tuple[str | None, str | None] = (None, None)) -> None:
         if mode not in MODES:
             raise ValueError(f"mode: must be one of {', '.join(MODES)}, not {mode!r}")
         if isinstance(table, str):
@@ -51,6 +54,9 @@ class Match:
             raise ValueError("players: must be two non-empty names")
         if type(seed) is not int:
             raise ValueError(f"seed: must be a whole number, not {seed!r}")
+        if (not isinstance(levels, (tuple, list)) or len(levels) != 2
+                or not all(lv is None or lv in LEVELS for lv in levels)):
+            raise ValueError(f"levels: must be two of None (a person), {', '.join(LEVELS)}")
         physics = Physics() if physics is None else physics
         for k in record.NEVER_STOP:
             if not getattr(physics, k) > 0:
@@ -70,6 +76,7 @@ class Match:
         self.frames, self.players, self.seed = frames, tuple(players), seed
         self.three_foul, self.theme, self.dt = bool(three_foul), theme, dt
         self.eight_break = eight_break
+        self.levels = tuple(levels)
         self.rng = np.random.default_rng(seed)
         self.ids: list[str] = ["cue", *MODE_BALLS[mode]]
         n = len(self.ids)
@@ -107,10 +114,10 @@ class Match:
         """The WPA warning owed to the shooter before a shot that could be their third
         consecutive foul (9-ball with `three_foul`), else None."""
         s = self.state
-        if not s.three_foul or s.fouls[s.shooter] < 2 or self.frame_over:
+        if not s.three_foul or s.fouls[s.shooter] < FOUL_LIMIT - 1 or self.frame_over:
             return None
-        return (f"{self.players[s.shooter]} is on two fouls: a third foul in a row loses "
-                "the frame")
+        return (f"{self.players[s.shooter]} is on {count_word(FOUL_LIMIT - 1)} fouls: a "
+                f"{ordinal(FOUL_LIMIT)} foul in a row loses the frame")
 
     def needs_call(self) -> bool:
         """True when the shooter must name a pocket: 8-ball, their group cleared, the 8 next."""
@@ -367,7 +374,7 @@ class Match:
                       "physics": self.physics.to_dict(), "frames": self.frames,
                       "players": list(self.players), "seed": self.seed,
                       "three_foul": self.three_foul, "theme": self.theme, "dt": self.dt,
-                      "eight_break": self.eight_break},
+                      "eight_break": self.eight_break, "levels": list(self.levels)},
             "current": {
                 "frame": self.frame, "breaker": self.breaker, "scores": list(self.scores),
                 "winner": self.winner, "frame_winner": self.frame_winner,

@@ -254,13 +254,18 @@ def read_replay(path: str | os.PathLike) -> dict:
     return parse_replay(text, "stdin" if os.fspath(path) == "-" else os.fspath(path))
 
 
+def check_records(data: dict) -> list[tuple[Scene, float]]:
+    """Check every shot record of a parsed replay (raises ReplayError for the first malformed
+    one, naming it): each shot's scene with its shot applied, and its fixed step."""
+    return [_check_record(rec, f"shots[{k}]") for k, rec in enumerate(data["shots"])]
+
+
 def replay(data: dict) -> list[dict]:
     """Check every shot of a parsed replay; one result per shot (see `replay_shot`), with the
     record's n, frame and player. Raises ReplayError for the first malformed record, before
     any shot is simulated."""
     shots = data["shots"]
-    for k, rec in enumerate(shots):
-        _check_record(rec, f"shots[{k}]")
+    check_records(data)
     out = []
     for k, rec in enumerate(shots):
         res = replay_shot(rec, f"shots[{k}]")

@@ -53,6 +53,12 @@ def outcome_from_json(d: Any, path: str) -> Outcome:
         raise ValueError(f"{path}: {e}") from None
 
 
+def _levels(val: Any) -> tuple:
+    if not isinstance(val, list) or len(val) != 2:
+        raise ValueError("match.levels: must be a list of two levels (null for a person)")
+    return tuple(val)
+
+
 def load_match(cls: type, data: Any):
     """Build a `cls` (Match) from its JSON; see `Match.from_json`."""
     if not isinstance(data, dict):
@@ -73,7 +79,8 @@ def load_match(cls: type, data: Any):
         three_foul=_get(m, "three_foul", "match", bool, "true or false"),
         theme=_get(m, "theme", "match", str, "a string"),
         dt=float(_get(m, "dt", "match", (int, float), "a number")),
-        eight_break=m.get("eight_break", "respot"))  # files from before the variant re-spot
+        eight_break=m.get("eight_break", "respot"),  # files from before the variant re-spot
+        levels=_levels(m.get("levels", [None, None])))  # files from before levels: unknown
     cur = _get(data, "current", "match file", dict, "an object")
     balls = _get(cur, "balls", "current", list, "a list")
     ids = [b.get("id") if isinstance(b, dict) else None for b in balls]

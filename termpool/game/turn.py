@@ -77,6 +77,16 @@ def game_block(s: State) -> dict:
     return g
 
 
+def advance(engine, dt: float, owed: float) -> float:
+    """Play `owed` seconds of a shot in whole engine steps of the fixed `dt` until the table is
+    at rest; returns the time still owed (a remainder waits for the next call). The one way a
+    shot is shown frame by frame, live and when a replay is watched."""
+    while owed >= dt * (1 - 1e-9) and not engine.at_rest()[0]:
+        engine.step(dt)
+        owed -= dt
+    return owed
+
+
 class ShotRun:
     """One shot in progress: `engine` holds only the balls on the table (`ids`, which are
     rows `rows` of the match's arrays). The UI calls `step(dt)` once per frame and reads
@@ -103,10 +113,7 @@ class ShotRun:
         steps a replay takes; a remainder waits for the next call)."""
         if self.done or self.outcome is not None:
             return
-        self._owed += dt
-        while self._owed >= self.dt * (1 - 1e-9) and not self.done:
-            self.engine.step(self.dt)
-            self._owed -= self.dt
+        self._owed = advance(self.engine, self.dt, self._owed + dt)
 
     def finish(self) -> Outcome:
         """Run to rest if needed, judge, apply the outcome to the match and record the shot.

@@ -37,6 +37,7 @@ from termpool.physics.state import (  # noqa: F401  (state codes are part of the
     SPINNING,
     STATE_NAMES,
     STATIONARY,
+    dots,
 )
 from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
@@ -371,11 +372,11 @@ class Engine(SlowContacts):
         """(M, S) first contact times of M balls with the cushion segments."""
         tab = self.table
         n = tab.seg_n
-        s0 = p @ n.T - self._seg_off
+        s0 = dots(p, n) - self._seg_off
         M, S = s0.shape
-        along0 = p @ self._seg_dir.T - self._seg_start
+        along0 = dots(p, self._seg_dir) - self._seg_start
         beside = (along0 >= 0) & (along0 <= self._seg_len)
-        tl = first_line_contact(s0.ravel(), (v @ n.T).ravel(), (a @ n.T).ravel(),
+        tl = first_line_contact(s0.ravel(), dots(v, n).ravel(), dots(a, n).ravel(),
                                 np.repeat(rc, S), np.repeat(horizon, S),
                                 beside.ravel()).reshape(M, S)
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
@@ -395,9 +396,9 @@ class Engine(SlowContacts):
         tab = self.table
         n = tab.seg_n
         out = np.full((len(p), self._nseg), np.inf)
-        rows = zip((p @ n.T - self._seg_off).tolist(),
-                   (p @ self._seg_dir.T - self._seg_start).tolist(), (v @ n.T).tolist(),
-                   (a @ n.T).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
+        rows = zip((dots(p, n) - self._seg_off).tolist(),
+                   (dots(p, self._seg_dir) - self._seg_start).tolist(), dots(v, n).tolist(),
+                   dots(a, n).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
                    horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
         for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
             for k, (ak, dk, length) in enumerate(self._segs):

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from termpool.physics.cluster import solve_inelastic
+from termpool.physics.cluster import Rows, solve_inelastic, solve_psd
 from termpool.physics.params import Physics
 from termpool.physics.roots import A_MIN
 from termpool.physics.state import EPS_V, EPS_W, ROLLING, SLIDING, SPINNING, STATIONARY
@@ -79,7 +79,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     c_idx = np.array([r[1] for r in rows], dtype=np.int64)
     normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
     bend = np.array([r[3] for r in rows], dtype=float)
-    J = _rows(M, a_idx, c_idx, normal)
+    J = Rows(a_idx, c_idx, normal, M)
     # A slip too small to slide on (state.EPS_U) is completed at once, as Engine._snap does:
     # the ball rolls on with the speed the slide would have left it.
     u = v + R[:, None] * _perp(w[:, :2])
@@ -171,43 +171,29 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     return v, acc, alpha, state, duration, w
 
 
-def _rows(M, a_idx, c_idx, normal) -> np.ndarray:
-    """J (rows, 2M): a contact's separating speed is J v (the rows of push)."""
-    nc = len(a_idx)
-    J = np.zeros((nc, M, 2))
-    rows = np.arange(nc)
-    J[rows, a_idx] = normal
-    ball = c_idx >= 0
-    J[rows[ball], c_idx[ball]] = -normal[ball]
-    return J.reshape(nc, 2 * M)
-
-
-def _resting(v, k, J) -> np.ndarray:
+def _resting(v, k, J: Rows) -> np.ndarray:
     """v with the contacts' normal speeds (a micrometre per second at most, left by the
     solve of slow contacts) taken out by the least change weighted by inverse masses k:
     a resting contact neither closes nor parts, else the force that holds it would hold a
     ball creeping away for ever."""
     if len(J) == 0:
         return v
-    u = J @ v.reshape(-1)
+    u = J.speeds(v)
     if not (np.abs(u) > EPS_V).any():  # slower than a ball at rest: nothing creeps
         return v
-    kk = np.repeat(k, 2)
-    lam = np.linalg.lstsq((J * kk) @ J.T, -u, rcond=None)[0]
-    return v + (kk * (J.T @ lam)).reshape(-1, 2)
+    return v + J.spread(solve_psd(J.matrix(k), -u), k)
 
 
-def _solve(free, k, J, bend):
+def _solve(free, k, J: Rows, bend):
     """Accelerations of balls with free accelerations `free` and inverse masses k under the
     contact rows J: the smallest forces lam >= 0 with no contact accelerating into itself."""
     if len(J) == 0:
         return free
-    kk = np.repeat(k, 2)
-    A = (J * kk) @ J.T
-    b = J @ free.reshape(-1) + bend
+    A = J.matrix(k)
+    b = J.speeds(free) + bend
     # Rows with nothing that can move (a held ball against a rail) carry no force.
     live = np.abs(A).sum(axis=1) > 0
     lam = np.zeros(len(J))
     if live.any():
         lam[live] = solve_inelastic(A[np.ix_(live, live)], b[live])
-    return free + (kk * (J.T @ lam)).reshape(-1, 2)
+    return free + J.spread(lam, k)

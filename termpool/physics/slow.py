@@ -12,10 +12,10 @@ import math
 
 import numpy as np
 
-from termpool.physics.cluster import solve_inelastic
+from termpool.physics.cluster import Rows, solve_inelastic
 from termpool.physics.joined import push
 from termpool.physics.roots import A_MIN, V_MIN
-from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
+from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED, dots
 from termpool.physics.state import norm as _norm
 from termpool.physics.state import perp as _perp
 
@@ -141,8 +141,8 @@ class SlowContacts:
         whether each ball is beside the segment, and to the jaw tips, with the direction from
         each tip: (seg_gap (M, S), beside (M, S), tip_gap (M, P), tip_dir (M, P, 2))."""
         tab = self.table
-        seg_gap = p @ tab.seg_n.T - self._seg_off - rc[:, None]
-        along = p @ self._seg_dir.T - self._seg_start
+        seg_gap = dots(p, tab.seg_n) - self._seg_off - rc[:, None]
+        along = dots(p, self._seg_dir) - self._seg_start
         beside = (along >= 0) & (along <= self._seg_len)
         dp = p[:, None] - tab.points[None]
         dd = _norm(dp)
@@ -191,7 +191,7 @@ class SlowContacts:
             rkind.append(np.full(x.size, kind))
 
         seg_gap, beside, tip_gap, tip_dir = self._cushion_gaps(pm, rcm)
-        slow = v[mem] @ tab.seg_n.T >= -cap
+        slow = dots(v[mem], tab.seg_n) >= -cap
         x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
         cushion_rows(x, tab.seg_n[f], seg_gap[x, f], 1)
         slow = (v[mem][:, None] * tip_dir).sum(axis=2) >= -cap
@@ -199,34 +199,26 @@ class SlowContacts:
         cushion_rows(x, tip_dir[x, f], tip_gap[x, f], 2)
         ra, rc_, rn, rg, rkind = (np.concatenate(z) for z in (ra, rc_, rn, rg, rkind))
         nc = len(ra)
-        J = np.zeros((nc, N, 2))  # u = J v: separating speed along each contact normal
-        rows = np.arange(nc)
-        J[rows, ra] = rn
-        ball = rc_ >= 0
-        J[rows[ball], rc_[ball]] = -rn[ball]
-        J = J.reshape(nc, 2 * N)
+        J = Rows(ra, rc_, rn, N)  # u = J v: separating speed along each contact normal
         # A rolling ball given a small push slides for an instant and then rolls on with 5/7
         # of the push (the slip completion in _set): it answers as if 7/5 as heavy.
         slip = _norm(v + R[:, None] * _perp(w[:, :2]))
         snaps = (slip <= EPS_U) & (self.physics.mu_slide > 0)
-        inv_m = np.repeat(np.where(snaps, 5.0 / 7.0, 1.0) / m, 2)
-        A = (J * inv_m) @ J.T
-        inv_m = np.repeat(1.0 / m, 2)
+        A = J.matrix(np.where(snaps, 5.0 / 7.0, 1.0) / m)
+        inv_m = 1.0 / m
         for _ in range(20):
-            vflat = v.reshape(-1)
-            u0 = J @ vflat
+            u0 = J.speeds(v)
             if not (u0 < -V_MIN).any():
                 break
             lam = solve_inelastic(A, u0)
-            v = (vflat + inv_m * (J.T @ lam)).reshape(N, 2)
+            v = v + J.spread(lam, inv_m)
             # A push leaves a rolling ball with a tiny slip that is completed at once; do it
             # here so that the solve sees the velocities that result.
             _, v[mem], w[mem], _ = self._snap(p[mem], v[mem], w[mem], R[mem], None, move=False)
         # Undo sub-micrometre sinks: the smallest mass-weighted moves that leave no contact
         # overlapping (the same complementarity problem, on positions), so a light ball
         # squeezed against a rail by a heavy one moves the heavy one back.
-        A_pos = (J * inv_m) @ J.T
-        ball = rc_ >= 0
+        ball = J.ball
         for _ in range(3):
             gaps = np.empty(nc)
             gaps[ball] = _norm(p[rc_[ball]] - p[ra[ball]]) - R[ra[ball]] - R[rc_[ball]]
@@ -234,13 +226,12 @@ class SlowContacts:
             gaps[cush] = rg[cush] + ((p[ra[cush]] - p0[ra[cush]]) * rn[cush]).sum(axis=1)
             if not (gaps < -1e-12).any():  # rounding is not an overlap
                 break
-            lam = solve_inelastic(A_pos, np.minimum(gaps, 0.0))
-            p = p + (inv_m * (J.T @ lam)).reshape(N, 2)
+            lam = solve_inelastic(J.matrix(inv_m), np.minimum(gaps, 0.0))
+            p = p + J.spread(lam, inv_m)
         # Contacts that neither close nor part are resting: friction may press them together,
         # and then they carry a steady force (joined.py). Their curvature (balls rolling
         # round each other, a ball round a jaw tip) would part them of itself.
-        u = J @ v.reshape(-1)
-        rest = u <= V_MIN
+        rest = J.speeds(v) <= V_MIN
         bend = np.zeros(nc)
         rel = v[ra] - np.where(ball[:, None], v[np.maximum(rc_, 0)], 0.0)
         tang = rel - (rel * rn).sum(axis=1)[:, None] * rn

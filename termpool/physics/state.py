@@ -21,6 +21,12 @@ def norm(v: np.ndarray) -> np.ndarray:
     return np.hypot(v[..., 0], v[..., 1])
 
 
+def dots(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """(M, K) dot products of rows p (M, 2) with rows q (K, 2), written out: a matrix
+    product goes through BLAS, whose last bits depend on the library and the processor."""
+    return p[:, 0, None] * q[None, :, 0] + p[:, 1, None] * q[None, :, 1]
+
+
 def perp(v: np.ndarray) -> np.ndarray:
     """z x v for horizontal vectors."""
     return v[..., ::-1] * _FLIP

@@ -43,8 +43,7 @@ from termpool.rules.common import (
     other_group,
 )
 from termpool.rules.events import ShotSummary
-
-BREAK_RAIL_BALLS = 4
+from termpool.rules.words import BREAK_RAIL_BALLS, KITCHEN, NO_HIT, NO_RAIL
 
 
 def judge(state: State, summary: ShotSummary) -> tuple[Outcome, State]:
@@ -86,7 +85,7 @@ def _foul_words(foul: str, summary: ShotSummary, targets: list[str], groups, sho
     if foul == "off_table":
         return f"{_names(list(summary.off_table))} left the table"
     if foul == "no_hit":
-        return "the cue ball hit no ball"
+        return NO_HIT
     if foul == "wrong_ball_first":
         hit = summary.first_contact
         if groups is None:
@@ -96,7 +95,7 @@ def _foul_words(foul: str, summary: ShotSummary, targets: list[str], groups, sho
             return f"the cue ball hit {_ball(hit)} first; with the {own} cleared it must be the 8"
         return f"the cue ball hit {_ball(hit)} first, not one of the {own}"
     if foul == "no_rail":
-        return "no ball reached a cushion after contact and nothing was pocketed"
+        return NO_RAIL
     return foul
 
 
@@ -130,7 +129,7 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
         if not legal:
             text += f"; player {you} may accept the table or have it re-racked"
         if in_hand:
-            text += f"; player {you} has ball in hand behind the head string"
+            text += f"; player {you} has ball in hand {KITCHEN}"
         out = Outcome(
             foul=order[0],
             fouls=order,

@@ -25,8 +25,14 @@ from __future__ import annotations
 
 from termpool.rules.common import Outcome, State, after, count_fouls, order_fouls
 from termpool.rules.events import ShotSummary
-
-BREAK_RAIL_BALLS = 4
+from termpool.rules.words import (
+    BREAK_RAIL_BALLS,
+    FOUL_LIMIT,
+    NO_HIT,
+    NO_RAIL,
+    PUSH_OUT_CHOICE,
+    ordinal,
+)
 
 
 def _ball(b: str | None) -> str:
@@ -63,7 +69,7 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     if not push:
         if s.first_contact is None:
             fouls.add("no_hit")
-            words.append("the cue ball hit no ball")
+            words.append(NO_HIT)
         elif s.first_contact != lowest:
             fouls.add("wrong_ball_first")
             words.append(f"the cue ball hit {_ball(s.first_contact)} first, "
@@ -76,7 +82,7 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
                              f"({BREAK_RAIL_BALLS} needed)")
         elif s.first_contact is not None and not s.rail_balls and not potted:
             fouls.add("no_rail")
-            words.append("no ball reached a cushion after contact and nothing was pocketed")
+            words.append(NO_RAIL)
     order = order_fouls(fouls)
     nine = "9" in s.pocketed or "9" in s.off_table
     gone = [*potted, *(b for b in s.off_table if b != s.cue_id)]
@@ -97,8 +103,8 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
         if nine:
             words.append("the 9 is re-spotted")
         nxt = new_state(you, respot)
-        if state.three_foul and nxt.fouls[me] >= 3:
-            words.append(f"third consecutive foul: player {me} loses")
+        if state.three_foul and nxt.fouls[me] >= FOUL_LIMIT:
+            words.append(f"{ordinal(FOUL_LIMIT)} consecutive foul: player {me} loses")
             out = Outcome(foul=order[0], fouls=order, next_shooter=me, ball_in_hand=False,
                           groups=None, winner=you, reason="; ".join(words), respot=respot)
             return out, after(nxt, shooter=me)
@@ -114,7 +120,7 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
         if potted:
             text += f": {_names(potted)} pocketed, not counted" + (
                 "; the 9 is re-spotted" if nine else "")
-        text += f"; player {you} chooses to shoot or to pass the shot back"
+        text += f"; player {you} chooses {PUSH_OUT_CHOICE}"
         out = Outcome(foul=None, next_shooter=you, ball_in_hand=False, groups=None,
                       winner=None, reason=text, respot=respot, option="shoot_or_pass")
         return out, new_state(you, respot)

@@ -7,13 +7,15 @@ shot in motion, which advances by wall-clock time through a fixed-step accumulat
 
 Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls moving), "cpu"
 (the computer thinks, then turns its stick), "option" (the incoming player answers a choice),
-"over" (the match is won). Help, pause and the quit question are boxes over any phase.
+"over" (the match is won). Help, pause, the quit question and the Settings and Stats screens
+(``ui.screens``) are boxes over any phase.
 """
 
 from __future__ import annotations
 
 import math
 import re
+import secrets
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,6 +24,7 @@ from termpool.physics.cue import clamp_tip
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
+from termpool.ui.settings import DEFAULTS, player_names
 from termpool.ui.table_view import TableView, layout
 from termpool.ui.term import signals_held
 
@@ -29,13 +32,18 @@ DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
 MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once
 MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
+DEFAULT_POWER = 0.5  # the aid's power (and the digits') before a match's first shot
 FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
-CPU_ERROR = {"normal": (0.25, 0.02)}  # aim (deg) and speed errors the game adds to the
-# computer's plans: "easy" has its own (in ai), "hard" none, "normal" a club player's
-CPU_AIM_S = 0.6  # the computer turns its stick this long before it shoots
+CPU_AIM_S = 0.6  # the computer turns its stick onto its aim over this long ...
+CPU_SHOW_S = 1.2  # ... then holds it there, its aid and plan on show, this long before it
+# shoots (a key shoots at once)
 CPU_THINK_FRAME_S = 0.05  # show "thinking" for at least this long before blocking on the plan
+AID_STEP = 8  # event times of the aid's prediction run per frame (about 3 ms on the project's
+# machine, benchmarks/aid.py): a long prediction fills in over a few frames
+AID_WORDS = {"full": "aim aid: every path (G: ghost ball only)",
+             "ghost": "aim aid: the ghost ball only (G: off)", "off": "aim aid off (G: on)"}
 
 MENU = [
     ("8-ball vs computer", ("8ball", "cpu")),
@@ -43,6 +51,8 @@ MENU = [
     ("9-ball vs computer", ("9ball", "cpu")),
     ("9-ball, two players", ("9ball", "human")),
     ("Practice", ("practice", "human")),
+    ("Settings", "settings"),
+    ("Stats", "stats"),
     ("Help", "help"),
     ("Quit", "quit"),
 ]
@@ -50,18 +60,24 @@ MENU = [
 
 @dataclass
 class Options:
+    """How to play: the settings (ui.settings: their values and defaults) and the rest."""
+
     mode: str | None = None  # None: start at the menu
     opponent: str = "cpu"  # "cpu" or "human"
-    table: str = "9ft"
-    colors: str = "auto"
-    frames: int = 1
-    seed: int = 0
-    level: str = "normal"
-    aid: bool = True
-    bell: bool = False
-    theme: str = "standard"
+    seed: int | None = None  # racks and the computer's choices; None: a new seed each game
     three_foul: bool = False  # 9-ball: three fouls in a row lose the frame
     eight_break: str = "respot"  # 8-ball: the 8 pocketed on the break is re-spotted or re-racked
+    level: str = DEFAULTS["level"]
+    table: str = DEFAULTS["table"]
+    frames: int = DEFAULTS["frames"]
+    theme: str = DEFAULTS["theme"]
+    colors: str = DEFAULTS["colors"]
+    aid: str = DEFAULTS["aid"]  # the aim aid: "full", "ghost" (the ghost ball only) or "off"
+    power: str = DEFAULTS["power"]  # "hold", "meter" or "digits"
+    bell: bool = DEFAULTS["bell"]
+    fast: str = DEFAULTS["fast"]  # shots start fast-forwarded: "off", "computer", "always"
+    player1: str = DEFAULTS["player1"]  # names; empty: the usual ones
+    player2: str = DEFAULTS["player2"]
 
 
 def power_to_speed(level: float) -> float:
@@ -78,13 +94,18 @@ class App:
 
         self.opts = opts or Options()
         self.keymap = keymap if keymap is not None else KeyMap()
+        self.env = env
         self.depth = resolve_depth(self.opts.colors, env)
         self.aimctl = AimControl(self.keymap)
+        self.last_power = DEFAULT_POWER  # the last shot's power: the aid's until another
+        self.shot_power_set = False  # ... once this match has a shot of the keys'
         self.set_input_mode(input_mode)
         self.done = False
         self.dirty = True
         self.bells = 0  # bells to ring (the driver writes BEL and resets this)
         self.overlay: str | None = None  # "help", "pause", "quit"
+        self.help_page, self.help_count = 0, 1  # the help box's page on show, of how many
+        self.watching = None  # a ui.watch.Watch of the match just played (W at the end)
         self.menu_index = 0
         self._swallow = None  # (key, time, repeating): the key that placed the ball, held
         # Ball in hand: 1 cm a tap; held, from 0.25 to 1 m/s over a second from the press.
@@ -100,6 +121,17 @@ class App:
         self.notes: list[str] = []  # for the terminal after the game (see `record`)
         self._geom = None  # (cols, rows, layout, view)
         self._aim_cache = None
+        self._predictor = None  # (layout key, ui.predict.Predictor) for the table now
+        self._aid = None  # (key, Job, Prediction or None): the aid's prediction, as far as run
+        self._cpu_note: list = []  # the computer's plan, in words, for the panel
+        self._shot_note: list = []  # ... kept for the shot it is playing
+        self._your_verdict = None  # the verdict on the last shot of a player against the
+        # computer: kept in view through the computer's turn
+        self.screen = None  # the Settings or Stats screen (ui.screens), when open
+        self.pending: dict = {}  # settings changed during a match, for the next one
+        self.prefs = None  # the settings file (ui.settings.Store), to save changes to
+        self.history = None  # the history of play (game.history.Recorder), to add matches to
+        self.records = None  # --record (ui.records.Records): every match of the session
         if self.opts.mode is None:
             self.phase = "menu"
         else:
@@ -107,31 +139,44 @@ class App:
 
     # ----------------------------------------------------------------------------- set-up
     def set_input_mode(self, mode: str) -> None:
-        """"release" (kitty protocol), "repeat" (infer holds) or "classic" (press, press)."""
+        """How the terminal tells a held key: "release" (kitty protocol), "repeat" (infer
+        holds) or "classic" (it cannot: press, press). The power setting picks the meter or
+        digits over holds."""
         from termpool.ui.controls import PowerCharge
 
         self.input_mode = mode
         shoot = self.keymap.keys_for("shoot")
-        self.charge = PowerCharge(mode, key_label=shoot[0] if shoot else "space")
+        self.charge = PowerCharge("classic" if self.opts.power == "meter" else mode,
+                                  key_label=shoot[0] if shoot else "space")
+        if self.opts.power == "digits":
+            self.charge.preset(self.last_power)
         self.dirty = True
 
     def new_match(self, mode: str, opponent: str) -> None:
         from termpool.game import Match
+        from termpool.ui.screens import apply_pending
 
+        self.log_match()
         if self.match is not None and self.match.history:
             self.played.append(self.match)  # kept for --record
+        apply_pending(self)
+        # Power starts afresh: a soft safety's 20% of the last game is no break for this one.
+        self.last_power, self.shot_power_set = DEFAULT_POWER, False
+        self.charge.preset(self.last_power if self.opts.power == "digits" else None)
         self.opts.mode, self.opts.opponent = mode, opponent
-        names = ("You", "Computer") if opponent == "cpu" else ("Player 1", "Player 2")
-        if mode == "practice":
-            names = ("You", "You")
+        names = player_names(self.opts.player1, self.opts.player2, mode, opponent)
         self.cpu = (False, opponent == "cpu" and mode != "practice")
+        # Without a seed every game deals a new rack; the seed is in the record either way.
+        seed = self.opts.seed if self.opts.seed is not None else secrets.randbits(63)
         self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
-                           seed=self.opts.seed, theme=self.opts.theme,
+                           seed=seed, theme=self.opts.theme,
                            three_foul=self.opts.three_foul and mode == "9ball",
-                           eight_break=self.opts.eight_break)
+                           eight_break=self.opts.eight_break,
+                           levels=tuple(self.opts.level if c else None for c in self.cpu))
         self._geom = None
         self.run = None
         self.message = []
+        self._your_verdict = None
         self.angle = 0.0
         self.side = self.top = 0.0
         self.called_k = 0
@@ -160,14 +205,25 @@ class App:
         return [m.ids.index(b) for b in legal or objects]
 
     def _aim_at_nearest(self) -> None:
+        """Aim at the nearest ball the shooter may hit first whose path from the cue ball is
+        clear (the straight line meets that ball before any other); the nearest one if none
+        is clear."""
+        from termpool.ui.aim import aim_trace
+
         m = self.match
         c = self.cue_index()
         t = self._targets()
         if not t or not m.on_table[c]:
             return
         d = m.pos[t] - m.pos[c]
-        k = int(np.argmin(np.hypot(d[:, 0], d[:, 1])))
-        self.angle = math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0
+        order = np.argsort(np.hypot(d[:, 0], d[:, 1]), kind="stable")
+        angles = [math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0 for k in order]
+        for k, angle in zip(order, angles, strict=True):
+            a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, angle)
+            if a.hit == "ball" and a.ball == t[k]:
+                self.angle = angle
+                return
+        self.angle = angles[0]
 
     def names(self, text: str) -> str:
         """The referee's words with the players' names (see rules.words)."""
@@ -187,13 +243,17 @@ class App:
         self.push_out = False
         self.call_picked = False
         self._aim_cache = None
+        self._cpu_skip = False
         if m.frame_over and m.winner is None:
-            won = m.players[m.frame_winner]
+            self._your_verdict = None  # the frame's end is the news now
+            won = m.frame_winner
             m.new_frame()
-            self.message.append((f"{won} wins the frame ({m.scores[0]}-{m.scores[1]}); "
-                                 f"{m.players[m.shooter]} breaks", "good"))
+            self.message.append((self.names(f"player {won} wins the frame ({m.scores[0]}-"
+                                            f"{m.scores[1]}); player {m.shooter} breaks"),
+                                 "good"))
         if m.winner is not None:
             self.phase = "over"
+            self.log_match()
         elif m.option is not None:
             self.phase = "cpu" if self.shooter_is_cpu() else "option"
             self._cpu_plan = None
@@ -217,7 +277,7 @@ class App:
         self.dirty = True
 
     def _shoot(self, speed: float, angle: float, side: float, top: float, called=None,
-               push_out: bool = False) -> None:
+               push_out: bool = False, keep_message: bool = False) -> None:
         from termpool.game import Shot
 
         side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
@@ -232,16 +292,22 @@ class App:
             self.phase = "aim"
             self.dirty = True
             return
+        self.struck_at = self.now  # the clock at the strike
         self.frames = self._simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
-        self.fast = False  # fast-forward is for one shot
+        fast = self.opts.fast  # fast-forward is for one shot, unless the settings say
+        self.fast = fast == "always" or (fast == "computer" and self.shooter_is_cpu())
         self.phase = "run"
         self._last = None
         self._acc = 0.0
-        self.message = []
+        # The computer's plan stays in view while its shot runs, and then beside the verdict.
+        self._shot_note = self._cpu_note if keep_message else []
+        yours = [self._your_verdict] if keep_message and self._your_verdict else []
+        self.message = yours + list(self._shot_note)
         self.dirty = True
 
     def _shoot_human(self, level: float) -> None:
+        self.last_power, self.shot_power_set = level, True
         called = None
         if self.match.needs_call():
             called = self._called()
@@ -249,36 +315,45 @@ class App:
                     self.push_out)
 
     def _called(self) -> tuple[str, str]:
-        """The call for this shot: the pocket the aim sends the object ball to, unless the
-        player picked one with C."""
-        aim = self.aim()
-        ball = "8"
-        if aim is not None and aim.ball is not None:
-            ball = self.match.ids[aim.ball]
+        """The call for this shot (the 8, which is the only ball ever called): the pocket the
+        aim sends it to, unless the player picked one with C."""
         k = self.called_k if self.call_picked else self._aimed_pocket()
-        return ball, POCKET_NAMES[k % len(POCKET_NAMES)]
+        return "8", POCKET_NAMES[k % len(POCKET_NAMES)]
 
     def _aimed_pocket(self) -> int:
-        """Index of the pocket the object ball heads for along the aim (0 with no ball hit)."""
-        aim = self.aim()
-        if aim is None or aim.ball is None or aim.object_dir is None:
-            return 0
-        p = self.match.pos[aim.ball]
+        """Index of the pocket the aid sees the first ball go into; else the one it heads
+        for (0 with no ball hit)."""
+        pred = self.prediction()
+        names = list(self.table.hole_names)
+        if pred is not None and pred.object is not None and len(pred.object.points) > 1:
+            if pred.object.end == "pocket" and pred.object.pocket in names:
+                return names.index(pred.object.pocket)
+            p, q = pred.object.points[0], pred.object.points[1]
+        else:
+            aim = self.aim()
+            if aim is None or aim.ball is None or aim.object_dir is None:
+                return 0
+            p = self.match.pos[aim.ball]
+            q = p + np.asarray(aim.object_dir)
         d = self.table.hole_c.reshape(-1, 2) - p
-        u = np.asarray(aim.object_dir)
+        u = (q - p) / max(float(np.hypot(*(q - p))), 1e-12)
         score = (d @ u) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-9)
         return int(np.argmax(score))
 
     def _finish_shot(self) -> None:
         m = self.match
         before = int(m.on_table.sum())
+        by_cpu = self.shooter_is_cpu()
         with signals_held():  # judged and recorded whole, whatever interrupts
             out = self.run.finish()
         reason = self.names(out.reason)
         if out.foul:
-            self.message = [(f"Foul: {reason}", "foul")]
+            verdict = (f"Foul: {reason}", "foul")
         else:
-            self.message = [(reason, "good" if out.continue_turn else "plain")]
+            verdict = (reason, "good" if out.continue_turn else "plain")
+        self.message = [*self._shot_note, verdict]
+        if not by_cpu and any(self.cpu):
+            self._your_verdict = verdict
         if self.opts.bell and (out.foul or int(m.on_table.sum()) < before):
             self.bells += 1  # a pocketed ball or a foul
         self._turn_start()
@@ -286,14 +361,27 @@ class App:
     # -------------------------------------------------------------------------- the clock
     def wake_in(self, t: float) -> float | None:
         """Seconds until the app needs a tick (None: only on a key)."""
+        if self.watching is not None:
+            return self.watching.wake_in(t)
         if self.overlay is not None:
             return None
-        if self.phase in ("run", "cpu") or self.charge.active:
+        if self.phase in ("run", "cpu") or (self._aid is not None and not self._aid[1].done):
             return 0.0
+        if self.charge.active:  # the meter moves; an inferred release is due at its time
+            due = self.charge.release_due()
+            return 0.0 if due is None else max(0.0, due - t)
         return None
 
     def tick(self, t: float) -> None:
         self.now = t
+        if self.watching is not None:
+            self.watching.tick(t)
+            self.dirty = self.dirty or self.watching.dirty
+            return
+        if self._aid is not None and not self._aid[1].done:  # the aid fills in
+            self._aid[1].run(AID_STEP)
+            self._aid = (*self._aid[:2], None)
+            self.dirty = True
         if self.overlay is not None:
             self._last = None  # paused or asking: the shot waits
             return
@@ -350,25 +438,31 @@ class App:
                 return
             self._cpu_plan = self._plan()
             self._cpu_from = self.angle
-            self._cpu_t0 = t
-            self.dirty = True
+            self._cpu_t0 = None  # timed from the first frame that shows it: `t` is from
+            self.dirty = True  # before the plan, which takes a second of its own
             return
         plan = self._cpu_plan
         if plan == "done":
             return
-        if isinstance(plan, str):  # an answer to an option
+        if isinstance(plan, str):  # an answer to an option, said in words
+            who = m.players[m.shooter]
             m.choose(plan)
             self._cpu_plan = "done"
+            self.message = [(f"{who} chose to {OPTION_WORDS[plan]}", "turn")]
             self._turn_start()
             return
-        f = min(1.0, (t - self._cpu_t0) / CPU_AIM_S)
+        if self._cpu_t0 is None:
+            self._cpu_t0 = t
+        elapsed = t - self._cpu_t0
+        f = 1.0 if self._cpu_skip else min(1.0, elapsed / CPU_AIM_S)
         turn = (plan.angle - self._cpu_from + 180.0) % 360.0 - 180.0
-        self.angle = (self._cpu_from + f * turn) % 360.0
+        self.angle = plan.angle if f >= 1.0 else (self._cpu_from + f * turn) % 360.0
         self.side, self.top = plan.side * f, plan.top * f
         self.dirty = True
-        if f >= 1.0:
+        if self._cpu_skip or elapsed >= CPU_AIM_S + CPU_SHOW_S:
             self._cpu_plan = "done"
-            self._shoot(plan.speed, plan.angle, plan.side, plan.top, plan.called)
+            self._shoot(plan.speed, plan.angle, plan.side, plan.top, plan.called,
+                        keep_message=True)
 
     def _plan(self):
         """The computer's decision: an option's answer, a placement, then a shot."""
@@ -376,27 +470,38 @@ class App:
 
         m = self.match
         if m.option is not None:
-            return _cpu_option(m.option)
+            return ai.choose_option(m.option)
         args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
-        seed = self.opts.seed * 1000 + len(m.history)
+        seed = m.seed * 1000 + len(m.history)
         if m.ball_in_hand:
             x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
             if m.placement_error(x, y):  # never expected; where a scratched cue ball waits
                 x, y = m.waiting_spot()
             m.place_cue(x, y)
         plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
-        aim_sd, speed_sd = CPU_ERROR.get(self.opts.level, (0.0, 0.0))
-        if not m.state.is_break:
-            plan = ai.with_error(plan, aim_sd, speed_sd, seed)
+        plan = ai.as_struck(plan, self.opts.level, seed)
         foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
-        note = [(self.names(f"Computer: {plan.note}"), "dim")] if plan.note and not foresees \
+        note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
-        self.message = self.message[:2] + note  # the last verdict stays in view
+        # The verdict on the player's own last shot stays in view through the computer's
+        # turn, however many shots it takes; else the last verdict (without the plan of the
+        # shot it was about).
+        last = [x for x in self.message if x not in self._shot_note][:2]
+        kept = last if self._your_verdict is None else [self._your_verdict] + [
+            x for x in last if x[0].startswith(f"{m.players[m.shooter]} chose to ")]
+        self.message = kept + note
+        self._cpu_note = note
         return plan
 
     # ------------------------------------------------------------------------------ keys
     def key(self, key, t: float) -> None:
         self.now = t
+        if self.watching is not None:
+            self.watching.key(key, t)
+            if self.watching.done:  # back to the end of the match
+                self.watching = None
+            self.dirty = True
+            return
         action = self.keymap.action(key)
         if key.kind == "release" and action != "shoot":
             self.aimctl.step(key, t)  # a release ends an aim hold: the next press is a tap
@@ -411,7 +516,7 @@ class App:
             self.dirty = True
             return  # their letters (P: pass, N: new game) come before the global keys
         if action == "help" and key.kind == "press":
-            self.overlay = "help"
+            self.overlay, self.help_page = "help", 0
         elif action == "quit" and key.kind == "press":
             self.overlay = "quit" if self.phase != "menu" else None
             self.done = self.phase == "menu"
@@ -429,6 +534,7 @@ class App:
         moves the cue ball there); the arrows then refine."""
         self.now = t
         if (self.overlay is not None or self.match is None or self._geom is None
+                or self.watching is not None
                 or self.phase not in ("aim", "place") or ev.button != 0
                 or ev.kind not in ("press", "drag")):
             return
@@ -451,19 +557,64 @@ class App:
             self.call_picked = False  # a new aim: the 8's call follows it again
         self.dirty = True
 
+    def open_screen(self, what: str, back: str | None = None) -> None:
+        """Open the Settings or the Stats screen; it goes back to `back` when it closes."""
+        from termpool.ui.screens import SettingsScreen, StatsScreen
+
+        self.screen = (SettingsScreen if what == "settings" else StatsScreen)(self, back)
+        self.overlay = "screen"
+
+    def to_menu(self) -> None:
+        """Leave the match for the menu (it is saved and added to the history first)."""
+        if self.run is not None:
+            self.record()  # a shot still rolling is played out, as on the way out
+        self.log_match()
+        if self.match is not None and self.match.history:
+            self.played.append(self.match)
+        self.overlay = None
+        self.run = None
+        self.phase = "menu"
+        self.match = None
+        self.dirty = True
+
+    def log_match(self) -> None:
+        """The match in play has ended or is being left: save it (--record) and add it to the
+        history of play (once; not one without shots). A file that cannot be written is one
+        line for the terminal when the game ends."""
+        if self.records is not None:
+            self.records.keep(self.match)
+        if self.history is not None and self.match is not None:
+            warning = self.history.add(self.match, self.cpu, self.opts.level)
+            if warning:
+                self.notes.append(warning)
+
     def _overlay_key(self, key, action) -> None:
+        if self.screen is not None:
+            self.screen.key(self, key, action)
+            if self.screen.closed:
+                self.overlay, self.screen = self.screen.back, None
+            self.dirty = True
+            return
         if key.kind != "press":
             return
-        if self.overlay == "quit":
+        if self.overlay == "pause" and key.name == "s" and not (key.ctrl or key.alt):
+            self.open_screen("settings", "pause")
+        elif self.overlay == "quit":
             if key.name in ("y", "q") or action == "quit":
                 self.done = True
+            elif key.name == "m" and not (key.ctrl or key.alt):
+                self.to_menu()
             elif key.name == "n" or action in ("cancel", "confirm"):
                 self.overlay = None
-        elif self.overlay == "help" and self.phase == "menu" and self._menu_help:
-            self.overlay = None
-            self._menu_help = False
+        elif self.overlay == "help":
+            from termpool.ui.help import page_key
+
+            self.help_page, close = page_key(key.name, self.help_page, self.help_count)
+            if close:
+                self.overlay = None
+                self._menu_help = False
         else:
-            self.overlay = None  # any key closes help and ends the pause
+            self.overlay = None  # any key ends the pause
         self.dirty = True
 
     _menu_help = False
@@ -482,13 +633,19 @@ class App:
         elif action in ("confirm", "shoot"):
             self._menu_pick()
 
+    def menu_label(self, k: int) -> str:
+        """Menu entry k as shown."""
+        return MENU[k][0]
+
     def _menu_pick(self) -> None:
         what = MENU[self.menu_index][1]
         if what == "quit":
             self.done = True
         elif what == "help":
-            self.overlay = "help"
+            self.overlay, self.help_page = "help", 0
             self._menu_help = True
+        elif what in ("settings", "stats"):
+            self.open_screen(what)
         else:
             self.new_match(*what)
 
@@ -524,10 +681,18 @@ class App:
         elif action == "spin_reset":
             self.side = self.top = 0.0
         elif action == "cancel":
-            self.charge.cancel()
+            if self.charge.active:
+                self.charge.cancel()
+            elif self.charge.preset_level is not None and self.opts.power != "digits":
+                self.charge.preset(None)
+                self.message = [(f"power: hold {self.charge.key_label} again", "dim")]
+        elif action is None and _power_digit(key) is not None:
+            self.charge.preset(_power_digit(key))
         elif action == "aim_aid":
-            self.opts.aid = not self.opts.aid
-            self.message = [("aim line on" if self.opts.aid else "aim line off (G)", "dim")]
+            from termpool.ui.predict import LEVELS
+
+            self.opts.aid = LEVELS[(LEVELS.index(self.opts.aid) - 1) % len(LEVELS)]
+            self.message = [(AID_WORDS[self.opts.aid], "dim")]
         elif action == "call_pocket":
             if self.match.needs_call():
                 start = self.called_k if self.call_picked else self._aimed_pocket()
@@ -596,10 +761,14 @@ class App:
         return [min(right, max(r, x)), min(W - r, max(r, y))]
 
     def _key_run(self, key, action, t) -> None:
-        if action == "fast_forward" and key.kind == "press":
+        if action == "shoot":
+            self.charge.observe(key, t)  # a key still held after the strike: its repeats
+        elif action == "fast_forward" and key.kind == "press":
             self.fast = not self.fast
 
     def _key_cpu(self, key, action, t) -> None:
+        if key.kind == "press":  # any key: no more waiting for the computer's shot
+            self._cpu_skip = True
         self._key_run(key, action, t)
 
     def _answer(self, key) -> bool:
@@ -616,8 +785,13 @@ class App:
         if key.name == "n":
             self.new_match(self.opts.mode, self.opts.opponent)
         elif key.name == "m":
-            self.phase = "menu"
-            self.match = None
+            self.to_menu()
+        elif key.name == "w":  # watch the match just played, then come back here
+            from termpool.ui.watch import Watch
+
+            self.watching = Watch(self.match.to_json(), self.depth)
+        elif key.name == "q" or self.keymap.action(key) == "quit":
+            self.done = True  # the box says "q: quit": no second question on top of it
         else:
             return False
         return True
@@ -643,6 +817,54 @@ class App:
             self._aim_cache = (key, a)
         return self._aim_cache[1]
 
+    def aid_level(self) -> str:
+        """What the aid shows now: the player's choice; on the computer's turn at least the
+        ghost ball, so that its aim can be followed."""
+        if self.phase == "cpu" and self.opts.aid == "off":
+            return "ghost"
+        return self.opts.aid
+
+    def aid_shot(self):
+        """The shot the aid predicts: the shooter's aim and spin at the power they would
+        shoot with now (set, charging, or their last), or the computer's plan as its stick
+        turns; None when no shot is being aimed."""
+        from termpool.game import Shot
+
+        if self.phase == "aim":
+            ch = self.charge
+            level = ch.preset_level if ch.preset_level is not None else (
+                round(ch.level(self.now), 2) if ch.active else self.last_power)
+            return Shot(power_to_speed(level), self.angle, self.side, self.top)
+        plan = getattr(self, "_cpu_plan", None)
+        if self.phase == "cpu" and plan is not None and not isinstance(plan, str):
+            return Shot(plan.speed, self.angle, self.side, self.top)
+        return None
+
+    def prediction(self):
+        """The engine's prediction of `aid_shot()` (ui.predict), as far as it has run: the
+        first share of it at once, the rest a share a frame (see `tick`); None with the aid
+        off or nothing aimed. Computed again only when the aim, power, spin or table change."""
+        from termpool.ui.predict import Predictor
+
+        m = self.match
+        shot = self.aid_shot() if m is not None and self.aid_level() != "off" else None
+        if shot is None or not m.on_table[self.cue_index()]:
+            return None
+        where = (len(m.history), m.frame, m.pos.tobytes(), m.on_table.tobytes())
+        if self._predictor is None or self._predictor[0] != where:
+            self._predictor = (where, Predictor(m))
+            self._aid = None
+        key = (where, shot)
+        if self._aid is None or self._aid[0] != key:
+            job = self._predictor[1].start(shot)
+            if job is None:
+                return None
+            job.run(AID_STEP)
+            self._aid = (key, job, None)
+        if self._aid[2] is None:
+            self._aid = (*self._aid[:2], self._aid[1].result())
+        return self._aid[2]
+
     def _geometry(self, cols: int, rows: int):
         if self._geom is None or self._geom[:2] != (cols, rows):
             lay = layout(cols, rows, self.table)
@@ -654,6 +876,9 @@ class App:
         """The whole screen as (chars, fg, bg) cells (see ui.app_screen)."""
         from termpool.ui.app_screen import cells
 
+        if self.watching is not None:
+            self.dirty = False
+            return self.watching.cells(cols, rows)
         return cells(self, cols, rows)
 
     def _positions(self):
@@ -697,6 +922,14 @@ class App:
         return self.played[-1] if self.played else m
 
 
+def _power_digit(key) -> float | None:
+    """The power a digit key sets (1-9: 10-90%, 0: 100%), or None for any other key."""
+    if key.kind != "press" or key.ctrl or key.alt or len(key.name) != 1 \
+            or key.name not in "0123456789":
+        return None
+    return (int(key.name) or 10) / 10
+
+
 OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",
                 "shoot": "shoot", "pass": "pass the shot back"}
 OPTION_KEYS = {
@@ -704,6 +937,3 @@ OPTION_KEYS = {
     "shoot_or_pass": {"s": "shoot", "p": "pass"},
 }
 
-
-def _cpu_option(option: str) -> str:
-    return {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}.get(option, option)

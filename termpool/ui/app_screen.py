@@ -7,6 +7,7 @@ and changes nothing but the app's `dirty` flag and its layout cache.
 from __future__ import annotations
 
 from termpool.rules.common import legal_targets
+from termpool.rules.words import KITCHEN, MODE_NAMES
 from termpool.ui.canvas import put_text, to_cells
 from termpool.ui.frame import message_cells, too_small_lines
 from termpool.ui.palette import DIM_TEXT_C, TEXT_C
@@ -17,6 +18,7 @@ from termpool.ui.panel import (
     blank_cells,
     draw_box,
     draw_panel,
+    widget_fits,
 )
 
 OPTION_TEXT = {
@@ -39,14 +41,19 @@ def cells(app, cols: int, rows: int):
             out = message_cells(cols, rows, too_small_lines(cols, rows), mono)
         else:
             out = _table_cells(app, lay, view, mono)
-            draw_panel(out, lay, panel_info(app), mono)
+            draw_panel(out, lay, panel_info(app, lay), mono)
             _question(app, out)
     if app.overlay == "help":
-        draw_box(out, help_box_lines(app.keymap, rows, cols), "keys", wrap=False)
+        pages = help_pages(app, cols, rows)
+        app.help_count = len(pages)  # for the keys that turn them
+        app.help_page = min(app.help_page, len(pages) - 1)
+        draw_box(out, pages[app.help_page][1], pages[app.help_page][0], wrap=False)
     elif app.overlay == "pause":
-        draw_box(out, ["paused", "", "any key to go on"], "pause")
+        draw_box(out, ["paused", "", "S: settings · any other key to go on"], "pause")
+    elif app.screen is not None:  # settings, stats
+        draw_box(out, app.screen.lines(app, cols, rows), app.screen.title, wrap=False)
     elif app.overlay == "quit":  # drawn even over "make the window bigger": Q must show
-        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing"], "quit")
+        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"], "quit")
     return out
 
 
@@ -61,24 +68,18 @@ def pretty(spec: str) -> str:
     return "".join({"shift": "⇧", "ctrl": "^", "alt": "M-"}.get(m, m) for m in mods) + base
 
 
-def help_box_lines(keymap, rows: int, cols: int) -> list[str]:
-    """The help box's lines: every bound action with its keys (in two columns, each cut to
-    half the screen, when one column does not fit the screen's height), the mouse, and how to
-    close it."""
-    from termpool.ui.controls import ACTIONS
+def help_pages(app, cols: int, rows: int) -> list[tuple[str, list[str]]]:
+    """The help box's pages (ui.help): the keys, then the rules of the game in play as it is
+    set (at the menu, of every game)."""
+    from termpool.ui import help as box
 
-    rows_ = [(", ".join(pretty(k) for k in keymap.keys_for(a)), desc)
-             for a, desc in ACTIONS.items() if keymap.keys_for(a)]
-    rows_.append(("mouse", "click or drag on the table: aim there"))
-    kw = max(len(k) for k, _ in rows_)
-    lines = [f"{k:<{kw}}  {d}" for k, d in rows_]
-    if len(lines) + 4 > rows:
-        half = -(-len(lines) // 2)
-        width = max(8, (cols - 10) // 2)
-        left = [s if len(s) <= width else s[:width - 1] + "…" for s in lines[:half]]
-        right = lines[half:] + [""] * (2 * half - len(lines))
-        lines = [f"{a:<{width}}  {b}".rstrip() for a, b in zip(left, right, strict=True)]
-    return [*lines, "", "any key closes this"]
+    mode = app.match.mode if app.match is not None and app.phase != "menu" else None
+    how = {"theme": app.opts.theme}
+    if mode == "9ball":
+        how["three_foul"] = app.match.three_foul
+    elif mode == "8ball":
+        how["eight_break"] = app.match.eight_break
+    return box.help_pages(box.keymap_rows(app.keymap), mode, cols, rows, **how)
 
 
 def _table_cells(app, lay, view, mono: bool):
@@ -89,22 +90,48 @@ def _table_cells(app, lay, view, mono: bool):
     c = app.cue_index()
     aiming = app.phase == "aim" or (app.phase == "cpu" and app._cpu_plan not in (None,
                                                                                   "done"))
-    aim = app.aim() if aiming and m.on_table[c] else None
+    pred = app.prediction() if aiming and m.on_table[c] else None
+    level = app.aid_level()
+    called = _called_pocket(app) if aiming else None
+    kitchen = app.phase == "place" and m.ball_in_hand == "kitchen"
     if mono:
         chars = view.mono(m.ids, pos, state, m.radius)
-        if aim is not None and app.opts.aid:
-            ov.mono_aim(chars, lay, aim, m.pos[c])
+        if kitchen:
+            ov.mono_head_string(chars, lay, m.table.length / 4)
+        if pred is not None:
+            ov.mono_prediction(chars, lay, pred, level, float(m.radius[c]))
+        if called is not None:
+            ov.mono_called_pocket(chars, lay, m.table.hole_c.reshape(-1, 2)[called])
         return chars, None, None
     cv = view.draw(m.ids, pos, state, m.radius)
-    if aim is not None:
-        if app.opts.aid and not app.shooter_is_cpu():
-            ov.draw_aim(cv, lay, aim, m.pos[c], m.radius[c])
+    if kitchen:
+        ov.draw_head_string(cv, lay, m.table.length / 4)
+    if called is not None:
+        ov.draw_called_pocket(cv, lay, m.table.hole_c.reshape(-1, 2)[called],
+                              m.table.hole_r[called])
+    if aiming and m.on_table[c]:
+        if pred is not None:
+            ov.draw_prediction(cv, lay, pred, m.radius[c], level)
         pull = app.charge.level(app.now) if app.charge.active else 0.0
         ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], app.angle, pull)
     if app.phase == "place":
         ok = app.match.placement_error(*app.cursor) is None
         ov.draw_placement(cv, lay, app.cursor, m.radius[c], ok)
-    return to_cells(cv)
+    cells = to_cells(cv)
+    view.numbers(cells, m.ids, pos, state, m.radius)
+    return cells
+
+
+def _called_pocket(app) -> int | None:
+    """The index of the pocket called for the 8 on this shot (the human's call, or the
+    computer's plan), None when no call is needed."""
+    names = list(app.match.table.hole_names)
+    if app.phase == "aim" and app.match.needs_call():
+        return names.index(app._called()[1])
+    plan = getattr(app, "_cpu_plan", None)
+    if app.phase == "cpu" and getattr(plan, "called", None):
+        return names.index(plan.called[1])
+    return None
 
 
 def _question(app, cells) -> None:
@@ -112,13 +139,13 @@ def _question(app, cells) -> None:
         draw_box(cells, OPTION_TEXT.get(app.match.option, [app.match.option]), "your call")
     elif app.phase == "over":
         m = app.match
-        name = m.players[m.winner]
-        why = app.message[0][0] if app.message else ""
-        draw_box(cells, [f"{name} wins!", why, "", "n: new game   m: menu   q: quit"],
+        why = app.message[-1][0] if app.message else ""
+        draw_box(cells, [app.names(f"player {m.winner} wins!"), why, "",
+                         "n: new game   m: menu   q: quit", "w: watch this match"],
                  "game over", "good")
 
 
-def panel_info(app) -> PanelInfo:
+def panel_info(app, lay=None) -> PanelInfo:
     from termpool.rules.common import GROUPS
 
     m = app.match
@@ -142,26 +169,68 @@ def panel_info(app) -> PanelInfo:
                                   p == m.shooter and app.phase != "over", fouls))
     if st.mode == "practice":
         players = players[:1]
-    now = _status(app)
-    # While charging, the power reading comes before the last verdict.
-    status = now + app.message if app.charge.active else app.message + now
-    help_line, help_short = hint_lines(app)
-    widgets = []
-    if app.phase in ("aim", "cpu") and app.depth != "mono":
-        from termpool.ui.overlay import power_meter_cells, spin_face_cells
+    widgets, most = [], []
+    spin_words = True  # the tip offset goes in words unless the spin face shows it
+    if app.depth != "mono":
+        from termpool.ui.overlay import power_meter_cells
 
-        widgets.append((spin_face_cells(app.side, app.top), "spin"))
+        most = [(_spin_block(0.0, 0.0), "spin"), (power_meter_cells(0.0, 14, "power"), "power")]
+    if app.phase in ("aim", "cpu") and app.depth != "mono":
+        block = _spin_block(app.side, app.top)
+        if lay is None or widget_fits(lay, block):
+            widgets.append((block, "spin"))
+            spin_words = False
         if app.charge.active:
             widgets.append((power_meter_cells(app.charge.level(app.now), 14,
                                               "power"), "power"))
-    title = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}[st.mode]
+    now = _status(app, spin_words)
+    if app.phase == "aim" and not app.charge.active:
+        # A player's turn: what to do, the power and the first ball the aid sees (to act
+        # on), then the last verdict, then the plan of the shot it was about.
+        plans = [x for x in app.message if x in app._shot_note]
+        status = now + [x for x in app.message if x not in plans] + plans
+    else:
+        # What to do now first, the last verdicts next, then the power, the aid, the spin.
+        status = now[:1] + app.message + now[1:]
+    hint = hint_lines(app)
+    title = MODE_NAMES[st.mode]
     if app.opts.frames > 1:
         title += f" · race to {app.opts.frames}"
-    return PanelInfo(f"termpool · {title}", players, status, help_line, m.ids,
-                     widgets=widgets, theme=app.opts.theme, help_short=help_short)
+    # Before groups are set no player line shows the balls: a free row names them.
+    legend = [k for k, b in enumerate(m.ids) if b != "cue" and m.on_table[k]] \
+        if st.groups is None and app.phase != "run" else []
+    return PanelInfo(f"termpool · {title}", players, status, hint, m.ids,
+                     widgets=widgets, most_widgets=most, theme=app.opts.theme, legend=legend)
 
 
-def _status(app) -> list[tuple[str, str]]:
+def _tip_words(app) -> str | None:
+    """The cue tip's offset in words (None when it is centred)."""
+    if not (app.side or app.top):
+        return None
+    return f"tip {app.side:+.1f} side {app.top:+.1f} top"
+
+
+SPIN_TEXT_COLS = 10  # the spin readout beside the face
+
+
+def _spin_block(side: float, top: float):
+    """The spin face with its readout to the left: "spin", the side and top offsets."""
+    import numpy as np
+
+    from termpool.ui.overlay import spin_face_cells
+
+    face = spin_face_cells(side, top)
+    rows = face[0].shape[0]
+    text = blank_cells(SPIN_TEXT_COLS, rows, False)
+    for r, (line, colour) in enumerate((("spin", DIM_TEXT_C.rgb),
+                                        (f"side {side:+.1f}", TEXT_C.rgb),
+                                        (f"top  {top:+.1f}", TEXT_C.rgb))):
+        if r < rows:
+            put_text(text, r, 0, line, colour, (0, 0, 0))
+    return tuple(np.concatenate([a, b], axis=1) for a, b in zip(text, face, strict=True))
+
+
+def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
     m = app.match
     name = m.players[m.shooter]
     out = []
@@ -182,55 +251,96 @@ def _status(app) -> list[tuple[str, str]]:
             s += " · push-out"
         elif m.state.push_out == "available":
             s += " · O: push-out"
-        if app.charge.active:  # while charging the power reading comes first
+        if app.charge.waiting:  # a tap or a hold: no power to show yet
+            out.insert(0, (app.charge.label, "turn"))
+            out.append((s, "dim"))
+        elif app.charge.active:  # while charging the power reading comes first
             level = round(100 * app.charge.level(app.now))
             out.insert(0, (f"power {level}% · {app.charge.label}", "turn"))
             out.append((s, "dim"))
         else:
-            out.append((s, "turn"))
-            out.append(("power: " + app.charge.label, "dim"))
-        if app.side or app.top:
-            out.append((f"tip {app.side:+.1f} side {app.top:+.1f} top", "dim"))
+            tip = _tip_words(app) if spin_words else None
+            out.append((s + (f" · {tip}" if tip else ""), "turn"))
+            out.append((_power_line(app), "dim"))
     elif app.phase == "place":
-        where = "behind the head string" if m.ball_in_hand == "kitchen" else "anywhere"
+        where = KITCHEN if m.ball_in_hand == "kitchen" else "anywhere"
         what = "break" if m.state.is_break else "shoot"
-        out.append((f"{name} to {what} · ball in hand {where}: arrows move, Enter places",
+        out.append((f"{name} to {what} · ball in hand {where}",
                     "turn"))
     elif app.phase == "run":
         out.append(("fast ×4 (F)" if app.fast else "F: fast forward", "dim"))
     elif app.phase == "cpu":
-        out.append(("Computer is thinking…" if app._cpu_plan is None else
-                    "Computer is shooting", "turn"))
+        plan = app._cpu_plan
+        on_aim = plan is not None and not isinstance(plan, str) and app.angle == plan.angle
+        pred = app.prediction() if on_aim else None  # not the balls its stick turns past
+        at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
+        out.append((f"{name} is thinking…" if app._cpu_plan is None else
+                    f"{name} is aiming{at}", "dim"))
     return out
 
 
-def hint_lines(app) -> tuple[str, str]:
-    """The panel's one line of key help for this phase (full, and short for narrow panels),
-    with the keys the key map really binds."""
+def power_hint(app) -> tuple[str, str]:
+    """How Space gives power now, in the hint line's long and short forms."""
+    ch = app.charge
+    k = pretty(ch.key_label)
+    if ch.preset_level is not None:
+        pct = f"{round(100 * ch.preset_level)}%"
+        return f"{k}: strike at {pct}", f"{k}:{pct}"
+    return {"release": (f"{k}: hold, let go", f"{k}:hold"),
+            "repeat": (f"{k}: hold to charge", f"{k}:hold"),
+            "classic": (f"{k}: meter, {k} strikes", f"{k}:meter")}[ch.mode]
+
+
+def _power_line(app) -> str:
+    """The power the next shot (and the aid) has, and the first ball the aid sees hit."""
+    ch = app.charge
+    if ch.preset_level is not None:
+        line = f"power {round(100 * ch.preset_level)}%"
+    elif app.aid_level() != "off":
+        whose = "the last shot's" if app.shot_power_set else "until you give one"
+        line = f"aid at {round(100 * app.last_power)}% power ({whose})"
+    else:
+        line = "power: " + ch.label
+    pred = app.prediction()
+    if pred is not None and pred.ball is not None:
+        line += f" · first ball: the {app.match.ids[pred.ball]}"
+        if pred.object is not None and pred.object.end == "pocket":
+            line += f", into the {pred.object.pocket.replace('_', ' ')} pocket"
+    return line
+
+
+def hint_lines(app) -> list[tuple]:
+    """The panel's line of key help for this phase, as `panel.fit_hint` parts (text or
+    (long, short), rank), with the keys the key map really binds."""
     def k(action: str) -> str:
         keys = app.keymap.keys_for(action)
         return pretty(keys[0]) if keys else "?"
 
-    quit_, help_ = f"{k('quit')} quit", f"{k('help')} help"
+    quit_, help_ = (f"{k('quit')} quit", 0), (f"{k('help')} help", 1)
     if app.phase == "place":
-        return (f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move "
-                f"(⇧ fine)  {k('confirm')} place  mouse: click  {help_}  {quit_}",
-                f"arrows move  {k('confirm')} place  {help_}  {quit_}")
+        return [(f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move", 0),
+                ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), ("mouse: click", 4), help_,
+                quit_]
     if app.phase == "aim" and app.charge.active:
-        return (f"{app.charge.label}  {k('cancel')} cancel", f"{k('cancel')} cancel")
+        return [(app.charge.label, 0), (f"{k('cancel')} cancel", 0)]
     if app.phase == "aim":
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
-        return (f"{k('aim_ccw')}{k('aim_cw')} aim  {k('aim_fine_ccw')}{k('aim_fine_cw')} fine  "
-                f"{k('shoot')} shoot  {spin} spin  {k('aim_aid')} aid  {help_}  "
-                f"{k('pause')} pause  {quit_}",
-                f"{k('aim_ccw')}{k('aim_cw')} aim  {k('shoot')} shoot  {spin} spin  {help_}  "
-                f"{quit_}")
+        cancel = [(f"{k('cancel')} hold", 1)] if app.charge.preset_level is not None else []
+        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 3),
+                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 3)] \
+            if app.match.state.mode == "practice" else []
+        return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
+                (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
+                (power_hint(app), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
+                (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
+                quit_]
     if app.phase == "option":
-        return (f"answer with a letter in the box  {help_}  {quit_}", f"a letter  {quit_}")
+        return [("answer with a letter in the box", 0), help_, quit_]
     if app.phase == "over":
-        return f"N new game  M menu  {quit_}", f"N new  M menu  {quit_}"
-    return (f"{k('fast_forward')} fast forward  {k('pause')} pause  {help_}  {quit_}",
-            f"{k('fast_forward')} fast  {k('pause')} pause  {quit_}")
+        return [("N new game", 0), ("M menu", 0), ("W watch", 0), quit_]
+    if app.phase == "cpu":
+        return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
+    return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
 
 
 def _menu_cells(app, cols: int, rows: int, mono: bool):
@@ -238,8 +348,8 @@ def _menu_cells(app, cols: int, rows: int, mono: bool):
 
     cells = blank_cells(cols, rows, mono)
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
-    for k, (label, _) in enumerate(MENU):
-        sel = k == app.menu_index
+    for k in range(len(MENU)):
+        label, sel = app.menu_label(k), k == app.menu_index
         lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]

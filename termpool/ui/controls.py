@@ -31,10 +31,10 @@ from termpool.ui.keys import Key, parse_key
 
 # action -> (help text); the order is the order of the help screen
 ACTIONS: dict[str, str] = {
-    "aim_ccw": "aim counter-clockwise (hold: faster)",
-    "aim_cw": "aim clockwise (hold: faster)",
-    "aim_fine_ccw": "fine aim counter-clockwise",
-    "aim_fine_cw": "fine aim clockwise",
+    "aim_ccw": "aim ↺ counter-clockwise (hold: faster)",
+    "aim_cw": "aim ↻ clockwise (hold: faster)",
+    "aim_fine_ccw": "fine aim ↺ (hold: faster)",
+    "aim_fine_cw": "fine aim ↻ (hold: faster)",
     "shoot": "shoot (hold to charge)",
     "spin_up": "cue tip up (follow)",
     "spin_down": "cue tip down (draw)",
@@ -268,10 +268,13 @@ class HoldRamp:
 
 
 class AimControl:
-    """Aim steps that speed up while an aim key is held (a `HoldRamp` in degrees).
+    """Aim steps that speed up while an aim key is held (`HoldRamp`s in degrees).
 
     A tap turns TAP degrees and, held, the turn speeds up from SPEED0 to SPEED_MAX deg/s over
-    RAMP seconds; fine keys always turn FINE.
+    RAMP seconds (a sweep across the table). A fine key's tap turns FINE degrees and, held,
+    from FINE_SPEED0 to FINE_SPEED_MAX deg/s over FINE_RAMP seconds: the few degrees between
+    a rough aim and a pot take a second of holding, not thirty taps, and stay slower than the
+    coarse keys' taps until the last half second.
     """
 
     TAP = 0.5
@@ -279,16 +282,21 @@ class AimControl:
     SPEED0 = 15.0
     SPEED_MAX = 120.0
     RAMP = 1.2
+    FINE_SPEED0 = 2.0
+    FINE_SPEED_MAX = 12.0
+    FINE_RAMP = 1.5
     HOLD_GAP = HoldRamp.HOLD_GAP
     DT_MAX = HoldRamp.DT_MAX
 
     def __init__(self, keymap: KeyMap | None = None) -> None:
         self.keymap = keymap if keymap is not None else KeyMap()
         self._ramp = HoldRamp(self.TAP, self.SPEED0, self.SPEED_MAX, self.RAMP)
+        self._fine = HoldRamp(self.FINE, self.FINE_SPEED0, self.FINE_SPEED_MAX, self.FINE_RAMP)
 
     def reset(self) -> None:
         """Forget the current hold (e.g. after a shot)."""
         self._ramp.reset()
+        self._fine.reset()
 
     def step(self, key: Key, t: float) -> float:
         """Degrees to turn the aim for this event (0 for non-aim keys and releases)."""
@@ -297,12 +305,12 @@ class AimControl:
             return 0.0
         if key.kind == "release":
             self._ramp.release(action)
+            self._fine.release(action)
             return 0.0
         sign, fine = _AIM[action]
-        if fine:  # never held: a fine key ends any hold and turns FINE
-            self._ramp.reset()
-            return sign * self.FINE
-        return sign * self._ramp.step(action, key.kind, t)
+        held, other = (self._fine, self._ramp) if fine else (self._ramp, self._fine)
+        other.reset()  # the other kind of key ends its hold
+        return sign * held.step(action, key.kind, t)
 
 
 # ----------------------------------------------------------------------------- power
@@ -317,24 +325,32 @@ class PowerCharge:
     meter goes up and down (period 2 * full_time). A fired shot has power in [MIN_POWER, 1].
 
     Repeat mode: after the press, a legacy terminal auto-repeats after an initial delay
-    (0.2-0.7 s), then every 20-50 ms. The repeat interval is the median of the gaps seen so
-    far; the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
-    GAP_MIN..GAP_MAX s; GAP_MAX until an interval is known) and placed one interval after the
-    last repeat, so the power does not depend on when `poll` is called. A press with no repeat
-    within INITIAL_DELAY_MAX s was a tap (or the terminal does not repeat): that shot falls
-    back to the classic meter (press again to strike), and `label` says so. A press, one more
-    press and then DOUBLE_TAP_GAP s of silence was a quick tap, tap: it strikes at the level
-    of the second tap.
+    (0.2-0.7 s), then every 20-50 ms. A hold can only be told from a tap at its first repeat,
+    so the charge starts there: however long the terminal's delay, the softest hold is a soft
+    shot. The repeat interval is the median of the gaps seen so far (kept from hold to hold:
+    it is the terminal's, and `observe` learns it from repeats that go on after a strike too);
+    the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
+    GAP_MIN..GAP_MAX s) and placed one interval after the last repeat, so the power does not
+    depend on when `poll` is called. A press with no repeat within INITIAL_DELAY_MAX s was a
+    tap (or the terminal does not repeat): that shot falls back to the classic meter, rising
+    from 0 at that moment (press again to strike), and `label` says so. Until then `waiting`
+    is true and the level 0.
+
+    Set power (any mode): `preset(level)` (the digit keys) makes the next press strike at
+    once at that level, until `preset(None)`.
     """
 
     MIN_POWER = 0.02
     INITIAL_DELAY_MAX = 0.75
-    GAP_MIN = 0.1
+    # The release is inferred after GAP_INTERVALS repeat intervals of silence (within
+    # GAP_MIN..GAP_MAX s): 67 ms at 30 repeats a second, 80 ms at 25, so the strike follows
+    # the last repeat within 0.1 s even polled at 60 frames a second; the price is that a
+    # repeat late by a whole interval reads as a release.
+    GAP_MIN = 0.05
     GAP_MAX = 0.3
-    GAP_INTERVALS = 4.0
+    GAP_INTERVALS = 2.0
     DEFAULT_INTERVAL = 0.033
     INTERVAL_SAMPLES = 16
-    DOUBLE_TAP_GAP = 0.15  # s of silence after a single repeat that makes it a second tap
 
     def __init__(self, mode: str, full_time: float = 1.2, key_label: str = "space") -> None:
         if mode not in POWER_MODES:
@@ -344,6 +360,10 @@ class PowerCharge:
         self.mode = mode
         self.full_time = float(full_time)
         self.key_label = key_label
+        self.preset_level: float | None = None
+        self._gaps: list[float] = []  # repeat intervals seen, from hold to hold
+        self._tail: float | None = None  # the last repeat of a hold that has struck
+        self._kinds = False  # repeat mode: the terminal has sent a repeat or release event
         self.cancel()
 
     # -- state
@@ -354,8 +374,12 @@ class PowerCharge:
         self._t0 = 0.0
         self._last = 0.0
         self._repeats = 0
-        self._gaps: list[float] = []
         self.fallback = False  # repeat mode: this shot fell back to the classic meter
+
+    def preset(self, level: float | None) -> None:
+        """Set power: the next press strikes at once at `level` (0..1); None: hold again."""
+        self.cancel()
+        self.preset_level = None if level is None else min(1.0, max(self.MIN_POWER, level))
 
     @property
     def active(self) -> bool:
@@ -363,23 +387,44 @@ class PowerCharge:
         return self._phase != "idle"
 
     @property
+    def mode_name(self) -> str:
+        """How power is given now, in words: "set 30%", "hold (key releases)", "hold (key
+        repeat)", "meter"."""
+        if self.preset_level is not None:
+            return f"set {round(100 * self.preset_level)}%"
+        return {"release": "hold (key releases)", "repeat": "hold (key repeat)",
+                "classic": "meter"}[self.mode]
+
+    @property
     def label(self) -> str:
         """What to show on screen."""
         k = self.key_label
+        if self.preset_level is not None:
+            return f"{k} strikes at {round(100 * self.preset_level)}%"
         if self._phase == "meter":
             if self.fallback:
-                return f"no key repeat seen: {k} again to strike"
+                return f"a tap: the meter runs, {k} again to strike"
             return f"{k} to strike"
         if self.mode == "classic":
             return f"{k} to start, {k} to strike"
+        if self.waiting:
+            return f"keep {k} down to charge, or let go for a meter"
         if self._phase == "charge":
             return f"release {k} to shoot"
         return f"hold {k}, release to shoot"
+
+    @property
+    def waiting(self) -> bool:
+        """Repeat mode: pressed, and no repeat yet to tell a hold from a tap (no power yet)."""
+        return (self.mode == "repeat" and self._phase == "charge" and self._repeats == 0
+                and not self._kinds)
 
     def level(self, t: float) -> float:
         """The meter's level in [0, 1] at time t (0 when idle)."""
         if self._phase == "idle":
             return 0.0
+        if self.waiting:
+            return 0.0  # the charge starts at the first repeat
         x = max(0.0, t - self._t0) / self.full_time
         if self._phase == "charge":
             return min(1.0, x)
@@ -400,8 +445,30 @@ class PowerCharge:
 
     def _fire(self, t: float) -> float:
         power = min(1.0, max(self.MIN_POWER, self.level(t)))
+        self._tail = self._last if self.mode == "repeat" and self._repeats else None
         self.cancel()
         return power
+
+    def observe(self, key: Key, t: float) -> None:
+        """A shoot-key event after the strike (the balls are running): repeats that go on
+        are the key still held, and their spacing is the terminal's repeat interval (a
+        terminal that repeats more slowly than the release gap assumed is learnt this way)."""
+        if self._tail is None or key.kind == "release":
+            self._tail = None
+            return
+        if 0.0 < t - self._tail <= self.GAP_MAX:
+            self._gaps.append(t - self._tail)
+            del self._gaps[:-self.INTERVAL_SAMPLES]
+            self._tail = t
+        else:
+            self._tail = None
+
+    def release_due(self) -> float | None:
+        """Repeat mode: the time at which silence will mean a release (None: no such time),
+        so a driver can wake then rather than at its next frame."""
+        if self.mode != "repeat" or self._phase != "charge" or self._repeats == 0:
+            return None
+        return self._last + self._release_gap() + 1e-6
 
     def _start(self, phase: str, t: float) -> None:
         self.cancel()
@@ -415,8 +482,6 @@ class PowerCharge:
         return recent[mid] if len(recent) % 2 else 0.5 * (recent[mid - 1] + recent[mid])
 
     def _release_gap(self) -> float:
-        if not self._gaps:
-            return self.GAP_MAX
         return min(self.GAP_MAX, max(self.GAP_MIN, self.GAP_INTERVALS * self._interval()))
 
     def _advance(self, t: float) -> float | None:
@@ -425,17 +490,18 @@ class PowerCharge:
             return None
         if self._repeats == 0:
             if t - self._t0 > self.INITIAL_DELAY_MAX:
+                # The meter starts from nothing when the tap is known, not from the press:
+                # it rises from 0% as a soft shot is wanted as often as a hard one.
                 self._phase, self.fallback = "meter", True
+                self._t0 += self.INITIAL_DELAY_MAX
             return None
-        if self._repeats == 1 and t - self._last > self.DOUBLE_TAP_GAP:
-            # One more press and then silence: no auto-repeat stream stops after one repeat,
-            # so it was a second tap (the meter's "tap, tap"): strike at that tap's level.
-            return self._fire(self._last)
         if t - self._last > self._release_gap():
             return self._fire(self._last + self._interval())
         return None
 
     def _event(self, key: Key, t: float) -> float | None:
+        if self.preset_level is not None:
+            return self.preset_level if key.kind == "press" else None
         if self.mode == "release":
             if key.kind == "press":
                 self._start("charge", t)  # a press while charging: the release was lost
@@ -450,6 +516,8 @@ class PowerCharge:
                 return None
             return self._fire(t)
         # repeat mode: every press or repeat is part of the stream; a real release also counts
+        if key.kind != "press":
+            self._kinds = True  # this terminal tells events apart: charge from the press
         if key.kind == "release":
             return self._fire(t) if self._phase == "charge" else None
         if self._phase == "idle":
@@ -459,6 +527,9 @@ class PowerCharge:
         else:
             if self._repeats > 0:
                 self._gaps.append(t - self._last)
+                del self._gaps[:-self.INTERVAL_SAMPLES]
+            elif not self._kinds:
+                self._t0 = t  # the first repeat: a hold, and the charge starts now
             self._repeats += 1
             self._last = t
         return None

@@ -46,12 +46,18 @@ def play(app, events: Sequence[tuple[float, object]], cols: int, rows: int,
         app.tick(t)
         if app.dirty:
             cells = app.cells(cols, rows)
+            if screen is not None and screen.depth != app.depth:  # changed in the settings
+                screen = Screen(cols, rows, app.depth)
             if screen is not None:
                 frames_out.append(screen.render(*cells))
         if k >= len(events) and app.wake_in(t) is None:
             break
         if t > last_key + SETTLE_S:
             break
+        wake = app.wake_in(t)
+        if wake is not None and 0.0 < wake and t + wake < (n + 1) * frame:
+            t += wake  # a wake the app asked for between frames (an inferred key release),
+            continue  # as a terminal's loop honours it
         n += 1
         t = n * frame  # no drift from adding frame times
     return screen_text(cells[0])

@@ -363,6 +363,7 @@ MAX_TAPS = 1000  # NAME*N
 MAX_HOLD_S = 60.0  # NAME-hold SECONDS
 MAX_SCRIPT_S = 3600.0  # the whole script, on the virtual clock
 MAX_SCRIPT_EVENTS = 200_000
+MIN_REPEAT_S, MAX_REPEAT_S = 0.005, 2.0  # the auto-repeat a script may emulate (`repeat D I`)
 
 
 def _seconds(text: str, what: str, most: float = MAX_SCRIPT_S) -> float:
@@ -433,7 +434,9 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
     Tokens (whitespace separated): NAME (a key spec: "q", "shift+left", "?"): press at t,
     release at t + tap_gap/2, next token at t + tap_gap; NAME*N: N such taps; wait SECONDS:
     advance the clock; NAME-hold SECONDS: press at t, repeats at t + repeat_delay + k *
-    repeat_rate while before t + SECONDS, release at t + SECONDS, next token tap_gap later.
+    repeat_rate while before t + SECONDS, release at t + SECONDS, next token tap_gap later;
+    repeat DELAY INTERVAL: the holds after it repeat like a terminal with that initial delay
+    and interval (seconds; `legacy_events` then gives what a legacy terminal sends).
     A bad token raises ValueError("script token 3 'spce': ..."), and so does a script beyond
     the limits (MAX_TAPS taps in a token, holds of MAX_HOLD_S, MAX_SCRIPT_S seconds in all,
     MAX_SCRIPT_EVENTS events).
@@ -457,6 +460,17 @@ def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
                 events.append((t, Mouse(col, row, "press")))
                 events.append((t + tap_gap / 2, Mouse(col, row, "release")))
                 t += tap_gap
+                i += 3
+                continue
+            if tok.lower() == "repeat":  # repeat DELAY INTERVAL: the terminal's auto-repeat
+                if i + 2 >= len(tokens):
+                    raise ValueError("repeat needs the initial delay and the interval in "
+                                     "seconds after it, e.g. 'repeat 0.5 0.033'")
+                repeat_delay = _seconds(tokens[i + 1], "repeat delay", MAX_REPEAT_S)
+                repeat_rate = _seconds(tokens[i + 2], "repeat interval", MAX_REPEAT_S)
+                if repeat_delay <= 0 or repeat_rate < MIN_REPEAT_S:
+                    raise ValueError(f"repeat: the delay must be above 0 and the interval at "
+                                     f"least {MIN_REPEAT_S:g} s")
                 i += 3
                 continue
             if tok.lower() == "wait":

@@ -1,5 +1,6 @@
-"""Shot overlays drawn over a table canvas: aim line, ghost ball, cue stick, ball-in-hand ring,
-and the small panel widgets (spin face, power meter) as cells.
+"""Shot overlays drawn over a table canvas: the aim aid (the engine's predicted paths and the
+ghost ball), cue stick, ball-in-hand ring, and the small panel widgets (spin face, power
+meter) as cells.
 
 Everything paints pixels of the `Canvas` (tag AIM), so it goes through the same half-block
 conversion and diffing as the table. Lines and rings never paint over a ball's pixels: a ball
@@ -14,18 +15,20 @@ import math
 import numpy as np
 
 from termpool.physics.params import BALL_RADIUS
-from termpool.ui.aim import Aim, aim_direction
+from termpool.ui.aim import aim_direction
 from termpool.ui.canvas import Canvas, to_cells
 from termpool.ui.palette import (
     AIM,
     AIM_C,
     BACKDROP_C,
     BUTT_C,
+    CALL_C,
     CUE,
     CUE_C,
     DIM_TEXT_C,
     EIGHT,
     GUIDE_C,
+    OBJECT_C,
     PLACE_BAD_C,
     PLACE_OK_C,
     POWER_C,
@@ -37,12 +40,11 @@ from termpool.ui.palette import (
     TEXT_C,
     TIP_C,
 )
+from termpool.ui.predict import Prediction
 from termpool.ui.table_view import MIN_BALL_PX, Layout
 
 DOT_ON, DOT_PERIOD = 2.0, 4.0  # aim line: 2 pixels drawn in every 4, counted from the cue ball
 STEP = 0.5  # px between samples along a line: no pixel the line crosses is skipped
-OBJECT_LINE_M = 0.30  # how far the object ball's line runs beyond the ball
-CUE_LINE_M = 0.20  # the cue ball's tangent line
 STICK_M = 1.2  # visible stick length
 STICK_GAP_M = 0.012  # tip to ball at rest
 PULL_M = 0.25  # how far the stick draws back at full power
@@ -65,30 +67,6 @@ def _ball_px(lay: Layout, radius: float) -> float:
     return max(MIN_BALL_PX, float(radius) * lay.scale)
 
 
-def _segment(lay: Layout, w: int, h: int, p0, p1, dotted: bool = False):
-    """Pixels (ix, iy) a straight segment p0 -> p1 (table metres) crosses on a w x h canvas
-    (some twice: painting them again is harmless and cheaper than sorting them out); dotted
-    keeps DOT_ON of every DOT_PERIOD pixels counted from p0."""
-    x0, y0 = lay.to_pixels(p0[0], p0[1])
-    x1, y1 = lay.to_pixels(p1[0], p1[1])
-    x0, y0, x1, y1 = float(x0), float(y0), float(x1), float(y1)
-    length = math.hypot(x1 - x0, y1 - y0)
-    if not math.isfinite(length):
-        return np.empty(0, np.int64), np.empty(0, np.int64)
-    # The start is on or near the canvas: nothing past its diagonal can be seen.
-    length = min(length, math.hypot(w, h) + math.hypot(x0 - w / 2, y0 - h / 2))
-    if length <= 0:
-        return np.empty(0, np.int64), np.empty(0, np.int64)
-    ux, uy = (x1 - x0) / math.hypot(x1 - x0, y1 - y0), (y1 - y0) / math.hypot(x1 - x0, y1 - y0)
-    s = np.arange(0.0, length + 1e-9, STEP)
-    if dotted:
-        s = s[np.mod(s, DOT_PERIOD) < DOT_ON]
-    ix = np.floor(x0 + ux * s).astype(np.int64)
-    iy = np.floor(y0 + uy * s).astype(np.int64)
-    keep = (ix >= 0) & (ix < w) & (iy >= 0) & (iy < h)
-    return ix[keep], iy[keep]
-
-
 def _ring(lay: Layout, w: int, h: int, centre, r_px: float, half: float = 0.5):
     """Pixels whose centres lie within `half` of a circle of r_px pixels around `centre` (m)."""
     cx, cy = lay.to_pixels(centre[0], centre[1])
@@ -109,7 +87,10 @@ def _ring(lay: Layout, w: int, h: int, centre, r_px: float, half: float = 0.5):
 
 def _paint(cv: Canvas, ix, iy, colour, over_balls: bool = False) -> None:
     if not over_balls:
-        free = ~_IS_BALL[cv.tag[iy, ix]]
+        # Nor the other half of a ball's cell: a cell shows two colours, and a ball a pixel
+        # or two across (80x24) that shares its cell with a line reads as half a line.
+        ball = _IS_BALL[cv.tag]
+        free = ~ball[iy, ix] & ~ball[np.minimum(iy ^ 1, cv.height - 1), ix]
         ix, iy = ix[free], iy[free]
     cv.rgb[iy, ix] = colour.rgb
     cv.tag[iy, ix] = AIM
@@ -123,31 +104,85 @@ def _unit(v) -> np.ndarray | None:
 # ----------------------------------------------------------------------------- table overlays
 
 
-def draw_aim(canvas: Canvas, lay: Layout, aim: Aim, cue_pos, radius: float = BALL_RADIUS, *,
-             object_line: bool = True) -> None:
-    """The aim line (dotted) from the cue ball to the ghost ball, the ghost ball's outline
-    where the cue ball meets a ball or a cushion, and with object_line a short line along which
-    the object ball leaves (from its far side) and a faint one for the cue ball's tangent."""
-    w, h = canvas.width, canvas.height
-    c = np.asarray(cue_pos, dtype=float).reshape(2)
-    g = np.asarray(aim.ghost, dtype=float)
-    d = _unit(g - c)
-    r = float(radius)
-    if d is not None and math.hypot(*(g - c)) > 2 * r:
-        # From the cue ball's edge to the ghost's edge (into the pocket: to the drop point).
-        end = g - d * r if aim.hit in ("ball", "cushion") else g
-        _paint(canvas, *_segment(lay, w, h, c + d * r, end, dotted=True), AIM_C)
-    if aim.hit in ("ball", "cushion"):
-        _paint(canvas, *_ring(lay, w, h, g, _ball_px(lay, r)), AIM_C)
-    if not object_line:
+def _polyline(lay: Layout, w: int, h: int, pts, skip0: float = 0.0, skip1: float = 0.0,
+              dotted: bool = False):
+    """Pixels (ix, iy) a polyline through `pts` (K, 2, table metres) crosses on a w x h
+    canvas, leaving out `skip0` pixels of its length at the start and `skip1` at the end (a
+    ball's radius); dotted keeps DOT_ON of every DOT_PERIOD pixels counted from its start."""
+    p = np.asarray(pts, dtype=float).reshape(-1, 2)
+    if len(p) < 2 or not np.isfinite(p).all():
+        return np.empty(0, np.int64), np.empty(0, np.int64)
+    X, Y = lay.to_pixels(p[:, 0], p[:, 1])
+    seg = np.hypot(np.diff(X), np.diff(Y))
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    total = float(s[-1])
+    # Nothing beyond the canvas's diagonal from the start can be seen.
+    end = min(total - skip1, skip0 + math.hypot(w, h) + math.hypot(X[0] - w / 2, Y[0] - h / 2))
+    if end <= skip0:
+        return np.empty(0, np.int64), np.empty(0, np.int64)
+    at = np.arange(skip0, end + 1e-9, STEP)
+    if dotted:
+        at = at[np.mod(at - skip0, DOT_PERIOD) < DOT_ON]
+    ix = np.floor(np.interp(at, s, X)).astype(np.int64)
+    iy = np.floor(np.interp(at, s, Y)).astype(np.int64)
+    keep = (ix >= 0) & (ix < w) & (iy >= 0) & (iy < h)
+    return ix[keep], iy[keep]
+
+
+def draw_prediction(canvas: Canvas, lay: Layout, pred: Prediction, radius: float = BALL_RADIUS,
+                    level: str = "full") -> None:
+    """The aim aid from the engine's prediction (`ui.predict`): the cue ball's path (dotted,
+    white) to the ghost ball, where it first meets a ball (or a pocket, a cushion, its rest),
+    and at level "full" the first ball's path (solid, pink) to its next contact or rest and,
+    faint and dotted, the cue ball's path from the hit to its next contact. A ring marks
+    where each path ends, unless it ends in a pocket. Level "ghost" draws the first path and
+    its ring only."""
+    if level == "off":
         return
-    if aim.object_dir is not None:
-        n = np.asarray(aim.object_dir, dtype=float)
-        # From the contact point through the object ball (its pixels are left alone).
-        _paint(canvas, *_segment(lay, w, h, g + n * r, g + n * (3 * r + OBJECT_LINE_M)), AIM_C)
-    if aim.cue_dir is not None:
-        t = np.asarray(aim.cue_dir, dtype=float)
-        _paint(canvas, *_segment(lay, w, h, g + t * r, g + t * (r + CUE_LINE_M)), GUIDE_C)
+    w, h = canvas.width, canvas.height
+    r_px = _ball_px(lay, radius)
+    legs = [(pred.cue, AIM_C, True)]
+    if level == "full":
+        legs += [(leg, colour, dotted) for leg, colour, dotted in
+                 ((pred.object, OBJECT_C, False), (pred.after, GUIDE_C, True))
+                 if leg is not None]
+    for k, (leg, colour, dotted) in enumerate(legs):
+        ring = leg.end != "pocket"
+        _paint(canvas, *_polyline(lay, w, h, leg.points, r_px, r_px if ring else 0.0,
+                                  dotted), colour)
+        if ring and (k == 0 or len(leg.points) > 1):
+            _paint(canvas, *_ring(lay, w, h, leg.points[-1], r_px), colour)
+
+
+def draw_called_pocket(canvas: Canvas, lay: Layout, centre, hole_r: float) -> None:
+    """A ring round the pocket called for the 8 (centre, radius in table metres), over the
+    rail and cushions about it."""
+    r_px = float(hole_r) * lay.scale + 1.0
+    _paint(canvas, *_ring(lay, canvas.width, canvas.height, centre, r_px, 0.75), CALL_C)
+
+
+def mono_called_pocket(chars: np.ndarray, lay: Layout, centre) -> None:
+    """The called pocket in the monochrome mode: a '*' in the cell of its centre."""
+    x, y = lay.to_pixels(centre[0], centre[1])
+    r, c = int(math.floor(float(y))) // 2, int(math.floor(float(x)))
+    rows, cols = chars.shape
+    chars[min(max(r, 0), rows - 1), min(max(c, 0), cols - 1)] = "*"
+
+
+def draw_head_string(canvas: Canvas, lay: Layout, x: float) -> None:
+    """The head string (the kitchen's edge, x metres from the head rail): a dotted line
+    across the cloth, for a ball in hand that must stay behind it."""
+    _paint(canvas, *_polyline(lay, canvas.width, canvas.height, [(x, 0.0), (x, lay.width)],
+                              dotted=True), GUIDE_C)
+
+
+def mono_head_string(chars: np.ndarray, lay: Layout, x: float) -> None:
+    """The head string in the monochrome mode: ':' down the blank cells of its column."""
+    rows, cols = chars.shape
+    ix, iy = _polyline(lay, cols, 2 * rows, [(x, 0.0), (x, lay.width)])
+    r = iy // 2
+    blank = chars[r, ix] == " "
+    chars[r[blank], ix[blank]] = ":"
 
 
 def draw_cue_stick(canvas: Canvas, lay: Layout, cue_pos, radius: float, angle_deg: float,
@@ -203,15 +238,18 @@ def draw_placement(canvas: Canvas, lay: Layout, pos, radius: float, ok: bool) ->
     _paint(canvas, *_ring(lay, canvas.width, canvas.height, pos, r_px), colour)
 
 
-def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: bool = True,
-             radius: float = BALL_RADIUS) -> None:
-    """The aim for the monochrome mode, on TableView.mono's glyph grid (in place): '.' along
-    the aim line, 'o' at the ghost ball, and a short '-', '/', '|' or '\\' line the way the
-    object ball leaves. Only blank cells are marked: balls and cushions keep their glyphs."""
+def mono_prediction(chars: np.ndarray, lay: Layout, pred: Prediction, level: str = "full",
+                    radius: float = BALL_RADIUS) -> None:
+    """The aim aid for the monochrome mode, on TableView.mono's glyph grid (in place): '.'
+    along the cue ball's path, 'o' where it ends (the ghost ball), and at level "full" the
+    first ball's path drawn with '-', '/', '|' or '\\' by its slope on screen and the cue
+    ball's path after the hit with ':'. Only blank cells are marked: balls and cushions keep
+    their glyphs."""
+    if level == "off":
+        return
     rows, cols = chars.shape
     w, h = cols, 2 * rows
-    c = np.asarray(cue_pos, dtype=float).reshape(2)
-    g = np.asarray(aim.ghost, dtype=float)
+    r_px = _ball_px(lay, radius)
 
     def mark(ix, iy, glyph):
         r, col = iy // 2, ix
@@ -220,17 +258,23 @@ def mono_aim(chars: np.ndarray, lay: Layout, aim: Aim, cue_pos, *, object_line: 
         blank = chars[r, col] == " "
         chars[r[blank], col[blank]] = glyph
 
-    if aim.object_dir is not None and object_line:
-        n = np.asarray(aim.object_dir, dtype=float)
-        # Terminal cells are twice as tall as wide: pick the glyph by the on-screen slope.
-        slope = math.degrees(math.atan2(n[1] * lay.sy, n[0] * lay.sx * 2)) % 180
-        glyph = "-/|\\"[int(((slope + 22.5) % 180) // 45)]
-        mark(*_segment(lay, w, h, g + n * 3 * radius, g + n * (3 * radius + OBJECT_LINE_M)),
-             glyph)
-    gx, gy = lay.to_pixels(g[0], g[1])
-    if aim.hit in ("ball", "cushion") and math.isfinite(gx) and math.isfinite(gy):
-        mark(np.array([math.floor(gx)]), np.array([math.floor(gy)]), "o")
-    mark(*_segment(lay, w, h, c, g), ".")
+    if level == "full":
+        if pred.object is not None:
+            pts = pred.object.points
+            for k, (p, q) in enumerate(zip(pts, pts[1:], strict=False)):
+                # Cells are twice as tall as wide: the glyph follows the slope on screen.
+                slope = math.degrees(math.atan2((q[1] - p[1]) * lay.sy,
+                                                (q[0] - p[0]) * lay.sx * 2)) % 180
+                glyph = "-/|\\"[int(((slope + 22.5) % 180) // 45)]
+                mark(*_polyline(lay, w, h, [p, q], r_px if k == 0 else 0.0), glyph)
+        if pred.after is not None:
+            mark(*_polyline(lay, w, h, pred.after.points, r_px), ":")
+    cue = pred.cue
+    if cue.end != "pocket" and len(cue.points):
+        gx, gy = lay.to_pixels(cue.points[-1][0], cue.points[-1][1])
+        if math.isfinite(gx) and math.isfinite(gy):
+            mark(np.array([math.floor(gx)]), np.array([math.floor(gy)]), "o")
+    mark(*_polyline(lay, w, h, cue.points, 0.0), ".")
 
 
 # ----------------------------------------------------------------------------- panel widgets

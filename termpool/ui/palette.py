@@ -2,8 +2,12 @@
 
 Every pixel of a canvas carries an RGB colour and a semantic tag (felt, cushion, ball...). The
 colour depths "truecolor" and "256" use the RGB (256 through `HAND256`, else the nearest xterm
-colour); "16" uses `HAND16`, picked so the felt stays green and the balls stay apart as far as
-16 colours allow; "mono" ignores colour and draws each cell's most important tag as a glyph.
+colour); "16" uses `HAND16`, picked so the felt stays green, every ball stands out from the
+felt, the cushions and the rails in the common 16-colour palettes (xterm's and the VGA one of
+the Linux console), and the balls stay apart as far as 16 colours allow: there the rails are
+dark grey and the cushions a lighter green band, so that the orange 5 can have the brown-yellow
+3, and the green 6 is cyan; "mono" ignores colour and draws each cell's most important tag as
+a glyph.
 """
 
 from __future__ import annotations
@@ -41,8 +45,8 @@ class Colour(NamedTuple):
 
 BACKDROP_C = Colour((0, 0, 0), 16, 0)
 FELT_C = Colour((22, 110, 54), 28, 2)
-CUSHION_C = Colour((13, 74, 36), 22, 8)
-RAIL_C = Colour((108, 58, 26), 94, 3)
+CUSHION_C = Colour((13, 74, 36), 22, 10)
+RAIL_C = Colour((108, 58, 26), 94, 8)
 DIAMOND_C = Colour((236, 228, 196), 230, 15)
 POCKET_C = Colour((6, 6, 6), 232, 0)
 CUE_C = Colour((246, 246, 238), 231, 15)
@@ -50,7 +54,9 @@ STRIPE_WHITE_C = Colour((240, 238, 226), 255, 15)
 TEXT_C = Colour((210, 210, 210), 252, 7)
 DIM_TEXT_C = Colour((130, 130, 130), 244, 8)
 # Overlays (ui/overlay.py). The stick is yellow in 16 colours so it stands out on the rail.
-AIM_C = Colour((238, 238, 228), 255, 15)  # aim line, ghost ball, object ball's line
+AIM_C = Colour((238, 238, 228), 255, 15)  # the cue ball's path (dotted) and the ghost ball
+OBJECT_C = Colour((255, 135, 215), 212, 13)  # the first ball's path (solid): pink, unlike
+# the cue ball's white and every ball's colour (the purple 4 is magenta 5 in 16 colours)
 GUIDE_C = Colour((150, 200, 160), 115, 7)  # faint: the cue ball's tangent line
 STICK_C = Colour((224, 190, 132), 180, 11)  # maple shaft
 BUTT_C = Colour((84, 44, 22), 52, 1)
@@ -60,6 +66,9 @@ PLACE_BAD_C = Colour((235, 40, 40), 196, 9)  # ... where the ball may not go
 POWER_C = Colour((240, 170, 40), 214, 11)
 SPIN_DOT_C = Colour((220, 30, 40), 160, 9)
 SPIN_LIMIT_C = Colour((150, 150, 150), 246, 8)  # the miscue limit on the spin face
+CALL_C = Colour((255, 200, 40), 220, 11)  # the ring round the pocket called for the 8
+NUMBER_DARK_C = Colour((16, 16, 16), 233, 0)  # a ball's number on a light ball ...
+NUMBER_LIGHT_C = Colour((250, 250, 250), 231, 15)  # ... and on a dark one
 
 # Standard ball colours, 1..8; 9..15 are striped 1..7.
 BALL_C = {
@@ -68,7 +77,7 @@ BALL_C = {
     3: Colour((214, 28, 36), 160, 9),  # red
     4: Colour((106, 38, 156), 91, 5),  # purple
     5: Colour((246, 114, 18), 208, 3),  # orange
-    6: Colour((40, 196, 92), 41, 10),  # green, brighter than the felt
+    6: Colour((40, 196, 92), 41, 14),  # green, brighter than the felt (cyan in 16 colours)
     7: Colour((128, 20, 34), 88, 1),  # maroon
     8: Colour((30, 30, 34), 234, 0),  # black
 }
@@ -80,8 +89,8 @@ CLASSIC_YELLOW_C = Colour((245, 205, 30), 220, 11)
 ALL_COLOURS = (
     BACKDROP_C, FELT_C, CUSHION_C, RAIL_C, DIAMOND_C, POCKET_C, CUE_C, STRIPE_WHITE_C,
     TEXT_C, DIM_TEXT_C, *BALL_C.values(), CLASSIC_RED_C, CLASSIC_YELLOW_C,
-    AIM_C, GUIDE_C, STICK_C, BUTT_C, TIP_C, PLACE_OK_C, PLACE_BAD_C, POWER_C, SPIN_DOT_C,
-    SPIN_LIMIT_C,
+    AIM_C, OBJECT_C, GUIDE_C, STICK_C, BUTT_C, TIP_C, PLACE_OK_C, PLACE_BAD_C, POWER_C, SPIN_DOT_C,
+    SPIN_LIMIT_C, CALL_C, NUMBER_DARK_C, NUMBER_LIGHT_C,
 )
 
 
@@ -122,6 +131,13 @@ def ball_style(ball_id: str, index: int = 0, theme: str = "standard") -> BallSty
             return BallStyle(STRIPE, BALL_C[n - 8], str(n))
         return BallStyle(SOLID, BALL_C[n], str(n))
     return BallStyle(SOLID, BALL_C[1 + index % 7], bid[:2])
+
+
+def number_colour(ball: Colour) -> Colour:
+    """The colour a number is written in on a ball of colour `ball`: dark on light balls,
+    light on dark ones (by the colour's luma at the depth it is shown in)."""
+    r, g, b = ball.rgb
+    return NUMBER_DARK_C if 0.299 * r + 0.587 * g + 0.114 * b > 130 else NUMBER_LIGHT_C
 
 
 def mono_glyph(style: BallStyle) -> str:

@@ -6,6 +6,7 @@ Everything here writes text into (chars, fg, bg) cells; the app decides what to 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -17,6 +18,8 @@ from termpool.ui.palette import BACKDROP_C, DIM_TEXT_C, TEXT_C
 from termpool.ui.table_view import Layout
 
 TURN_C = (250, 214, 90)
+TEXT_MIN_COLS = 70  # a bottom panel keeps this much room for text before it shows widgets
+SIDE_WIDGET_ROWS = 24  # a side panel this tall has room for them below its text
 FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
 BOX_BG = (28, 32, 40)
@@ -40,11 +43,16 @@ class PanelInfo:
     title: str
     players: list[PlayerLine]
     status: list[tuple[str, str]]  # (text, tone) lines, most important first
-    help: str  # one line of key help
+    help: Sequence[tuple]  # key help: (text, rank) in screen order, text a string or
+    # (long, short) forms; rank 0 must show, higher ranks are left out first where the line
+    # is too narrow (see fit_hint)
     ids: Sequence[str] = ()
     widgets: list = field(default_factory=list)  # (cells, name) blocks: spin face, power meter
+    most_widgets: list = field(default_factory=list)  # the blocks the match ever shows at
+    # once (the players' line keeps clear of them all, so it does not move as they come and go)
     theme: str = "standard"
-    help_short: str = ""  # the key help for narrow panels
+    legend: list[int] = field(default_factory=list)  # balls to show with their numbers in
+    # a free row of a bottom panel (where the table is too small to number them)
 
 
 def _tone(t: str):
@@ -64,6 +72,18 @@ def _wrap(text: str, width: int) -> list[str]:
     return [s[:width] for s in out] or [""]
 
 
+def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str, str]]:
+    """The first `room` of the wrapped lines; when some are left out, the last line kept ends
+    in an ellipsis, so a cut sentence reads as cut."""
+    if len(lines) <= room:
+        return lines
+    if room <= 0:
+        return []
+    text, tone = lines[room - 1]
+    text = text if len(text) < width else text[:width - 1].rsplit(" ", 1)[0]
+    return [*lines[:room - 1], (text + "…", tone)]
+
+
 def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
     chars, fg, bg = cells
     chars[row:row + nrows, col:col + ncols] = " "
@@ -72,24 +92,54 @@ def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
         fg[row:row + nrows, col:col + ncols] = TEXT_C.rgb
 
 
-def _player(cells, r: int, c0: int, width: int, p: PlayerLine) -> int:
-    """One player's line: marker, name, and group, frames and fouls. Returns the column after
-    the text, where the balls to pot go."""
-    mark = "▶ " if p.turn else "  "
-    text = f"{mark}{p.name}"
-    put_text(cells, r, c0, text[:width], TURN_C if p.turn else TEXT_C.rgb, BACKDROP_C.rgb)
-    c = c0 + len(text) + 1
-    extra = []
-    if p.group:
-        extra.append(p.group)
-    if p.score is not None:
-        extra.append(f"frames {p.score}")
-    if p.fouls:
-        extra.append(f"fouls {p.fouls}")
-    if extra:
-        s = " " + " · ".join(extra)
-        put_text(cells, r, c, s[: max(0, c0 + width - c)], DIM_TEXT_C.rgb, BACKDROP_C.rgb)
-        c += len(s) + 1
+def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
+                keep_score: bool = False) -> list[tuple] | None:
+    """One player's line as (text, fg, bg) pieces within `width` cells: marker and name, then
+    group, frames and fouls, then the balls still to pot (and, dim, those down). Where that is
+    too long it is said more shortly, in turn: without the balls down, without the group's
+    word (the balls show it; in mono they lose their glyphs), with the frames and fouls as
+    "1/3" and "F2", without them; only
+    a line that still does not fit is cut, at a piece, with "…". With `keep_score`, a line
+    that cannot keep the frames and fouls is None instead."""
+    name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
+             BACKDROP_C.rgb)]
+    todo = _ball_tokens(info.ids, p.balls, mono, info.theme)
+    down = [(f"{info.ids[k]:>2}", DIM_TEXT_C.rgb, BACKDROP_C.rgb) for k in p.down]
+    long = [x for x in (p.group, p.score and f"frames {p.score}", p.fouls and f"fouls {p.fouls}")
+            if x]
+    short = [x for x in (p.score, p.fouls and f"F{p.fouls}") if x]
+
+    def build(extra, toks, gap):
+        out = list(name)
+        if extra:
+            out.append((gap + " · ".join(extra), DIM_TEXT_C.rgb, BACKDROP_C.rgb))
+        for t in toks:
+            out += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
+        return out
+
+    # In mono the short forms give plain numbers: 1-7 and 9-15 tell the groups apart too.
+    plain = todo if not mono else [(f"{info.ids[k]:>2}", None, None) for k in p.balls]
+    forms = [build(long, todo + down, "  "), build(long, todo, " "), build(short, plain, " "),
+             build([], plain, " ")]
+    for form in forms[:3] if keep_score else forms:
+        if sum(len(t) for t, _, _ in form) <= width:
+            return form
+    if keep_score:
+        return None
+    out, used = [], 0
+    for t, fg, bg in forms[-1]:
+        if used + len(t) > width - 1:
+            out.append(("…", DIM_TEXT_C.rgb, BACKDROP_C.rgb))
+            break
+        out.append((t, fg, bg))
+        used += len(t)
+    return out
+
+
+def _put_line(cells, r: int, c: int, pieces: list[tuple]) -> int:
+    for text, fg, bg in pieces:
+        put_text(cells, r, c, text, fg, bg)
+        c += len(text)
     return c
 
 
@@ -105,15 +155,30 @@ def draw_panel(cells, lay: Layout, info: PanelInfo, mono: bool = False) -> None:
         _bottom(cells, col + 1, row, ncols - 2, nrows, info, mono)
 
 
-def _tokens(cells, r: int, c: int, end: int, p: PlayerLine, info: PanelInfo, mono: bool) -> None:
-    """The balls a player still has to pot, in colour, then the ones already down, dim."""
-    toks = _ball_tokens(info.ids, p.balls, mono, info.theme)
-    toks += [(f"{info.ids[k]:>2}", DIM_TEXT_C.rgb, BACKDROP_C.rgb) for k in p.down]
-    for text, fg, bg in toks:
-        if c + len(text) > end:
-            break
-        put_text(cells, r, c, text, fg, bg)
-        c += len(text) + 1
+def widget_fits(lay: Layout, block) -> bool:
+    """Whether a bottom panel shows a widget of these cells (else its words go in the
+    status): it must leave the text TEXT_MIN_COLS columns and fit the panel's height. A side
+    panel shows it below the status."""
+    _, _, ncols, nrows = lay.panel_rect
+    h, w = block[0].shape
+    if lay.panel == "side":
+        return w <= ncols - 2 and nrows >= SIDE_WIDGET_ROWS
+    return _room(ncols - 2, nrows, block)
+
+
+def _room(width: int, nrows: int, block) -> bool:
+    h, w = block[0].shape
+    return width - w - 1 >= TEXT_MIN_COLS and h <= nrows
+
+
+def _widgets_left(width: int, nrows: int, blocks) -> int:
+    """Columns of a bottom panel `width` wide left to text once these widgets take the
+    right end (those that fit)."""
+    right = width
+    for block, _where in blocks:
+        if _room(right, nrows, block):
+            right -= block[0].shape[1] + 1
+    return right
 
 
 def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
@@ -121,32 +186,39 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     right = c0 + width
     for block, _where in info.widgets:
         bw = block[0].shape[1]
-        if right - bw - 1 < c0 + 30:
+        if not _room(right - c0, nrows, block):
             continue
         right -= bw + 1
         _paste(cells, block, r0, right)
     w = right - c0 - 1
     r = r0
-    if nrows < 6 and len(info.players) > 1:
-        # Short panels: both players share a row so the status keeps two.
-        c, half = c0, c0 + w // 2
-        for k, p in enumerate(info.players[:2]):
-            start = c0 if k == 0 else max(c + 1, half)
-            c = _player(cells, r, start, w - (start - c0), p)
-            _tokens(cells, r, c, (half - 1) if k == 0 else c0 + w, p, info, mono)
+    players = info.players[:2]
+    # The players share the width left by the most widgets the match shows, whichever are
+    # up now: the second player's name stays put from ball in hand to aim to charge.
+    half = min(w, _widgets_left(width, nrows, info.most_widgets or info.widgets) - 1) // 2
+    shared = [player_line(p, info, mono, half - 1, keep_score=nrows >= 5) for p in players]
+    if len(players) > 1 and all(x is not None for x in shared):
+        # Both players on one row when they fit whole (in short panels always: the status
+        # keeps its rows).
+        _put_line(cells, r, c0, shared[0])
+        _put_line(cells, r, c0 + half, shared[1])
         r += 1
     else:
-        for p in info.players[:2]:
-            c = _player(cells, r, c0, w, p)
-            _tokens(cells, r, c, c0 + w, p, info, mono)
+        for p in players:
+            _put_line(cells, r, c0, player_line(p, info, mono, w))
             r += 1
     lines = []
     for text, tone in info.status:
         lines += [(s, tone) for s in _wrap(text, w)]
-    room = r0 + nrows - 1 - r
-    for s, tone in lines[:max(0, room)]:
+    for s, tone in _cut(lines, r0 + nrows - 1 - r, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
+    if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
+        pieces = [("balls", DIM_TEXT_C.rgb, BACKDROP_C.rgb)]
+        for t in _ball_tokens(info.ids, info.legend, mono, info.theme):
+            pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
+        if sum(len(t) for t, _, _ in pieces) <= w:
+            _put_line(cells, r, c0, pieces)
     put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
@@ -156,34 +228,49 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
     put_text(cells, r, c0, info.title[:width], TEXT_C.rgb, BACKDROP_C.rgb)
     r += 2
     for p in info.players:
-        _player(cells, r, c0, width, p)
+        bare = PlayerLine(p.name, p.group, [], [], p.score, p.turn, p.fouls)
+        _put_line(cells, r, c0, player_line(bare, info, mono, width))
         r += 1
         if p.balls or p.down:
-            _tokens(cells, r, c0 + 2, c0 + width, p, info, mono)
+            balls = PlayerLine("", "", p.balls, p.down)
+            _put_line(cells, r, c0, player_line(balls, info, mono, width)[1:])
             r += 1
         r += 1
-    for text, tone in info.status:
-        for s in _wrap(text, width):
-            if r >= end - 1:
-                break
-            put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
-            r += 1
+    lines = [(s, tone) for text, tone in info.status for s in _wrap(text, width)]
+    for s, tone in _cut(lines, end - 1 - r, width):
+        put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
+        r += 1
     r += 1
     for block, _where in info.widgets:
-        if r + block[0].shape[0] < end - 1:
+        if r + block[0].shape[0] < end - 1 and block[0].shape[1] <= width:
             _paste(cells, block, r, c0)
             r += block[0].shape[0] + 1
-    for s in _wrap(_fit_help(info, width), width)[::-1]:
+    for s in _wrap(fit_hint(info.help, 3 * width - 6), width)[::-1]:
         end -= 1
         if end <= r:
             break
         put_text(cells, end, c0, s, DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
+def fit_hint(parts: Sequence[tuple], width: int) -> str:
+    """The key help for a line of `width` cells: every part in its long form if they fit
+    (two spaces apart, else one), then in their short forms, then without the highest ranks,
+    one rank at a time. Parts are never cut; only the rank-0 parts' short forms, should even
+    they not fit, are cut at the end."""
+    forms = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
+    limits = [math.inf, *sorted({r for _, r in forms if r > 0}, reverse=True)]
+    for limit in limits:
+        for v in (0, 1):
+            keep = [f[min(v, len(f) - 1)] for f, r in forms if r < limit]
+            for sep in ("  ", " "):
+                line = sep.join(keep)
+                if len(line) <= width:
+                    return line
+    return " ".join(f[-1] for f, r in forms if r == 0)[:width]
+
+
 def _fit_help(info: PanelInfo, width: int) -> str:
-    if len(info.help) <= width or not info.help_short:
-        return info.help[:width]
-    return info.help_short[:width]
+    return fit_hint(info.help, width)
 
 
 def _paste(cells, block, r: int, c: int) -> None:

@@ -10,15 +10,11 @@ from contextlib import contextmanager
 
 MODES = ("8ball", "9ball", "practice")
 OPPONENTS = ("cpu", "human")
-TABLES = ("7ft", "8ft", "9ft")
-COLORS = ("auto", "truecolor", "256", "16", "mono")
 INPUTS = ("auto", "kitty", "repeat", "classic")
-LEVELS = ("easy", "normal", "hard")
 MAX_SEED = 2 ** 64 - 1  # a seed is saved in the record, and read back
-MAX_FRAMES = 1000
 
 
-def _whole(lo: int, hi: int):
+def whole_number(lo: int, hi: int):
     """An argparse type: a whole number from lo to hi (the text is not echoed whole)."""
     def parse(text: str) -> int:
         digits = text.strip().removeprefix("-")
@@ -34,29 +30,25 @@ def _whole(lo: int, hi: int):
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
+    from termpool.ui.settings import add_flags
+
     p.add_argument("--mode", choices=MODES, help="skip the menu and play this game")
     p.add_argument("--opponent", choices=OPPONENTS, default="cpu",
                    help="the computer or a second player on the same keyboard (default cpu)")
-    p.add_argument("--table", choices=TABLES, default="9ft", help="table size (default 9ft)")
-    p.add_argument("--colors", choices=COLORS, default="auto",
-                   help="colour depth (default: from the terminal; NO_COLOR gives mono)")
-    p.add_argument("--frames", type=_whole(1, MAX_FRAMES), default=1,
-                   help="play a match to N frames (default 1)")
-    p.add_argument("--seed", type=_whole(0, MAX_SEED), default=0,
-                   help=f"racks and the computer's choices (0 to {MAX_SEED})")
-    p.add_argument("--level", choices=LEVELS, default="normal", help="the computer's skill")
-    p.add_argument("--theme", choices=("standard", "classic"), default="standard",
-                   help="ball colours: numbered solids and stripes, or reds and yellows")
+    p.add_argument("--seed", type=whole_number(0, MAX_SEED), default=None,
+                   help=f"racks and the computer's choices (0 to {MAX_SEED}); without it "
+                        "every game deals a new rack (its seed is in the --record)")
     p.add_argument("--three-foul", action="store_true",
                    help="9-ball: three fouls in a row lose the frame")
     p.add_argument("--eight-break", choices=("respot", "rerack"), default="respot",
                    help="8-ball: the 8 pocketed on the break is re-spotted (default) or the "
                         "balls are re-racked for the same breaker")
-    p.add_argument("--no-aid", action="store_true", help="start with the aim line off (G)")
-    p.add_argument("--bell", action="store_true", help="ring the bell on a foul (N toggles)")
+    add_flags(p)  # the settings: each flag overrides the settings file for this run
+    p.add_argument("--no-aid", action="store_true", help="start with the aim aid off (--aid off)")
     p.add_argument("--input", choices=INPUTS, default="auto",
-                   help="how Space charges: kitty (key releases), repeat (hold inferred from "
-                        "auto-repeat), classic (press to start the meter, press to strike)")
+                   help="how the terminal tells a held Space: kitty (key releases), repeat "
+                        "(inferred from auto-repeat); classic: no holds at all, so the "
+                        "swinging meter (--power meter)")
     p.add_argument("--no-mouse", action="store_true",
                    help="leave the mouse to the terminal (by default a click or drag aims)")
     p.add_argument("--keymap", metavar="FILE", help="key bindings (default "
@@ -67,8 +59,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
                    "'right*5 wait 0.2 space-hold 1.5'")
     p.add_argument("--record", metavar="FILE",
-                   help="write the match record (JSON, for `termpool replay`) to FILE at the "
-                        "end, however the game ends ('-' for stdout)")
+                   help="keep every match played (JSON, for `termpool replay`): the first in "
+                        "FILE, the next in FILE-2, FILE-3 ..., each written when it ends or "
+                        "is left and on every way out ('-': all to stdout at the end)")
     p.add_argument("--force", action="store_true",
                    help="let --record replace an existing file (without it, one is refused)")
 
@@ -87,13 +80,28 @@ def _size(text: str) -> tuple[int, int]:
     return c, r
 
 
-def _options(args: argparse.Namespace):
+def _settings(args: argparse.Namespace):
+    """The settings file (its warnings said, one line each) and this run's values: the
+    file's, with the flags on top."""
+    from termpool.text import say
+    from termpool.ui.settings import from_flags, load_settings
+
+    store = load_settings()
+    for warning in store.warnings:
+        say(f"warning: {warning}")
+    values = from_flags(store.saved, args)
+    if args.no_aid:
+        values["aid"] = "off"
+    if args.input == "classic" and args.power is None:  # no holds: the meter
+        values["power"] = "meter"
+    return store, values
+
+
+def _options(args: argparse.Namespace, values: dict):
     from termpool.ui.app import Options
 
-    return Options(mode=args.mode, opponent=args.opponent, table=args.table, colors=args.colors,
-                   frames=args.frames, seed=args.seed, level=args.level, aid=not args.no_aid,
-                   bell=args.bell, theme=args.theme, three_foul=args.three_foul,
-                   eight_break=args.eight_break)
+    return Options(mode=args.mode, opponent=args.opponent, seed=args.seed,
+                   three_foul=args.three_foul, eight_break=args.eight_break, **values)
 
 
 def _keymap(path: str | None):
@@ -118,54 +126,6 @@ def _check_record(args: argparse.Namespace) -> None:
             raise PlayError(f"--record: cannot write '{args.record}': {why}")
 
 
-def save_record(app, path: str | None, force: bool = False) -> int:
-    """Write the match (--record) after play, however it ended; a shot still rolling is played
-    out in simulation first. Says where the record went. Returns 0, or 1 when it could not go
-    to `path` (it then goes to a new file in the data directory, if it can)."""
-    from termpool.files import to_json, write_atomic, write_fallback, write_problem
-    from termpool.text import say
-    from termpool.ui.term import signals_held
-
-    if not path:
-        return 0
-    with signals_held():
-        match = app.record()
-        for note in app.notes:
-            say(note)
-        if match is None:
-            say("no match was played, so there is no record to save")
-            return 0
-        try:
-            text = to_json(match.to_json(), indent=1) + "\n"
-        except ValueError as e:
-            say(f"cannot write the record: {e}")
-            return 1
-        n = len(match.history)
-        what = f"{n} {'shot' if n == 1 else 'shots'}"
-        if path == "-":
-            sys.stdout.write(text)
-            sys.stdout.flush()
-            return 0
-        existed = os.path.exists(path)
-        why = write_problem(path, force=force)
-        if why is None:
-            try:
-                write_atomic(path, text)
-                replaced = "; it replaced the file that was there" if existed else ""
-                say(f"record saved to {path} ({what}{replaced})")
-                return 0
-            except OSError as e:
-                why = e.strerror or str(e)
-        try:
-            spare = write_fallback(text, "record")
-        except OSError as e:
-            say(f"cannot write the record to '{path}' ({why}) nor to the data directory "
-                f"({e.strerror or e}): it is lost")
-            return 1
-        say(f"cannot write the record to '{path}' ({why}); it was saved to {spare} ({what})")
-        return 1
-
-
 @contextmanager
 def _stoppable():
     """SIGTERM, SIGHUP and SIGQUIT end a headless run the way Ctrl-C does (an exception), so
@@ -186,7 +146,8 @@ def _stoppable():
 def run(args: argparse.Namespace) -> int:
     """Play; returns the exit status. Raises PlayError for bad options (one line, status 2).
     The record (--record) is saved on every way out: the end, Q, Ctrl-C, a signal, a crash."""
-    opts = _options(args)
+    store, values = _settings(args)
+    opts = _options(args, values)
     if not args.headless:
         for flag, val in (("--size", args.size), ("--keys", args.keys)):
             if val is not None:
@@ -202,13 +163,37 @@ def run(args: argparse.Namespace) -> int:
             sys.stderr.write(no_tty_message() + "\n")
             return 2
         app, play = _terminal(args, opts, _keymap(args.keymap))
+    from termpool.game.history import Recorder
+    from termpool.ui.records import Records
+
+    app.prefs = store
+    app.history = Recorder()
+    app.records = Records(args.record, args.force)
     try:
         rc = play()
     except BaseException:
-        save_record(app, args.record, args.force)  # a crash keeps the match too
+        _leave(app, args)  # a crash keeps the match too
         raise
-    saved = save_record(app, args.record, args.force)
+    saved = _leave(app, args)
     return rc or saved
+
+
+def _leave(app, args: argparse.Namespace) -> int:
+    """However the game ended: the match in play is saved (--record) and goes into the
+    history, and what is left to say is said: where each match of the session went. Returns
+    0, or 1 when a record could not go where asked."""
+    from termpool.text import say
+    from termpool.ui.term import signals_held
+
+    with signals_held():
+        app.record()  # a shot still rolling is played out first
+        app.log_match()
+        lines, status = app.records.finish(app.match) if app.records is not None \
+            else ([], 0)
+    for line in [*app.notes, *lines]:
+        say(line)
+    app.notes.clear()
+    return status
 
 
 def _terminal(args: argparse.Namespace, opts, keymap):

@@ -39,16 +39,20 @@ from termpool.ui.palette import (
     STRIPE_WHITE_C,
     ball_style,
     mono_glyph,
+    number_colour,
 )
 
 MIN_COLS, MIN_ROWS = 40, 12
 PANEL_COLS = 26  # width of a side panel, in cells
-PANEL_ROWS = 4  # minimum height of a bottom panel, in cells
+PANEL_ROWS = 4  # minimum height of a bottom panel, in cells ...
+PANEL_ROWS_TALL = 5  # ... on terminals of TALL_ROWS rows or more: a row for each player's
+TALL_ROWS = 20  # balls when they do not fit side by side, the status, the key help
 MIN_PLAY_PX = 8  # the playing area must be at least this many pixels high
 CUSHION_M = 0.05  # cushion width, nose to rail (m)
 RAIL_M = 0.10  # visible wooden rail width (m)
 DIAMOND_M = 0.014  # half diagonal of a sight diamond (m)
 MIN_BALL_PX = 1.0  # a ball is drawn at least this radius (pixels), so it never vanishes
+NUMBER_MIN_CELLS = 3  # a ball this many cells wide, or wider, carries its number
 
 
 @dataclass(frozen=True)
@@ -123,7 +127,7 @@ def _fit(aw: int, ah: int, length: float, width: float):
 
 
 def layout(cols: int, rows: int, table: Table | None = None, *, panel_cols: int = PANEL_COLS,
-           panel_rows: int = PANEL_ROWS) -> Layout | None:
+           panel_rows: int | None = None) -> Layout | None:
     """Place the table (as large as it goes, true proportions) and a side or bottom panel.
 
     Tries a panel of `panel_cols` on the right and one of at least `panel_rows` below, keeps the
@@ -132,6 +136,8 @@ def layout(cols: int, rows: int, table: Table | None = None, *, panel_cols: int 
     """
     if cols < MIN_COLS or rows < MIN_ROWS:
         return None
+    if panel_rows is None:
+        panel_rows = PANEL_ROWS_TALL if rows >= TALL_ROWS else PANEL_ROWS
     L, W = (table.length, table.width) if table is not None else (2.54, 1.27)
     best = None
     side = _fit(cols - panel_cols, 2 * rows, L, W) if cols - panel_cols >= MIN_COLS // 2 else None
@@ -362,6 +368,25 @@ class TableView:
         for x, y, rr, style in self._balls(ids, pos, state, radius):
             draw_ball(cv, x, y, rr, style)
         return cv
+
+    def numbers(self, cells, ids, pos, state=None, radius=None) -> None:
+        """Write each numbered ball's number on it, in the cells (chars, fg, bg) of `draw`'s
+        canvas, where the ball is NUMBER_MIN_CELLS cells wide or more: centred on the cell row
+        of its centre, on the ball's colour (a stripe's band)."""
+        chars, fg, bg = cells
+        rows, cols = chars.shape
+        for x, y, rr, style in self._balls(ids, pos, state, radius):
+            if style.tag == CUE or int(round(2 * rr)) < NUMBER_MIN_CELLS or not style.number:
+                continue
+            text = style.number
+            r = int(math.floor(y)) // 2
+            c0 = int(math.floor(x - len(text) / 2 + 0.5))
+            if not (0 <= r < rows and 0 <= c0 and c0 + len(text) <= cols):
+                continue
+            chars[r, c0:c0 + len(text)] = list(text)
+            if fg is not None:
+                fg[r, c0:c0 + len(text)] = number_colour(style.colour).rgb
+                bg[r, c0:c0 + len(text)] = style.colour.rgb
 
     def mono(self, ids, pos, state=None, radius=None) -> np.ndarray:
         """Glyph cells for the monochrome mode: the table's glyphs, and each ball as one glyph

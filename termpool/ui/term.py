@@ -33,7 +33,8 @@ from typing import Protocol
 from termpool.ui.keys import Mouse
 from termpool.ui.output import Screen
 
-ENTER = "\x1b[?1049h\x1b[?25l\x1b[H\x1b[2J"  # alternate screen, hide cursor, clear
+CLEAR = "\x1b[H\x1b[2J"  # cursor home, clear the screen
+ENTER = "\x1b[?1049h\x1b[?25l" + CLEAR  # alternate screen, hide cursor, clear
 LEAVE = "\x1b[0m\x1b[?2026l\x1b[?25h\x1b[?1049l"  # reset, end sync, show cursor, main screen
 MOUSE_ON = "\x1b[?1002h\x1b[?1006h"  # report presses, drags and releases, in SGR form
 MOUSE_OFF = "\x1b[?1006l\x1b[?1002l"
@@ -126,17 +127,21 @@ class Terminal:
             pass
 
 
-def _mode_strings() -> tuple[str, str]:
+def _mode_strings(kind: str | None = None) -> tuple[str, str]:
     """Enter/leave strings from the terminal's terminfo entry (through blessed, given a
-    non-tty stream so it probes nothing), falling back to the xterm sequences."""
+    non-tty stream so it probes nothing; `kind` overrides $TERM), falling back to the xterm
+    sequences. A terminal without an alternate screen (the Linux console, TERM=linux) keeps
+    the game's last frame when it leaves: there leaving clears the screen and homes the
+    cursor, so the shell's prompt comes back on a clean screen."""
     try:
         import blessed
 
-        bt = blessed.Terminal(stream=io.StringIO(), force_styling=True)
+        bt = blessed.Terminal(kind=kind, stream=io.StringIO(), force_styling=True)
         enter = bt.enter_fullscreen + bt.hide_cursor
         leave = bt.normal_cursor + bt.exit_fullscreen
         if "\x1b" in enter and "\x1b" in leave:
-            return enter + "\x1b[H\x1b[2J", "\x1b[0m\x1b[?2026l" + leave
+            clear = "" if bt.enter_fullscreen else CLEAR
+            return enter + CLEAR, "\x1b[0m\x1b[?2026l" + clear + leave
     except Exception:  # a broken terminfo entry must not keep anyone from playing
         pass
     return ENTER, LEAVE
@@ -237,7 +242,10 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
         flags["resized"] = True  # the size may have changed while we were away
 
     def draw() -> None:
-        nonlocal cols, rows
+        nonlocal cols, rows, screen
+        if getattr(app, "depth", depth) != screen.depth:  # changed in the settings
+            screen = Screen(cols, rows, app.depth, sync=True)
+            flags["resized"] = True  # a full redraw in the new colours
         if flags["resized"]:
             flags["resized"] = False
             cols, rows = _size(out)

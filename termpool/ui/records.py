@@ -1,0 +1,130 @@
+"""`--record FILE` for a whole session: every match played is kept, each in a file of its own.
+
+The first match with a shot goes to FILE, the second to FILE-2 (`m.json` -> `m-2.json`), the
+third to FILE-3, and so on. A match is written as soon as it ends or is left (a new game, the
+menu) and once more on the way out if it changed, atomically each time, so a session killed
+later still has it. A file that was there before play is replaced only with --force (the first
+one is checked before play); a file this session wrote is its own to rewrite. A file that
+cannot be written sends its match to the data directory instead (`files.write_fallback`).
+Nothing is printed while the game holds the terminal: the lines saying where each match went
+are kept for the end (`lines`). With FILE "-" the matches go to standard output at the end,
+one JSON document after another.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+
+def slot_path(path: str, k: int) -> str:
+    """Where the k-th match (from 1) of a session goes: FILE, then FILE-2, FILE-3 ..."""
+    if k == 1:
+        return path
+    p = Path(path)
+    return str(p.with_name(f"{p.stem}-{k}{p.suffix}"))
+
+
+@dataclass
+class _Kept:
+    match: object
+    shots: int = 0  # as last written
+    where: str | None = None  # the file it is in (None: lost)
+    why: str | None = None  # why it is not in its own file
+
+
+class Records:
+    def __init__(self, path: str | None, force: bool = False) -> None:
+        self.path, self.force = path, force
+        self._kept: list[_Kept] = []  # in the order the matches were first kept
+        self._ours: set[str] = set()  # files this session wrote
+        self._replaced: set[str] = set()  # ... of which were there before
+
+    def keep(self, match, empty: bool = False) -> None:
+        """Save `match` (not one without shots unless `empty`; again only if it has more
+        shots since)."""
+        if not self.path or match is None or match.running is not None:
+            return
+        if not (match.history or empty):
+            return
+        kept = next((x for x in self._kept if x.match is match), None)
+        if kept is None:
+            kept = _Kept(match)
+            self._kept.append(kept)
+        elif kept.shots == len(match.history) and kept.where is not None:
+            return
+        kept.shots = len(match.history)
+        if self.path != "-":
+            self._write(self._kept.index(kept) + 1, kept)
+
+    def _write(self, k: int, kept: _Kept) -> None:
+        from termpool import files
+        from termpool.ui.term import signals_held
+
+        target = slot_path(self.path, k)
+        try:
+            text = files.to_json(kept.match.to_json(), indent=1) + "\n"
+        except ValueError as e:  # JSON has no NaN: no file could hold it
+            kept.where, kept.why = None, f"cannot write the record: {e}"
+            return
+        with signals_held():
+            ours = target in self._ours
+            why = files.write_problem(target, force=self.force or ours)
+            if why is None:
+                try:
+                    existed = os.path.exists(target) and not ours
+                    files.write_atomic(target, text)
+                    self._ours.add(target)
+                    if existed:
+                        self._replaced.add(target)
+                    kept.where, kept.why = target, None
+                    return
+                except OSError as e:
+                    why = e.strerror or str(e)
+            kept.why = f"cannot write the record to '{target}' ({why})"
+            try:
+                if kept.where in self._ours and kept.where != target:
+                    files.write_atomic(kept.where, text)  # its spare from before
+                else:
+                    kept.where = str(files.write_fallback(text, "record"))
+                    self._ours.add(kept.where)
+            except OSError as e:
+                kept.where = None
+                kept.why += f" nor to the data directory ({e.strerror or e})"
+
+    def finish(self, current=None) -> tuple[list[str], int]:
+        """After play: the lines to say, one per match in order (with "-", standard output
+        gets the matches themselves), and the status: 0, or 1 if a match did not go where
+        asked. A session whose only match (`current`) has no shot yet still saves it: its
+        rack and settings are a record too."""
+        if not self.path:
+            return [], 0
+        if not self._kept and current is not None:
+            self.keep(current, empty=True)
+        if not self._kept:
+            return ["no match was played, so there is no record to save"], 0
+        if self.path == "-":
+            from termpool.files import to_json
+
+            lines = []
+            for x in self._kept:
+                try:
+                    sys.stdout.write(to_json(x.match.to_json(), indent=1) + "\n")
+                except ValueError as e:
+                    lines.append(f"cannot write the record: {e}: it is lost")
+            sys.stdout.flush()
+            return lines, int(bool(lines))
+        lines = []
+        for x in self._kept:
+            what = f"{x.shots} {'shot' if x.shots == 1 else 'shots'}"
+            if x.where is None:
+                lines.append(f"{x.why}: it is lost")
+            elif x.why:
+                lines.append(f"{x.why}; it was saved to {x.where} ({what})")
+            else:
+                replaced = "; it replaced the file that was there" \
+                    if x.where in self._replaced else ""
+                lines.append(f"record saved to {x.where} ({what}{replaced})")
+        return lines, int(any(x.why for x in self._kept))

@@ -1,0 +1,436 @@
+"""Settings: the one table, the file (round trip, malformed, unwritable), the flags over it for
+one run, and the Settings screen from the menu and from pause."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from unprivileged import as_nobody
+
+from termpool import cli
+from termpool.ui.app import App, Options, power_to_speed
+from termpool.ui.headless import screen_text
+from termpool.ui.keys import Key
+from termpool.ui.settings import (
+    BY_KEY,
+    DEFAULTS,
+    MAX_NAME,
+    SETTINGS,
+    format_settings,
+    load_settings,
+    parse_settings,
+    settings_path,
+)
+
+ROOT = Path(__file__).resolve().parent.parent
+
+# A value other than the default for every setting (names with what a name may hold).
+CHANGED = {"level": "hard", "table": "7ft", "frames": 5, "theme": "classic", "colors": "16",
+           "aid": "ghost", "power": "digits", "bell": True, "fast": "computer",
+           "player1": "Zoë #1", "player2": "Bob = B"}
+
+
+def conf() -> Path:
+    return settings_path()  # in the test's own config directory (conftest)
+
+
+def write_conf(text: str) -> Path:
+    p = conf()
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(text)
+    return p
+
+
+# ------------------------------------------------------------------------------ the table
+
+def test_the_table_offers_what_the_game_has() -> None:
+    from termpool import ai
+    from termpool.physics.table import PRESETS
+    from termpool.rules.themes import THEMES
+    from termpool.ui.output import DEPTHS
+    from termpool.ui.predict import LEVELS as AID_LEVELS
+
+    assert set(BY_KEY["level"].values) == set(ai.LEVELS)
+    assert set(BY_KEY["table"].values) == set(PRESETS)
+    assert set(BY_KEY["theme"].values) == set(THEMES)
+    assert BY_KEY["colors"].values == ("auto", *DEPTHS)
+    assert set(BY_KEY["aid"].values) == set(AID_LEVELS)
+    assert set(CHANGED) == set(BY_KEY)  # the tests below cover every setting
+
+
+def test_options_default_to_the_table() -> None:
+    opts = Options()
+    assert {k: getattr(opts, k) for k in DEFAULTS} == DEFAULTS
+
+
+def test_the_settings_file_lives_beside_keys_conf(tmp_path) -> None:
+    from termpool.ui.controls import config_path
+
+    env = {"XDG_CONFIG_HOME": str(tmp_path)}
+    assert settings_path(env) == config_path(env).parent / "settings.conf"
+
+
+# ------------------------------------------------------------------------------ the file
+
+def test_round_trip_of_every_setting() -> None:
+    values, warnings = parse_settings(format_settings(CHANGED))
+    assert warnings == [] and values == CHANGED
+    values, warnings = parse_settings(format_settings(DEFAULTS))
+    assert warnings == [] and values == DEFAULTS
+
+
+def test_saved_settings_are_read_back_and_written_whole() -> None:
+    store = load_settings()
+    assert store.saved == DEFAULTS and store.warnings == [] and not store.path.exists()
+    assert store.save(CHANGED) is None  # creates the config directory too
+    again = load_settings()
+    assert again.saved == CHANGED and again.warnings == []
+    assert [p.name for p in store.path.parent.iterdir()] == ["settings.conf"]  # no temp left
+
+
+def test_a_save_keeps_what_the_file_had_and_adds_the_changes() -> None:
+    write_conf("level = easy\n")
+    store = load_settings()
+    assert store.save({"table": "8ft"}) is None
+    assert load_settings().saved == {**DEFAULTS, "level": "easy", "table": "8ft"}
+
+
+@pytest.mark.parametrize(("text", "line", "key", "says"), [
+    ("level = expert", 1, "level", "must be one of easy, normal, hard, pro, not 'expert'"),
+    ("\n\nframes = 0", 3, "frames", "from 1 to 1000, not '0'"),
+    ("frames = 1001", 1, "frames", "from 1 to 1000"),
+    ("frames = three", 1, "frames", "not 'three'"),
+    ("bell = yes", 1, "bell", "must be on or off, not 'yes'"),
+    ("player1 = " + "x" * (MAX_NAME + 1), 1, "player1", f"at most {MAX_NAME} characters"),
+    ("player2 = a\x1bb", 1, "player2", "printable"),
+    ("# ok\nlevle = hard", 2, "levle", "unknown setting 'levle'"),
+    ("level = hard\nlevel = easy", 2, "level", "already set on line 1"),
+    ("aid", 1, "aid", "expected 'key = value'"),
+    ("= full", 1, "= full", "expected 'key = value'"),
+])
+def test_each_malformed_line_is_one_warning_naming_its_line_and_key(text, line, key,
+                                                                    says) -> None:
+    values, warnings = parse_settings(text + "\ntable = 8ft\n")
+    assert len(warnings) == 1
+    assert warnings[0].startswith(f"settings.conf line {line}: ")
+    assert key in warnings[0] and says in warnings[0]
+    assert values["table"] == "8ft"  # the good lines hold
+    if key in BY_KEY and "already set" not in says:
+        assert key not in values  # the bad key keeps its default
+
+
+def test_a_file_that_is_not_text_or_not_a_file_is_one_warning_and_the_defaults() -> None:
+    p = write_conf("")
+    p.write_bytes(b"level = hard\n\xff\xfe\n")
+    store = load_settings()
+    assert store.saved == DEFAULTS and len(store.warnings) == 1
+    assert "not UTF-8" in store.warnings[0] and "default settings" in store.warnings[0]
+    p.unlink()
+    p.mkdir()
+    store = load_settings()
+    assert store.saved == DEFAULTS and len(store.warnings) == 1
+    assert "cannot read" in store.warnings[0]
+
+
+def test_an_unwritable_config_directory_is_one_warning() -> None:
+    write_conf("level = easy\n")
+    d = conf().parent
+    os.chmod(d, 0o555)
+    try:
+        said = as_nobody(lambda: load_settings().save({"level": "hard"}))
+    finally:
+        os.chmod(d, 0o755)
+    assert "cannot save the settings" in said and "this game only" in said
+    assert load_settings().saved["level"] == "easy"
+
+
+def test_a_config_path_through_a_file_cannot_be_saved_and_says_so(tmp_path) -> None:
+    (tmp_path / "cfg").write_text("not a directory")
+    store = load_settings(env={"XDG_CONFIG_HOME": str(tmp_path / "cfg")})
+    assert store.warnings and store.saved == DEFAULTS  # reading through a file: unreadable
+    warning = store.save({"level": "hard"})
+    assert warning is not None and "\n" not in warning and "cannot save" in warning
+
+
+# ------------------------------------------------------------------------------ the flags
+
+def play(*args: str, keys: str = "q", env: dict | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "termpool", "play", "--headless", "--keys",
+                           "-", *args], input=keys, capture_output=True, text=True, cwd=ROOT,
+                          env={**os.environ, "PYTHONPATH": str(ROOT), **(env or {})},
+                          timeout=120)
+
+
+def recorded(tmp_path, *args: str, keys: str = "enter space-hold 0.5 wait 5 q y") -> dict:
+    import json
+
+    rec = tmp_path / "rec.json"
+    p = play("--mode", "8ball", "--opponent", "human", "--seed", "1", "--record", str(rec),
+             "--force", *args, keys=keys)
+    assert p.returncode == 0, p.stderr
+    return json.loads(rec.read_text())["match"]
+
+
+def test_the_file_is_read_at_start_and_flags_override_it_for_one_run(tmp_path) -> None:
+    write_conf("table = 7ft\nframes = 3\ntheme = classic\nplayer1 = Ann\nplayer2 = Bob\n")
+    m = recorded(tmp_path)
+    assert (m["frames"], m["theme"], m["players"]) == (3, "classic", ["Ann", "Bob"])
+    assert m["table"]["length"] == pytest.approx(1.981)
+    m = recorded(tmp_path, "--frames", "2", "--table", "9ft", "--player1", "Cy")
+    assert (m["frames"], m["theme"], m["players"]) == (2, "classic", ["Cy", "Bob"])
+    assert m["table"]["length"] == pytest.approx(2.54)
+    assert load_settings().saved["frames"] == 3  # the flags were for that run only
+
+
+def test_on_off_settings_have_both_flags() -> None:
+    from termpool.ui.play import _settings
+
+    write_conf("bell = on\n")
+    parser = cli._parser()
+    for argv, bell in (([], True), (["--no-bell"], False), (["--bell"], True)):
+        _, values = _settings(parser.parse_args(["play", *argv]))
+        assert values["bell"] is bell
+    write_conf("power = digits\naid = ghost\n")
+    _, values = _settings(parser.parse_args(["play", "--input", "classic", "--no-aid"]))
+    assert values["power"] == "meter" and values["aid"] == "off"  # no holds: the meter
+    _, values = _settings(parser.parse_args(["play", "--input", "classic", "--power",
+                                             "digits"]))
+    assert values["power"] == "digits"
+
+
+@pytest.mark.parametrize(("args", "says"), [
+    (["--player1", "x" * 40], f"--player1: at most {MAX_NAME} characters"),
+    (["--player2", " Bo"], "--player2: must not start or end with a space"),
+    (["--frames", "0"], "--frames: must be a whole number from 1 to 1000"),
+    (["--power", "turbo"], "--power: invalid choice"),
+    (["--fast", "yes"], "--fast: invalid choice"),
+])
+def test_bad_setting_flags_are_one_line_and_status_2(args, says) -> None:
+    p = play(*args)
+    assert p.returncode == 2 and p.stderr.count("\n") == 1 and says in p.stderr, p.stderr
+
+
+def test_a_malformed_file_is_one_line_per_bad_key_and_the_game_starts(tmp_path) -> None:
+    write_conf("frames = 0\ntheme = classic\nlevel = \x1b[2Jexpert\n")
+    rec = tmp_path / "r.json"
+    p = play("--mode", "8ball", "--record", str(rec), keys="q y")
+    assert p.returncode == 0
+    lines = p.stderr.splitlines()
+    assert lines[0].startswith("termpool: warning: settings.conf line 1: frames:")
+    assert lines[1].startswith("termpool: warning: settings.conf line 3: level:")
+    assert "\x1b" not in p.stderr and "\\x1b[2J" in lines[1]  # escaped, never obeyed
+    assert len([x for x in lines if "settings.conf" in x]) == 2
+
+
+# ------------------------------------------------------------------------------ the screen
+
+def app_at_menu(**kw) -> App:
+    app = App(Options(colors="mono", seed=0, **kw))
+    app.prefs = load_settings()
+    return app
+
+
+def keys(app: App, *names: str, t: float = 0.0) -> None:
+    from termpool.ui.keys import parse_key
+
+    for name in names:
+        app.key(parse_key(name), t)
+        t += 0.1
+
+
+def menu_item(label: str) -> str:
+    from termpool.ui.app import MENU
+
+    return str([m[0] for m in MENU].index(label) + 1)
+
+
+def test_the_menu_opens_the_settings_and_esc_saves_what_changed() -> None:
+    app = app_at_menu(level="hard")  # as if --level hard: not to be saved
+    keys(app, menu_item("Settings"))
+    text = screen_text(app.cells(80, 24)[0])
+    for s in SETTINGS:
+        assert s.label in text
+    assert "‹ hard ›" in text and "settings.conf" in text
+    keys(app, "down", "right", "esc")  # the table: 9ft -> 7ft (round)
+    assert app.screen is None and app.opts.table == "7ft"
+    saved = load_settings().saved
+    assert saved["table"] == "7ft" and saved["level"] == "normal"
+
+
+def test_every_setting_can_be_changed_on_the_screen() -> None:
+    app = app_at_menu()
+    start = {k: getattr(app.opts, k) for k in DEFAULTS}
+    keys(app, menu_item("Settings"))
+    for s in SETTINGS:
+        before = getattr(app.opts, s.key)
+        if s.kind == "name":
+            keys(app, "enter", "A", "n", "space", "n", "enter")
+            assert getattr(app.opts, s.key) == "An n"
+        else:
+            keys(app, "right")
+            assert getattr(app.opts, s.key) != before
+        keys(app, "down")
+    keys(app, "esc")
+    saved = load_settings().saved
+    assert all(saved[k] == getattr(app.opts, k) != start[k] for k in DEFAULTS)
+
+
+def test_a_name_is_typed_and_plays_under_it() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * 9, "enter", "q", "backspace", "Z", "o", "e",
+         "enter", "esc")
+    assert app.opts.player1 == "Zoe"
+    keys(app, "1")  # 8-ball against the computer
+    assert app.match.players == ("Zoe", "Computer")
+    assert "Zoe to break" in screen_text(app.cells(100, 32)[0])
+
+
+def test_a_name_stops_at_its_length_and_esc_leaves_it_as_it_was() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * 10, "enter", *["x"] * (MAX_NAME + 5), "enter")
+    assert app.opts.player2 == "x" * MAX_NAME
+    keys(app, "enter", "y", "esc")
+    assert app.opts.player2 == "x" * MAX_NAME
+
+
+def test_from_pause_match_settings_wait_for_the_next_game() -> None:
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0))
+    app.prefs = load_settings()
+    keys(app, "enter", "p")
+    assert "S: settings" in screen_text(app.cells(100, 32)[0])
+    keys(app, "s", "right")  # level: normal -> hard, for the next game
+    text = screen_text(app.cells(100, 32)[0])
+    assert "* next game" in text and "from the next game" in text
+    assert app.opts.level == "normal" and app.pending == {"level": "hard"}
+    keys(app, *["down"] * 5, "right")  # the aim aid: at once
+    assert app.opts.aid == "ghost"
+    keys(app, "esc")
+    assert app.overlay == "pause"  # back to the pause box
+    keys(app, "space")
+    assert app.overlay is None
+    app.new_match("8ball", "human")
+    assert app.opts.level == "hard" and app.pending == {}
+    assert load_settings().saved["level"] == "hard"
+
+
+def test_every_key_on_the_screen_is_drawn() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"))
+    for name in ("down", "right", "esc"):
+        app.cells(80, 24)  # drawn: nothing left to draw
+        keys(app, name)
+        assert app.dirty  # the terminal draws only what is dirty
+
+
+def test_the_colour_depth_changes_at_once() -> None:
+    app = App(Options(mode="practice", opponent="human", colors="16", seed=0))
+    assert app.cells(80, 24)[1] is not None
+    keys(app, "p", "s", *["down"] * 4, "right")  # 16 -> mono
+    assert app.depth == "mono" and app.cells(80, 24)[1] is None
+
+
+def test_an_unwritable_config_directory_costs_one_line(tmp_path) -> None:
+    (tmp_path / "file").write_text("")
+    app = App(Options(colors="mono"))
+    app.prefs = load_settings(env={"XDG_CONFIG_HOME": str(tmp_path / "file")})
+    keys(app, menu_item("Settings"), "right", "esc")
+    assert app.opts.level == "hard"  # for this run
+    assert len(app.notes) == 1 and "cannot save the settings" in app.notes[0]
+
+
+# ------------------------------------------------------------------------- what they do
+
+def shots(app: App) -> list[dict]:
+    return [rec["shot"] for rec in app.match.history]
+
+
+def run(app: App, script: str) -> None:
+    from termpool.ui.headless import play as play_keys
+    from termpool.ui.keys import parse_script
+
+    play_keys(app, parse_script(script), 100, 32)
+
+
+def test_power_digits_strikes_at_once_at_the_level_set() -> None:
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0,
+                      power="digits"))
+    run(app, "enter wait 0.2 space wait 30 esc 3 space wait 30")
+    a, b = shots(app)
+    assert a["speed"] == power_to_speed(0.5)  # the set level, before any digit
+    assert b["speed"] == power_to_speed(0.3)  # Esc keeps digits; 3 sets 30%
+
+
+def test_power_meter_is_the_swinging_meter_even_with_key_releases() -> None:
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0,
+                      power="meter"), input_mode="release")
+    assert app.charge.mode == "classic"
+    run(app, "enter wait 0.2 space wait 0.5 space wait 5")
+    assert len(shots(app)) == 1
+
+
+@pytest.mark.parametrize(("fast", "human", "cpu"), [("off", False, False),
+                                                    ("computer", False, True),
+                                                    ("always", True, True)])
+def test_fast_forward_setting_starts_shots_at_x4(fast, human, cpu) -> None:
+    app = App(Options(mode="8ball", opponent="cpu", colors="mono", seed=0, fast=fast))
+    seen = []
+    real = app._shoot
+
+    def shoot(*a, **k):
+        real(*a, **k)
+        seen.append((app.shooter_is_cpu(), app.fast))
+
+    app._shoot = shoot
+    app.cpu = (False, True)
+    run(app, "enter wait 0.2 space-hold 0.3 wait 30")
+    assert (False, human) in seen and (True, cpu) in seen
+
+
+def test_level_from_settings_reaches_the_computer() -> None:
+    app = App(Options(mode="8ball", opponent="cpu", colors="mono", seed=0, level="easy"))
+    calls = []
+    import termpool.ai as ai
+
+    real = ai.choose_shot
+
+    def spy(*a, **k):
+        calls.append(k["level"])
+        return real(*a, **k)
+
+    ai.choose_shot = spy
+    try:
+        run(app, "enter wait 0.2 space-hold 0.2 wait 30")
+    finally:
+        ai.choose_shot = real
+    assert calls and set(calls) == {"easy"}
+
+
+def test_key_press_in_the_settings_never_reaches_the_game() -> None:
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
+    keys(app, "enter", "p", "s")
+    angle = app.angle
+    app.key(Key("space"), 1.0)
+    app.key(Key("left"), 1.1)
+    assert app.angle == angle and app.match.history == [] and app.screen is not None
+
+
+@pytest.mark.parametrize("cols, rows", [(80, 24), (120, 40), (60, 30)])
+def test_the_settings_box_keeps_its_width_as_the_selection_moves(cols, rows) -> None:
+    from termpool.ui.app import App, Options
+    from termpool.ui.headless import screen_text
+    from termpool.ui.keys import Key
+    from termpool.ui.settings import SETTINGS
+
+    app = App(Options(colors="mono"))
+    app.open_screen("settings")
+    widths = set()
+    for k in range(len(SETTINGS) + 1):
+        text = screen_text(app.cells(cols, rows)[0])
+        (top,) = [line for line in text.splitlines() if "┌" in line]
+        widths.add((top.index("┌"), top.index("┐")))
+        app.key(Key("down"), float(k))
+    assert len(widths) == 1, widths
