@@ -205,6 +205,21 @@ def test_a_shot_that_plays_differently_from_its_record_says_so(record) -> None:
     assert "differently" not in text(w, 120, 40)
 
 
+def test_a_watched_shot_takes_no_more_steps_than_its_record(record) -> None:
+    """A replay's work budget is its recorded step count, watched too: a record claiming
+    fewer steps than the shot takes is played that far (and the frame under way), not to the
+    end, and says so."""
+    from termpool.game.record import shot_scene
+    from termpool.ui.watch import play_shot
+
+    rec = copy.deepcopy(record["shots"][0])
+    rec["steps"] = 30
+    played = play_shot(shot_scene(rec["scene"], rec["shot"]), rec["dt"], rec)
+    assert played.differs == "steps: still moving after the recorded 30 steps (a replay " \
+                            "takes no more)"
+    assert len(played.frames) == 30  # one step a frame at the game's dt
+
+
 def test_words_from_the_file_are_shown_not_obeyed(record) -> None:
     data = copy.deepcopy(record)
     data["match"]["players"] = ["\x1b[2JAnn", "Bob\x07"]

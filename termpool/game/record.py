@@ -76,6 +76,11 @@ def run_to_rest(engine: Engine, dt: float, max_steps: int | None = None) -> bool
     return True
 
 
+def still_moving(steps: int) -> str:
+    """The difference of a replayed shot whose balls still move after its recorded steps."""
+    return f"steps: still moving after the recorded {steps} steps (a replay takes no more)"
+
+
 def results(scene: Scene, engine: Engine, dt: float) -> dict:
     """time, steps, events and final balls of a finished shot, as `termpool sim` prints them."""
     from termpool.cli import sim_result  # the one definition of the printed form
@@ -210,8 +215,7 @@ def replay_shot(rec: Any, path: str = "shot") -> dict:
     fresh = results(scene, engine, dt)
     if not rested:
         return {"ok": False, "events": len(fresh["events"]), "reason": "",
-                "differences": [f"steps: still moving after the recorded {rec['steps']} steps "
-                                "(a replay takes no more)"]}
+                "differences": [still_moving(rec["steps"])]}
     fresh["outcome"] = judge_json(scene, engine)
     diffs = []
     for k in ("time", "steps", "events", "final", "outcome"):

@@ -26,6 +26,7 @@ from termpool.game.record import (
     results,
     run_to_rest,
     start_engine,
+    still_moving,
 )
 from termpool.game.turn import advance
 from termpool.physics.engine import POCKETED
@@ -71,13 +72,18 @@ def play_shot(scene: Scene, dt: float, rec: dict) -> Played:
     a longer shot runs to rest at once, as it does live) and compare it with its record."""
     engine = start_engine(scene)
     frames, owed = [], 0.0
-    while not engine.at_rest()[0] and len(frames) < MAX_SHOT_FRAMES:
-        owed = advance(engine, dt, owed + DT)
-        frames.append((engine.pos[0].copy(), engine.state[0].copy()))
+    steps = rec["steps"]  # the work budget of a replay (a frame may take a few steps more)
     try:
-        run_to_rest(engine, dt)
-    except RuntimeError as e:
+        while not engine.at_rest()[0] and len(frames) < MAX_SHOT_FRAMES \
+                and engine.steps < steps:
+            owed = advance(engine, dt, owed + DT)
+            frames.append((engine.pos[0].copy(), engine.state[0].copy()))
+        rested = run_to_rest(engine, dt, max_steps=steps)
+    except RuntimeError as e:  # the engine's work limit
         return Played(frames, (engine.pos[0].copy(), engine.state[0].copy()), str(e))
+    if not rested:
+        return Played(frames, (engine.pos[0].copy(), engine.state[0].copy()),
+                      still_moving(steps))
     fresh = results(scene, engine, dt)
     differs = None
     for key in ("time", "steps", "events", "final"):
