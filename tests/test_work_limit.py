@@ -138,6 +138,36 @@ def test_a_ball_sunk_into_a_rail_past_a_clusters_reach_comes_out(monkeypatch) ->
                                     or sc.table.on_bed(x, y, float(eng.rc[0, 0])))
 
 
+# Five balls of mixed masses and sizes, pressed together (found by a search of valid scenes,
+# shrunk from 29 balls): a small ball rolling slowly away from a still one, slowing as it
+# goes, was found pressed against it at the same instant for ever.
+FIVE = {"table": {"pockets": "none"}, "physics": {"e_ball": 0.0, "g": 1.3021978885199972},
+        "balls": [
+            {"id": "cue", "x": 1.7347314888629177, "y": 0.9530937513434181,
+             "mass": 0.004364758012660745},
+            {"id": "1", "x": 1.7562025913734962, "y": 0.9001304219826214,
+             "mass": 1.2682870350493793},
+            {"id": "5", "x": 1.7324278114253984, "y": 1.0101973026363444,
+             "mass": 0.3957814627042608},
+            {"id": "7", "x": 1.728913041229709, "y": 0.8785349990117675,
+             "radius": 0.006225601149123313, "mass": 0.06733771149419246},
+            {"id": "12", "x": 1.738097696085738, "y": 0.8684644389931498,
+             "radius": 0.00740429481207012, "mass": 0.17}],
+        "shot": {"speed": 0.4553258583725396, "angle": 93.65176380826694,
+                 "side": -0.2649890161066668, "top": -0.30127261728426646}}
+
+
+def test_five_mixed_balls_pressed_together_come_to_rest() -> None:
+    """A pressed pair whose solve changes nothing is looked for again once it has sunk
+    roots.SINK (as a pair that is not pressed), so the run goes on in simulated time and the
+    table comes to rest in a few dozen passes."""
+    sc = load_scene(FIVE)
+    eng = Engine(sc.table, sc.physics, sc.pos, sc.vel, sc.w, sc.radius, sc.mass,
+                 max_work=200_000)
+    eng.run(1 / 60)
+    assert eng.at_rest().all() and eng.passes < 500
+
+
 # ------------------------------------------------------------------------------- commands
 
 

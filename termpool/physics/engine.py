@@ -578,8 +578,27 @@ class Engine(SlowContacts):
                 skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(extra.get(n, ()))
                 extra.setdefault(n, []).extend(k for k in moved if k not in skip)
         self._predict(np.concatenate(more_b), np.concatenate(more_i))
+        for n in quiet:
+            if kind[n] == 3:
+                self._unstick(int(tabs[n]), int(i[n]), int(j[n]))
         if self.record:
             self._log(tabs, kind, i, j, old_state, labels, extra, also, quiet)
+
+    def _unstick(self, b: int, i: int, j: int) -> None:
+        """A pressed pair whose solve changed nothing, found pressed again at the same
+        instant, would be met there for ever (a ball slowing to a stop as it parts, a group
+        whose push leaves it pressed): it is looked for again as a pair that is not pressed,
+        when it has sunk SINK."""
+        t = self.tb[b]
+        if self.t_pair[b, i, j] > t:
+            return
+        k = np.array([i, j])
+        p, v, _ = self._eval(np.full(2, b), k, np.full(2, t), spin=False)
+        a = self.acc[b, k]
+        end = np.minimum(self.t_trans[b, k], self.t_check[b, k]).min() - t
+        found = first_contact((p[1] - p[0])[None], (v[1] - v[0])[None], (a[1] - a[0])[None],
+                              self.radius[b, k].sum()[None], np.array([end]), pressed=False)
+        self.t_pair[b, i, j] = self.t_pair[b, j, i] = t + found[0]
 
     def _grouped(self, tabs, i, j, kind):
         """Events (by position in the pass) that involve a grouped ball, or None if no table

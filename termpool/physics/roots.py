@@ -26,7 +26,8 @@ _FRACTIONS = np.arange(PIECES, dtype=float)
 
 
 def first_contact(
-    p0: np.ndarray, v: np.ndarray, a: np.ndarray, dist: np.ndarray, horizon: np.ndarray
+    p0: np.ndarray, v: np.ndarray, a: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
+    pressed: bool = True,
 ) -> np.ndarray:
     """First t in [0, horizon] at which |p0 + v t + a t^2/2| falls to `dist`; inf if none.
 
@@ -34,6 +35,7 @@ def first_contact(
     Touching pairs (gap < TOUCH) that close faster than V_MIN meet at t = 0; touching pairs
     that do not close are looked for at a depth of SINK, so that a pair pushed together by
     friction is caught again after a bounded, sub-micrometre overlap instead of chattering.
+    With `pressed`, a touching pair accelerating together meets at t = 0 as well.
     """
     px, py, vx, vy, ax, ay = p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1]
     pv = px * vx + py * vy
@@ -42,7 +44,7 @@ def first_contact(
     # Closing, or sunk deeper than SINK (left so by another contact), or pressed together:
     # resolve at once.
     now = touching & ((pv < -V_MIN * r0) | (r0 < dist - SINK))
-    rest = np.flatnonzero(touching & ~now & (pv <= V_MIN * r0))
+    rest = np.flatnonzero(touching & ~now & (pv <= V_MIN * r0) & pressed)
     if rest.size:
         # The distance's second derivative, (v.v + p.a) / r - (p.v)^2 / r^3.
         px_, py_, vx_, vy_ = px[rest], py[rest], vx[rest], vy[rest]
