@@ -93,7 +93,7 @@ LEVELS = {
     "hard": Level(1.2, (1.0, 1.4, 1.9, 2.6, 3.4),
                   (STUN, (0.0, 0.35), (0.0, -0.35), (0.25, 0.1), (-0.25, 0.1), (0.25, -0.3),
                    (-0.25, -0.3)), 16, 10, 3, (0.5, 0.16, 0.275, 0.35, 0.65, 0.725, 0.84),
-                  100.0, 200.0, 0.25, 0.035, 0.035, 0.0),
+                  100.0, 200.0, 0.23, 0.03, 0.03, 0.0),
     # A professional: a steadier stroke, more of the batch.
     "pro": Level(1.5, (1.0, 1.4, 1.9, 2.6, 3.4),
                  (STUN, (0.0, 0.35), (0.0, -0.4), (0.3, 0.1), (-0.3, 0.1), (0.25, -0.3),
@@ -558,13 +558,31 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
         chance, _ = geo.pot_chances(final[rows, t.cue], final[rows], alive[rows], tmask,
                                     t.radius, t.cue, pockets, table, LEAVE_SIGMA)
         value = geo.leave_value(chance)
+        now = _opponent_now(state, t, pockets, table)
         for r, (b, p, _) in enumerate(leave_for):
             if not cue_alive[r]:
                 continue
             # After a pot (p >= 0): the shooter's next shot, as likely as the pot itself.
-            # After the turn passes (p < 0): the opponent's.
-            scores[b] += p * lv.position * value[r] if p >= 0 else -lv.leave * value[r]
+            # After the turn passes (p < 0): the opponent's. A safety that leaves the opponent
+            # no less than the table has now hides nothing: it counts as leaving them the
+            # best table there is (a pot with any chance then goes first).
+            if p >= 0:
+                scores[b] += p * lv.position * value[r]
+            elif cands.kind[b] == "safety" and value[r] >= now:
+                scores[b] -= lv.leave
+            else:
+                scores[b] -= lv.leave * value[r]
     return scores, calls, notes
+
+
+def _opponent_now(state: State, t: _Table, pockets: geo.Pockets, table: Table) -> float:
+    """The leave value of the table as it lies, for the opponent (their legal balls, the cue
+    ball where it is)."""
+    opp = replace(state, shooter=state.opponent)
+    tmask = np.array([[b in legal_targets(opp, t.ids) for b in t.ids]])
+    chance, _ = geo.pot_chances(t.pos[t.cue][None], t.pos[None], np.ones((1, len(t.ids)), bool),
+                                tmask, t.radius, t.cue, pockets, table, LEAVE_SIGMA)
+    return float(geo.leave_value(chance)[0])
 
 
 # ----------------------------------------------------------------------------------- API

@@ -754,3 +754,18 @@ def test_the_levels_table_in_the_docs_is_the_levels():
     for row, cell in want.items():
         for got, lv in zip(rows[row], ai.LEVELS.values(), strict=True):
             assert got.startswith(cell(lv)), (row, got)
+
+
+def test_no_safety_when_there_is_nothing_left_to_hide(monkeypatch):
+    # The opponent (stripes) has almost no pot from where the cue ball lies: no safety can
+    # leave them less, so the level goes for its own (unlikely) pot; scored without that rule
+    # it would have chosen a safety.
+    lay = Layout({"cue": (0.38, 0.15), "2": (1.762, 0.255), "5": (1.56, 1.085),
+                  "10": (2.05, 0.214), "12": (1.191, 0.69), "8": (0.908, 0.493)})
+    down = tuple(b for b in (*SOLIDS, *STRIPES) if b not in lay.ids)
+    state = State(mode="8ball", pocketed=down, groups={0: "solids", 1: "stripes"})
+    assert ai.best_chance(*lay.args(), replace(state, shooter=1)) < 0.1
+    plan = ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64)
+    assert plan.kind == "pot"
+    monkeypatch.setattr(ai, "_opponent_now", lambda *_: math.inf)  # the rule off
+    assert ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64).kind == "safety"
