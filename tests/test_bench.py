@@ -15,6 +15,9 @@ FIGURES = (
     "break_ms_max",
     "batch_breaks_per_s",
     "batch_wall_s",
+    "break_cpu_ms",
+    "batch_cpu_s",
+    "batch_stepped_cpu_s",
     "import_s",
     "run_events_ms",
 )
