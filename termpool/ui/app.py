@@ -25,15 +25,11 @@ from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
 from termpool.ui.settings import DEFAULTS, player_names
+from termpool.ui.shots import DEFAULT_POWER, DT, FAST, MAX_STEPS_PER_TICK, power_to_speed, simulate
 from termpool.ui.table_view import TableView, layout
 from termpool.ui.term import signals_held
+from termpool.ui.words import OPTION_KEYS, chose
 
-DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at any dt)
-MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
-MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once
-MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power
-DEFAULT_POWER = 0.5  # the aid's power (and the digits') before a match's first shot
-FAST = 4.0  # fast-forward factor
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 CPU_AIM_S = 0.6  # the computer turns its stick onto its aim over this long ...
@@ -78,13 +74,6 @@ class Options:
     fast: str = DEFAULTS["fast"]  # shots start fast-forwarded: "off", "computer", "always"
     player1: str = DEFAULTS["player1"]  # names; empty: the usual ones
     player2: str = DEFAULTS["player2"]
-
-
-def power_to_speed(level: float) -> float:
-    """Cue-ball speed for a power level in [0, 1]: finer control of the soft shots most
-    positions need (half power is about 3.3 m/s, full power a 9 m/s break)."""
-    level = min(1.0, max(0.0, level))
-    return MIN_SPEED + (MAX_SPEED - MIN_SPEED) * level ** 1.5
 
 
 class App:
@@ -293,7 +282,7 @@ class App:
             self.dirty = True
             return
         self.struck_at = self.now  # the clock at the strike
-        self.frames = self._simulate(self.run)
+        self.frames = simulate(self.run)
         self.shown = 0  # frames of the shot shown so far
         fast = self.opts.fast  # fast-forward is for one shot, unless the settings say
         self.fast = fast == "always" or (fast == "computer" and self.shooter_is_cpu())
@@ -395,19 +384,6 @@ class App:
             if level is not None:
                 self._shoot_human(level)
 
-    @staticmethod
-    def _simulate(run) -> list:
-        """Every frame of the shot, computed when it is struck. A step can cost far more than a
-        frame (the break's impact: ~100 contacts in 1/60 s), and a hitch there would show; the
-        same cost paid at the strike does not. The steps are the ones `run.step` takes live, so
-        the match and its replay are unchanged."""
-        frames = []
-        while not run.done and len(frames) < MAX_SHOT_FRAMES:
-            run.step(DT)
-            e = run.engine
-            frames.append((e.pos[0].copy(), e.state[0].copy()))
-        return frames
-
     @property
     def shot_clock(self) -> float:
         """Simulated seconds of the running shot shown so far."""
@@ -448,7 +424,7 @@ class App:
             who = m.players[m.shooter]
             m.choose(plan)
             self._cpu_plan = "done"
-            self.message = [(f"{who} chose to {OPTION_WORDS[plan]}", "turn")]
+            self.message = [(chose(who, plan), "turn")]
             self._turn_start()
             return
         if self._cpu_t0 is None:
@@ -779,7 +755,7 @@ class App:
                 return False
             who = self.match.players[self.match.shooter]
             self.match.choose(pick)
-            self.message = [(f"{who} chose to {OPTION_WORDS[pick]}", "dim")]
+            self.message = [(chose(who, pick), "dim")]
             self._turn_start()
             return True
         if key.name == "n":
@@ -929,11 +905,4 @@ def _power_digit(key) -> float | None:
         return None
     return (int(key.name) or 10) / 10
 
-
-OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",
-                "shoot": "shoot", "pass": "pass the shot back"}
-OPTION_KEYS = {
-    "rerack_or_accept": {"r": "rerack", "a": "accept"},
-    "shoot_or_pass": {"s": "shoot", "p": "pass"},
-}
 

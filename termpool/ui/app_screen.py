@@ -20,13 +20,7 @@ from termpool.ui.panel import (
     draw_panel,
     widget_fits,
 )
-
-OPTION_TEXT = {
-    "rerack_or_accept": ["The break was illegal.", "", "r: re-rack and break yourself",
-                         "a: accept the table and shoot"],
-    "shoot_or_pass": ["Your opponent pushed out.", "", "s: shoot from here",
-                      "p: pass the shot back"],
-}
+from termpool.ui.words import OPTION_TEXT
 
 
 def cells(app, cols: int, rows: int):

@@ -36,16 +36,9 @@ from termpool.rules.themes import THEMES, group_label
 from termpool.rules.words import MODE_NAMES, in_names
 from termpool.scene import Scene, table_to_dict
 from termpool.text import shown
-from termpool.ui.app import (
-    DT,
-    FAST,
-    MAX_SHOT_FRAMES,
-    MAX_SPEED,
-    MAX_STEPS_PER_TICK,
-    MIN_SPEED,
-    OPTION_WORDS,
-)
 from termpool.ui.output import resolve_depth
+from termpool.ui.shots import DT, MAX_SHOT_FRAMES, Clock, speed_to_power
+from termpool.ui.words import OPTION_WORDS, chose
 
 AIM_S = 1.0  # the stick is shown on the shot's line this long before the strike ...
 VERDICT_S = 2.5  # ... and the verdict this long after the balls stop, before the next shot
@@ -91,12 +84,6 @@ def play_shot(scene: Scene, dt: float, rec: dict) -> Played:
         if differs:
             break
     return Played(frames, (engine.pos[0].copy(), engine.state[0].copy()), differs)
-
-
-def speed_to_power(speed: float) -> float:
-    """The power level (0 to 1) that strikes at `speed` (the inverse of `app.power_to_speed`)."""
-    f = (float(speed) - MIN_SPEED) / (MAX_SPEED - MIN_SPEED)
-    return min(1.0, max(0.0, f)) ** (2 / 3)
 
 
 def _names(data: dict) -> tuple[str, str]:
@@ -146,6 +133,7 @@ class Watch:
         self.fast = False
         self._played: OrderedDict[int, Played] = OrderedDict()
         self._geom = None
+        self.clock = Clock()  # the wall-clock time owed to the shot on show
         self.go_to(0)
 
     @classmethod
@@ -186,12 +174,11 @@ class Watch:
         self.phase = "aim"
         self.frames = self.played(self.i).frames
         self.shown = 0
-        self._acc = 0.0
-        self._last = None
+        self.clock = Clock()
         self.dirty = True
 
     def _next_phase(self) -> None:
-        self._acc = 0.0
+        self.clock = Clock(self.clock.last)
         if self.phase == "aim":
             self.phase = "run"
         elif self.phase == "run":
@@ -216,22 +203,20 @@ class Watch:
 
     def tick(self, t: float) -> None:
         if self.overlay is not None or self.paused or self.phase == "end":
-            self._last = None  # time stands still
+            self.clock = self.clock.stopped()  # time stands still
             return
-        if self._last is None:
-            self._last = t
+        started = self.clock.started()
+        self.clock = self.clock.at(t, self.fast)
+        if not started:
             return
-        self._acc += (t - self._last) * (FAST if self.fast else 1.0)
-        self._last = t
-        if self.phase == "run":  # frames by the game's own accumulator (ui.app)
-            n = min(int(self._acc / DT), MAX_STEPS_PER_TICK)
-            self._acc = 0.0 if n == MAX_STEPS_PER_TICK else self._acc - n * DT
+        if self.phase == "run":  # frames as the game shows them (ui.shots)
+            n, self.clock = self.clock.frames()
             if n:
                 self.shown = min(self.shown + n, len(self.frames))
                 self.dirty = True
             if self.shown >= len(self.frames):
                 self._next_phase()
-        elif self._acc >= (AIM_S if self.phase == "aim" else VERDICT_S):
+        elif self.clock.owed >= (AIM_S if self.phase == "aim" else VERDICT_S):
             self._next_phase()
 
     # ---------------------------------------------------------------------------- keys
@@ -251,7 +236,7 @@ class Watch:
             self.done = True
         elif name in PAUSE_KEYS and key.kind == "press":
             self.paused = not self.paused
-            self._last = None
+            self.clock = self.clock.stopped()
         elif name == "left":
             self.go_to(self.i - 1 if self.phase != "end" else self.i)
         elif name == "right":
@@ -380,8 +365,7 @@ class Watch:
                 lines.append((reason, "good" if out.get("continue_turn") or
                               out.get("winner") is not None else "plain"))
         for c in self.choices.get(i + 1, []):
-            lines.append((f"{self.players[c['player']]} chose to {OPTION_WORDS[c['choice']]}",
-                          "dim"))
+            lines.append((chose(self.players[c["player"]], c["choice"]), "dim"))
         return lines
 
     def describe(self, i: int) -> str:
