@@ -32,7 +32,7 @@ if __name__ == "__main__":
 from termpool.physics.engine import Engine  # noqa: E402
 from termpool.scene import load_scene  # noqa: E402
 from termpool.ui.canvas import to_cells  # noqa: E402
-from termpool.ui.frame import Renderer, draw_panel  # noqa: E402
+from termpool.ui.frame import Renderer  # noqa: E402
 from termpool.ui.overlay import (  # noqa: E402
     blit_cells,
     draw_cue_stick,
@@ -41,6 +41,7 @@ from termpool.ui.overlay import (  # noqa: E402
     power_meter_cells,
     spin_face_cells,
 )
+from termpool.ui.panel import draw_ball_list  # noqa: E402
 
 BREAK = {"table": "9ft", "balls": "8ball", "shot": {"speed": 8.0, "angle": 0}}
 
@@ -109,7 +110,7 @@ def aim_times(scene, cols: int, rows: int, depth: str, frames: int = 240):
         t2 = time.perf_counter()
         if not r.mono:
             cells = to_cells(cv)
-        draw_panel(cells, lay, ids, None, r.title, r.mono)
+        draw_ball_list(cells, lay, ids, None, r.title, r.mono)
         t3 = time.perf_counter()
         blit_cells(cells, face, row + 6, col + 1)
         blit_cells(cells, power, row + 11, col + 1)

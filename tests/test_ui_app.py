@@ -1309,10 +1309,10 @@ def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
     (row,) = [r for r, line in enumerate(lines) if line.strip().startswith("balls ")]
     assert lines[row].split()[1:] == [str(n) for n in range(1, 16)]
     # Each number in its ball's colour, as the players' lines show a group's balls.
-    from termpool.ui.frame import _ball_tokens
+    from termpool.ui.panel import ball_tokens
 
     m = app.match
-    want = _ball_tokens(m.ids, [m.index(str(n)) for n in range(1, 16)], False)
+    want = ball_tokens(m.ids, [m.index(str(n)) for n in range(1, 16)], False)
     col = lines[row].index("balls ") + len("balls")
     for text, f, b in want:
         col += 1

@@ -9,7 +9,8 @@ from __future__ import annotations
 from termpool.rules.common import legal_targets
 from termpool.rules.words import KITCHEN, MODE_NAMES
 from termpool.ui.canvas import put_text, to_cells
-from termpool.ui.frame import message_cells, too_small_lines
+from termpool.ui.help import help_pages as help_pages_for
+from termpool.ui.help import keymap_rows, pretty
 from termpool.ui.palette import DIM_TEXT_C, TEXT_C
 from termpool.ui.panel import (
     TURN_C,
@@ -18,6 +19,8 @@ from termpool.ui.panel import (
     blank_cells,
     draw_box,
     draw_panel,
+    message_cells,
+    too_small_lines,
     widget_fits,
 )
 from termpool.ui.words import OPTION_TEXT
@@ -51,29 +54,16 @@ def cells(app, cols: int, rows: int):
     return out
 
 
-ARROWS = {"left": "←", "right": "→", "up": "↑", "down": "↓"}
-
-
-def pretty(spec: str) -> str:
-    """A key spec as the screen shows it: "left" -> "←", "shift+up" -> "⇧↑", "space" ->
-    "Space", "w" -> "W"."""
-    *mods, name = spec.split("+") if spec != "+" else ["+"]
-    base = ARROWS.get(name) or (name.capitalize() if len(name) > 1 else name.upper())
-    return "".join({"shift": "⇧", "ctrl": "^", "alt": "M-"}.get(m, m) for m in mods) + base
-
-
 def help_pages(app, cols: int, rows: int) -> list[tuple[str, list[str]]]:
     """The help box's pages (ui.help): the keys, then the rules of the game in play as it is
     set (at the menu, of every game)."""
-    from termpool.ui import help as box
-
     mode = app.match.mode if app.match is not None and app.phase != "menu" else None
     how = {"theme": app.opts.theme}
     if mode == "9ball":
         how["three_foul"] = app.match.three_foul
     elif mode == "8ball":
         how["eight_break"] = app.match.eight_break
-    return box.help_pages(box.keymap_rows(app.keymap), mode, cols, rows, **how)
+    return help_pages_for(keymap_rows(app.keymap), mode, cols, rows, **how)
 
 
 def _table_cells(app, lay, view, mono: bool):

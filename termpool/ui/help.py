@@ -1,8 +1,9 @@
 """The help box: the keys, then the rules of the game in play (`rules.words.rules_page`, the
 words the referees' verdicts share), in pages that fit the screen.
 
-`help_pages(keys, mode, cols, rows)` gives the pages as (title, lines); `page_key` turns a key
-into the page to show (← → and PgUp PgDn turn pages, any other key closes the box).
+`pretty(spec)` is a key as the screen names it; `help_pages(keys, mode, cols, rows)` gives the
+pages as (title, lines); `page_key` turns a key into the page to show (← → and PgUp PgDn turn
+pages, any other key closes the box).
 """
 
 from __future__ import annotations
@@ -11,19 +12,26 @@ import textwrap
 from collections.abc import Sequence
 
 from termpool.rules.words import MODE_NAMES, rules_page
+from termpool.ui.controls import ACTIONS
 
 NEXT_KEYS = ("right", "pagedown", "down")
 BACK_KEYS = ("left", "pageup", "up")
 BOX_EDGE = 6  # a box's frame and margins take this many columns of the screen ...
 BOX_ROWS = 4  # ... and this many rows: its frame, a blank line and the footer
+ARROWS = {"left": "←", "right": "→", "up": "↑", "down": "↓"}
 TWO_COLUMNS = 30  # keys go in two columns (when one is too tall) if each has this much room
+
+
+def pretty(spec: str) -> str:
+    """A key spec as the screen shows it: "left" -> "←", "shift+up" -> "⇧↑", "space" ->
+    "Space", "w" -> "W"."""
+    *mods, name = spec.split("+") if spec != "+" else ["+"]
+    base = ARROWS.get(name) or (name.capitalize() if len(name) > 1 else name.upper())
+    return "".join({"shift": "⇧", "ctrl": "^", "alt": "M-"}.get(m, m) for m in mods) + base
 
 
 def keymap_rows(keymap) -> list[tuple[str, str]]:
     """(keys, what they do) for every bound action of the game, and the mouse."""
-    from termpool.ui.app_screen import pretty
-    from termpool.ui.controls import ACTIONS
-
     rows = [(", ".join(pretty(k) for k in keymap.keys_for(a)), desc)
             for a, desc in ACTIONS.items() if keymap.keys_for(a)]
     rows.append(("mouse", "click or drag on the table: aim there"))

@@ -1,7 +1,9 @@
-"""The match panel beside or below the table, and the boxes drawn over it (help, pause, ...).
+"""The panel beside or below the table, and the boxes drawn over it (help, pause, ...).
 
 Everything here writes text into (chars, fg, bg) cells; the app decides what to say.
-`PanelInfo` is plain data so the panel can be tested without a match.
+`PanelInfo` is plain data so the panel can be tested without a match. The game and a watched
+match fill it (`draw_panel`); a scene on its own lists its balls (`draw_ball_list`); a screen
+too small for the table says so (`message_cells`).
 """
 
 from __future__ import annotations
@@ -12,11 +14,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from termpool.physics.state import POCKETED
 from termpool.ui.canvas import put_text
-from termpool.ui.frame import _ball_tokens
-from termpool.ui.palette import BACKDROP_C, DIM_TEXT_C, TEXT_C
-from termpool.ui.table_view import Layout
+from termpool.ui.palette import (
+    BACKDROP_C,
+    CUE,
+    DIM_TEXT_C,
+    EIGHT,
+    STRIPE,
+    STRIPE_WHITE_C,
+    TEXT_C,
+    ball_style,
+    mono_glyph,
+)
+from termpool.ui.table_view import MIN_COLS, MIN_ROWS, Layout
 
+BLACK = (0, 0, 0)
 TURN_C = (250, 214, 90)
 TEXT_MIN_COLS = 70  # a bottom panel keeps this much room for text before it shows widgets
 SIDE_WIDGET_ROWS = 24  # a side panel this tall has room for them below its text
@@ -53,6 +66,26 @@ class PanelInfo:
     theme: str = "standard"
     legend: list[int] = field(default_factory=list)  # balls to show with their numbers in
     # a free row of a bottom panel (where the table is too small to number them)
+
+
+def ball_tokens(ids: Sequence[str], which: list[int], mono: bool,
+                theme: str = "standard") -> list[tuple]:
+    """Panel labels (text, fg, bg) for balls: solids as the number on the ball's colour,
+    stripes as the number in the colour on white, the cue ball as 'c'."""
+    out = []
+    for k in which:
+        st = ball_style(ids[k], k, theme)
+        if mono:
+            out.append((mono_glyph(st) + st.number, None, None))
+        elif st.tag == STRIPE:
+            out.append((f"{st.number:>2}", st.colour.rgb, STRIPE_WHITE_C.rgb))
+        elif st.tag == CUE:
+            out.append((" c", BLACK, st.colour.rgb))
+        else:
+            r, g, b = st.colour.rgb
+            light = 0.299 * r + 0.587 * g + 0.114 * b > 110 and st.tag != EIGHT
+            out.append((f"{st.number:>2}", BLACK if light else TEXT_C.rgb, st.colour.rgb))
+    return out
 
 
 def _tone(t: str):
@@ -103,7 +136,7 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     that cannot keep the frames and fouls is None instead."""
     name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
              BACKDROP_C.rgb)]
-    todo = _ball_tokens(info.ids, p.balls, mono, info.theme)
+    todo = ball_tokens(info.ids, p.balls, mono, info.theme)
     down = [(f"{info.ids[k]:>2}", DIM_TEXT_C.rgb, BACKDROP_C.rgb) for k in p.down]
     long = [x for x in (p.group, p.score and f"frames {p.score}", p.fouls and f"fouls {p.fouls}")
             if x]
@@ -215,7 +248,7 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         r += 1
     if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
         pieces = [("balls", DIM_TEXT_C.rgb, BACKDROP_C.rgb)]
-        for t in _ball_tokens(info.ids, info.legend, mono, info.theme):
+        for t in ball_tokens(info.ids, info.legend, mono, info.theme):
             pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
         if sum(len(t) for t, _, _ in pieces) <= w:
             _put_line(cells, r, c0, pieces)
@@ -328,3 +361,54 @@ def blank_cells(cols: int, rows: int, mono: bool):
     fg[...] = TEXT_C.rgb
     bg[...] = BACKDROP_C.rgb
     return chars, fg, bg
+
+
+def draw_ball_list(cells, lay: Layout, ids: Sequence[str], state=None, title: str = "termpool",
+                   mono: bool = False) -> None:
+    """The panel of a scene on its own: a title, then the balls on the table and the balls
+    pocketed (state: the engine's codes, or None for all on the table)."""
+    col, row, ncols, nrows = lay.panel_rect
+    if ncols <= 2 or nrows <= 0:
+        return
+    c0, width = col + 1, ncols - 2
+    st = None if state is None else np.asarray(state).reshape(-1)
+    on = [k for k in range(len(ids)) if st is None or st[k] != POCKETED]
+    on_set = set(on)
+    gone = [k for k in range(len(ids)) if k not in on_set]
+    r = row
+    put_text(cells, r, c0, title[:width], TEXT_C.rgb, BACKDROP_C.rgb)
+    r += 1
+    for label, which in (("on the table", on), ("pocketed", gone)):
+        if not which or r >= row + nrows:
+            continue
+        put_text(cells, r, c0, label[:width], DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+        r += 1
+        c = c0
+        for text, fg, bg in ball_tokens(ids, which, mono):
+            if c + len(text) > c0 + width:
+                r, c = r + 1, c0
+            if r >= row + nrows:
+                break
+            put_text(cells, r, c, text, fg, bg)
+            c += len(text) + 1
+        r += 1
+
+
+def message_cells(cols: int, rows: int, lines: Sequence[str], mono: bool = False):
+    """Blank cells with lines of text centred: the 'window too small' screen."""
+    chars = np.full((rows, cols), " ", dtype="<U1")
+    fg = bg = None
+    if not mono:
+        fg = np.zeros((rows, cols, 3), dtype=np.uint8)
+        bg = np.zeros((rows, cols, 3), dtype=np.uint8)
+        bg[...] = BACKDROP_C.rgb
+    cells = (chars, fg, bg)
+    top = max(0, (rows - len(lines)) // 2)
+    for k, line in enumerate(lines):
+        put_text(cells, top + k, max(0, (cols - len(line)) // 2), line, TEXT_C.rgb,
+                 BACKDROP_C.rgb)
+    return cells
+
+
+def too_small_lines(cols: int, rows: int) -> list[str]:
+    return ["make the window at least", f"{MIN_COLS}x{MIN_ROWS} (now {cols}x{rows})"]

@@ -7,12 +7,15 @@ up, so "left" as seen from the head end is the top of the screen.
 
 `layout(cols, rows)` places the table and a side or bottom panel on a terminal, or returns None
 when the terminal is smaller than `MIN_COLS` x `MIN_ROWS`; `TableView` caches the table's
-background for a layout and draws the balls over a copy of it.
+background for a layout and draws the balls over a copy of it (`cells`: the table as screen
+cells, with what the caller paints over it); `Geometry` keeps one screen's layout and view
+while its size and table stay.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,7 +23,8 @@ import numpy as np
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_RADIUS
 from termpool.physics.table import Table
-from termpool.ui.canvas import Canvas, mono_cells
+from termpool.scene import table_to_dict
+from termpool.ui.canvas import Canvas, mono_cells, to_cells
 from termpool.ui.palette import (
     BACKDROP,
     BACKDROP_C,
@@ -388,6 +392,25 @@ class TableView:
                 fg[r, c0:c0 + len(text)] = number_colour(style.colour).rgb
                 bg[r, c0:c0 + len(text)] = style.colour.rgb
 
+    def cells(self, ids, pos, state=None, radius=None, mono: bool = False, *,
+              paint: Callable[[Canvas], None] | None = None,
+              mark: Callable[[np.ndarray], None] | None = None, numbered: bool = True):
+        """The table and its balls as (chars, fg, bg) cells (fg and bg None in mono). `paint`
+        draws over the colour canvas before it becomes cells (the balls' numbers then go on
+        top, unless not `numbered`); in mono, `mark` marks the characters."""
+        if mono:
+            chars = self.mono(ids, pos, state, radius)
+            if mark is not None:
+                mark(chars)
+            return chars, None, None
+        cv = self.draw(ids, pos, state, radius)
+        if paint is not None:
+            paint(cv)
+        cells = to_cells(cv)
+        if numbered:
+            self.numbers(cells, ids, pos, state, radius)
+        return cells
+
     def mono(self, ids, pos, state=None, radius=None) -> np.ndarray:
         """Glyph cells for the monochrome mode: the table's glyphs, and each ball as one glyph
         in the cell holding its centre (a ball never smears over several cells)."""
@@ -398,3 +421,29 @@ class TableView:
             if 0 <= r < rows and 0 <= c < cols:
                 chars[r, c] = mono_glyph(style)
         return chars
+
+
+class Geometry:
+    """One screen's layout and table view, kept while its size, table and theme stay: the
+    table's background is drawn once, not every frame. A table equal to the last one (a new
+    match on the same table, the next shot of a watched match) keeps it too."""
+
+    def __init__(self) -> None:
+        self._key: tuple | None = None
+        self._table: Table | None = None
+        self._table_dict: dict | None = None
+        self._got: tuple[Layout | None, TableView | None] = (None, None)
+
+    def get(self, cols: int, rows: int, table: Table,
+            theme: str = "standard") -> tuple[Layout | None, TableView | None]:
+        """The layout (None when the screen is too small) and the view of `table`."""
+        if table is not self._table:
+            as_dict = table_to_dict(table)
+            if as_dict != self._table_dict:
+                self._key = None
+            self._table, self._table_dict = table, as_dict
+        if self._key != (cols, rows, theme):
+            lay = layout(cols, rows, table)
+            self._got = (lay, TableView(table, lay, theme) if lay is not None else None)
+            self._key = (cols, rows, theme)
+        return self._got

@@ -34,10 +34,21 @@ from termpool.physics.params import BALL_RADIUS
 from termpool.rules.common import GROUPS, MODE_BALLS, MODES
 from termpool.rules.themes import THEMES, group_label
 from termpool.rules.words import MODE_NAMES, in_names
-from termpool.scene import Scene, table_to_dict
+from termpool.scene import Scene
 from termpool.text import shown
+from termpool.ui import overlay as ov
+from termpool.ui.help import help_pages, page_key
 from termpool.ui.output import resolve_depth
+from termpool.ui.panel import (
+    PanelInfo,
+    PlayerLine,
+    draw_box,
+    draw_panel,
+    message_cells,
+    too_small_lines,
+)
 from termpool.ui.shots import DT, MAX_SHOT_FRAMES, Clock, speed_to_power
+from termpool.ui.table_view import Geometry
 from termpool.ui.words import OPTION_WORDS, chose
 
 AIM_S = 1.0  # the stick is shown on the shot's line this long before the strike ...
@@ -132,7 +143,7 @@ class Watch:
         self.paused = False
         self.fast = False
         self._played: OrderedDict[int, Played] = OrderedDict()
-        self._geom = None
+        self.geometry = Geometry()  # the layout and table view for the screen's size
         self.clock = Clock()  # the wall-clock time owed to the shot on show
         self.go_to(0)
 
@@ -225,8 +236,6 @@ class Watch:
             return
         name = key.name
         if self.overlay == "help":
-            from termpool.ui.help import page_key
-
             self.help_page, close = page_key(name, self.help_page, self.help_count)
             if close:
                 self.overlay = None
@@ -283,24 +292,10 @@ class Watch:
         state[rows] = st
         return ids, pos, state, radius
 
-    def _geometry(self, cols: int, rows: int):
-        from termpool.ui.table_view import TableView, layout
-
-        table = self.scenes[self.i][0].table
-        key = (cols, rows, repr(table_to_dict(table)))
-        if self._geom is None or self._geom[0] != key:
-            lay = layout(cols, rows, table)
-            view = TableView(table, lay, self.theme) if lay is not None else None
-            self._geom = (key, lay, view)
-        return self._geom[1], self._geom[2]
-
     def cells(self, cols: int, rows: int):
-        from termpool.ui.frame import message_cells, too_small_lines
-        from termpool.ui.panel import draw_box, draw_panel
-
         self.dirty = False
         mono = self.depth == "mono"
-        lay, view = self._geometry(cols, rows)
+        lay, view = self.geometry.get(cols, rows, self.scenes[self.i][0].table, self.theme)
         if lay is None:
             out = message_cells(cols, rows, too_small_lines(cols, rows), mono)
         else:
@@ -315,11 +310,8 @@ class Watch:
         return out
 
     def _table_cells(self, lay, view, mono: bool):
-        """The table as the game draws it (`app_screen`): the balls, their numbers, and
-        before the strike the stick on the shot's line and the pocket called for the 8."""
-        from termpool.ui import overlay as ov
-        from termpool.ui.canvas import to_cells
-
+        """The table as the game draws it: the balls, their numbers, and before the strike
+        the stick on the shot's line and the pocket called for the 8."""
         ids, pos, state, radius = self.positions()
         scene = self.scenes[self.i][0]
         shot = self.shots[self.i]["shot"]
@@ -330,20 +322,19 @@ class Watch:
             if shot["called"][1] in names:
                 called = names.index(shot["called"][1])
         holes = scene.table.hole_c.reshape(-1, 2)
-        if mono:
-            chars = view.mono(ids, pos, state, radius)
+
+        def mark(chars) -> None:
             if called is not None:
                 ov.mono_called_pocket(chars, lay, holes[called])
-            return chars, None, None
-        cv = view.draw(ids, pos, state, radius)
-        if called is not None:
-            ov.draw_called_pocket(cv, lay, holes[called], scene.table.hole_r[called])
-        if aiming:
-            c = ids.index("cue")
-            ov.draw_cue_stick(cv, lay, pos[c], radius[c], float(shot["angle"]))
-        cells = to_cells(cv)
-        view.numbers(cells, ids, pos, state, radius)
-        return cells
+
+        def paint(cv) -> None:
+            if called is not None:
+                ov.draw_called_pocket(cv, lay, holes[called], scene.table.hole_r[called])
+            if aiming:
+                c = ids.index("cue")
+                ov.draw_cue_stick(cv, lay, pos[c], radius[c], float(shot["angle"]))
+
+        return view.cells(ids, pos, state, radius, mono, paint=paint, mark=mark)
 
     def _say(self, text: str) -> str:
         """Words from the file for the screen: the players' names, the theme's groups, any
@@ -416,9 +407,7 @@ class Watch:
             lines.append(("×4 · F: ×1", "dim"))
         return lines
 
-    def panel_info(self):
-        from termpool.ui.panel import PanelInfo, PlayerLine
-
+    def panel_info(self) -> PanelInfo:
         ids, _pos, state, _r = self.positions()
         game = self.scenes[self.i][0].game or {}
         rec = self.shots[self.i]
@@ -452,8 +441,6 @@ class Watch:
         return PanelInfo(title, players, self.status(), hint, ids, theme=self.theme)
 
     def _help_pages(self, cols: int, rows: int) -> list[tuple[str, list[str]]]:
-        from termpool.ui.help import help_pages
-
         mode, how = self.mode(), {"theme": self.theme}
         if mode == "9ball":
             how["three_foul"] = bool(self.scenes[self.i][0].game.get("three_foul"))
