@@ -30,14 +30,18 @@ import platform
 import statistics
 import sys
 import time
+from dataclasses import replace
 
 if __name__ == "__main__":
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from termpool.game import Match, Shot  # noqa: E402
-from termpool.ui.app import AID_STEP, App, Options, power_to_speed  # noqa: E402
+from termpool.ui.aid import AID_STEP  # noqa: E402
+from termpool.ui.app import App, Options  # noqa: E402
 from termpool.ui.keys import Key  # noqa: E402
+from termpool.ui.phases.turn import start_turn  # noqa: E402
 from termpool.ui.predict import Predictor  # noqa: E402
+from termpool.ui.shots import power_to_speed  # noqa: E402
 
 
 def broken(seed: int) -> Match:
@@ -94,9 +98,7 @@ def measure(layouts: int) -> dict:
 def app_frames(cols: int, rows: int, seed: int = 1) -> tuple[list[float], list[float]]:
     """The app's frames in which a tap turns the aim (key + tick + cells), ms wall and CPU."""
     app = App(Options(mode="practice", colors="truecolor"))
-    m = broken(seed)
-    app.match = m
-    app._turn_start()
+    app.state = start_turn(replace(app.state, match=broken(seed)))
     t = 1.0
     app.cells(cols, rows)
     wall, cpu = [], []

@@ -129,6 +129,7 @@ def app_break(cols: int, rows: int, depth: str):
     from termpool.ui.app import App, Options
     from termpool.ui.keys import Key
     from termpool.ui.output import Screen
+    from termpool.ui.state import Phase
 
     app = App(Options(mode="practice", colors=depth))
     screen = Screen(cols, rows, depth, sync=True)
@@ -140,7 +141,7 @@ def app_break(cols: int, rows: int, depth: str):
     screen.render(*app.cells(cols, rows))
     times, sizes = [], []
     k = 0
-    while app.phase == "run" and k < 60 * 60:
+    while app.state.phase is Phase.RUN and k < 60 * 60:
         k += 1
         t0 = time.perf_counter()
         app.tick(1.3 + k / 60)

@@ -4,15 +4,20 @@ bit, stopped where the aid's paths end; and a player who aims along it pots what
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from termpool.game import Match, Shot, record
 from termpool.physics.params import BALL_RADIUS
-from termpool.ui.app import App, Options, power_to_speed
+from termpool.ui import aid as ui_aid
+from termpool.ui.app import App, Options
 from termpool.ui.keys import Key
+from termpool.ui.phases.turn import start_turn
 from termpool.ui.predict import MAX_CUSHIONS, Predictor, predict
+from termpool.ui.shots import power_to_speed
+from termpool.ui.state import Phase
 
 R = BALL_RADIUS
 
@@ -211,10 +216,15 @@ def pot_layouts():
 
 def finish(app: App):
     """The aid's prediction, run to its end (a frame's share at a time, as on screen)."""
-    app.prediction()
-    while app._aid is not None and not app._aid[1].done:
-        app.tick(app.now)
-    return app.prediction()
+    app.state = ui_aid.refresh(app.state)
+    while ui_aid.running(app.state):
+        app.tick(app.state.now)
+    return ui_aid.prediction(app.state)
+
+
+def turn_to(app: App, angle: float) -> None:
+    """Set the aim (as a test's starting point)."""
+    app.state = replace(app.state, stroke=replace(app.state.stroke, angle=angle))
 
 
 def _cross(u, v) -> float:
@@ -248,9 +258,9 @@ class LineOfCentres:
 
     @staticmethod
     def _line(app: App, obj: int):
-        m = app.match
+        m = app.state.match
         cue, o = m.pos[m.ids.index("cue")], m.pos[obj]
-        a = math.radians(app.angle)
+        a = math.radians(app.state.stroke.angle)
         d = np.array([math.cos(a), math.sin(a)])
         along = float((o - cue) @ d)
         off = _cross(d, o - cue)
@@ -272,7 +282,7 @@ class LineOfCentres:
         o, u = line
         u = u / np.linalg.norm(u)
         to = np.asarray(hole) - o
-        table = app.match.table
+        table = app.state.match.table
         k = int(np.argmin(np.linalg.norm(table.hole_c.reshape(-1, 2) - hole, axis=1)))
         # the extended line passes over the hole (its centre within the hole's radius)
         inside = to @ u > 0 and abs(_cross(u, to)) < table.hole_r[k]
@@ -288,13 +298,13 @@ def pots_along(aid) -> tuple[int, int]:
     made = tried = 0
     for cue, obj, pocket, top in pot_layouts():
         app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
-        m = app.match
+        m = app.state.match
         m.on_table[:] = False
         c, o = m.ids.index("cue"), m.ids.index("3")
         m.on_table[[c, o]] = True
         m.pos[c], m.pos[o] = cue, obj
         m.ball_in_hand = None
-        app._turn_start()
+        app.state = start_turn(app.state)
         hole = m.table.hole_c.reshape(-1, 2)[list(m.table.hole_names).index(pocket)]
         reach = math.dist(cue, obj) + math.dist(obj, hole)
         power = "4" if reach < 1.2 else "6"
@@ -307,7 +317,7 @@ def pots_along(aid) -> tuple[int, int]:
         found = None
         start = math.degrees(math.atan2(*(obj - cue)[::-1])) % 360  # straight at the 3
         for key, back in (("left", "down"), ("right", "up")):
-            app.angle = start
+            turn_to(app, start)
             before = aid.side(app, o, hole)
             for _ in range(40):
                 t += 0.2
@@ -316,7 +326,7 @@ def pots_along(aid) -> tuple[int, int]:
                 if before is not None and now is not None and (before > 0) != (now > 0):
                     for _ in range(6):
                         if aid.pocket(app, o, hole) == pocket:
-                            found = app.angle
+                            found = app.state.stroke.angle
                             break
                         t += 0.2
                         app.key(Key(back), t)
@@ -328,12 +338,12 @@ def pots_along(aid) -> tuple[int, int]:
             continue  # the aid never showed the pot: a miss
         t += 0.2
         app.key(Key("space"), t)
-        assert app.phase == "run"
-        while app.phase == "run":
+        assert app.state.phase is Phase.RUN
+        while app.state.phase is Phase.RUN:
             t += 1 / 60
             app.tick(t)
-        assert app.match.history[-1]["shot"]["speed"] == power_to_speed(int(power) / 10)
-        pots = [ev.get("pocket") for ev in app.match.history[-1]["events"]
+        assert app.state.match.history[-1]["shot"]["speed"] == power_to_speed(int(power) / 10)
+        pots = [ev.get("pocket") for ev in app.state.match.history[-1]["events"]
                 if ev["type"] == "pocket" and "3" in ev["ids"]]
         made += pots == [pocket]
     return made, tried
@@ -369,21 +379,21 @@ def test_aiming_along_the_line_of_centres_misses_the_same_pots():
 
 
 def test_the_status_line_names_the_pocket_the_aid_shows():
-    from termpool.ui.app_screen import _power_line
+    from termpool.ui.view import power_line
 
     cue, obj, pocket, _ = pot_layouts()[1]  # straight in, from 1 m
     app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
-    m = app.match
+    m = app.state.match
     m.on_table[:] = False
     c, o = m.ids.index("cue"), m.ids.index("3")
     m.on_table[[c, o]] = True
     m.pos[c], m.pos[o] = cue, obj
     m.ball_in_hand = None
-    app._turn_start()
-    app.angle = math.degrees(math.atan2(*(obj - cue)[::-1])) % 360
+    app.state = start_turn(app.state)
+    turn_to(app, math.degrees(math.atan2(*(obj - cue)[::-1])) % 360)
     app.key(Key("4"), 1.0)
     assert FullAid.pocket(app, o, None) == pocket
-    assert _power_line(app).endswith(f"the 3, into the {pocket.replace('_', ' ')} pocket")
-    app.angle += 20.0  # off the 3: it names no pocket
+    assert power_line(app.state).endswith(f"the 3, into the {pocket.replace('_', ' ')} pocket")
+    turn_to(app, app.state.stroke.angle + 20.0)  # off the 3: it names no pocket
     finish(app)
-    assert "into the" not in _power_line(app)
+    assert "into the" not in power_line(app.state)

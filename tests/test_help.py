@@ -28,6 +28,7 @@ from termpool.ui.app import App, Options
 from termpool.ui.headless import screen_text
 from termpool.ui.help import help_pages, key_lines, page_key, paginate
 from termpool.ui.keys import Key
+from termpool.ui.state import Help, help_of
 from tests.test_rules import shot
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -47,7 +48,7 @@ def help_screens(app: App, cols: int, rows: int) -> list[str]:
     """Every page of the help box as the screen shows it, turned with →."""
     app.key(Key("h"), 0.0)
     screens = [screen_text(app.cells(cols, rows)[0])]
-    for k in range(1, app.help_count):
+    for k in range(1, len(help_of(app.state, cols, rows))):
         app.key(Key("right"), float(k))
         screens.append(screen_text(app.cells(cols, rows)[0]))
     return screens
@@ -82,7 +83,7 @@ def box_text(screens: list[str]) -> str:
 
 
 def _how(app: App) -> dict:
-    m = app.match
+    m = app.state.match
     return ({"three_foul": m.three_foul} if m.mode == "9ball" else
             {"eight_break": m.eight_break} if m.mode == "8ball" else {})
 
@@ -95,16 +96,16 @@ def _in_order(want: list[str], got: list[str]) -> bool:
 def test_pages_turn_with_the_arrows_and_any_other_key_closes() -> None:
     app = app_in("9ball")
     help_screens(app, 80, 24)
-    last = app.help_page
-    assert last == app.help_count - 1 > 0
+    last = app.state.box.page
+    assert last == len(help_of(app.state, 80, 24)) - 1 > 0
     app.key(Key("right"), 10.0)  # no page after the last
-    assert app.help_page == last and app.overlay == "help"
+    assert app.state.box.page == last and isinstance(app.state.box, Help)
     app.key(Key("left"), 11.0)
-    assert app.help_page == last - 1 and app.overlay == "help"
+    assert app.state.box.page == last - 1 and isinstance(app.state.box, Help)
     app.key(Key("x"), 12.0)
-    assert app.overlay is None
+    assert app.state.box is None
     app.key(Key("h"), 13.0)  # opens at the keys again
-    assert app.help_page == 0
+    assert app.state.box.page == 0
     text = screen_text(app.cells(80, 24)[0])
     assert "keys · 1/" in text
 

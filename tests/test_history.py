@@ -338,13 +338,15 @@ def test_an_unwritable_history_costs_the_player_one_line(tmp_path) -> None:
 
 
 def test_the_end_of_a_match_adds_it_and_the_menu_shows_it() -> None:
-    from termpool.ui.app import MENU, App, Options
+    from termpool.ui.app import App, Options
     from termpool.ui.headless import screen_text
     from termpool.ui.keys import Key
+    from termpool.ui.phases.turn import shoot, start_turn
+    from termpool.ui.state import MENU, Phase
 
-    app = App(Options(mode="9ball", opponent="human", colors="mono", seed=0))
-    app.history = h.Recorder()
-    m = app.match
+    app = App(Options(mode="9ball", opponent="human", colors="mono", seed=0),
+              history=h.Recorder())
+    m = app.state.match
     m.ball_in_hand = None
     nine = m.index("9")
     for k, b in enumerate(m.ids):  # the 9 alone, straight in front of the cue ball
@@ -353,11 +355,12 @@ def test_the_end_of_a_match_adds_it_and_the_menu_shows_it() -> None:
     c = m.index("cue")
     m.pos[nine] = (m.table.length - 0.3, m.table.width - 0.3)
     m.pos[c] = (m.table.length - 0.8, m.table.width - 0.8)
-    app._turn_start()
-    app._shoot(2.5, 45.0, 0.0, -0.4)  # with draw: the cue ball stays out of the pocket
-    while app.phase == "run":
-        app.tick(app.now + 1.0)
-    assert app.phase == "over" and m.winner == 0
+    app.state = start_turn(app.state)
+    # With draw: the cue ball stays out of the pocket.
+    app.state = shoot(app.state, 2.5, 45.0, 0.0, -0.4)
+    while app.state.phase is Phase.RUN:
+        app.tick(app.state.now + 1.0)
+    assert app.state.phase is Phase.OVER and m.winner == 0
     lines = h.read_history(h.history_path())[0]
     assert [(x["player"], x["result"]) for x in lines] == [("Player 1", "won"),
                                                            ("Player 2", "lost")]
@@ -367,4 +370,4 @@ def test_the_end_of_a_match_adds_it_and_the_menu_shows_it() -> None:
     text = screen_text(app.cells(80, 24)[0])
     assert "1 match: won 1" in text and "a second player" in text
     app.key(Key("x"), 102.0)
-    assert app.screen is None and app.overlay is None
+    assert app.state.box is None

@@ -24,6 +24,8 @@ from unprivileged import as_nobody
 
 from termpool import cli, files
 from termpool.ui.app import App
+from termpool.ui.phases.turn import start_turn
+from termpool.ui.state import Phase
 
 ROOT = Path(__file__).resolve().parent.parent
 PLAY = ("play", "--headless", "--mode", "practice")
@@ -57,7 +59,7 @@ def test_a_crash_in_the_game_still_saves_the_record(capsys, tmp_path, monkeypatc
     tick = App.tick
 
     def crash_after_the_first_shot(self, t):
-        if self.match.history:
+        if self.state.match.history:
             raise RuntimeError("boom")
         tick(self, t)
 
@@ -231,23 +233,26 @@ def test_a_record_holding_a_nan_is_not_written_as_bad_json(capsys, tmp_path,
 
 def nine_alone(app: App) -> None:
     """The match in play comes down to the 9 alone in front of the cue ball, on the aim."""
-    m = app.match
+    app.state = nine_alone_in(app.state)
+
+
+def nine_alone_in(s):
+    m = s.match
     m.ball_in_hand = None
     for k, b in enumerate(m.ids):
         m.on_table[k] = b in ("cue", "9")
     m.state = m.state.__class__(mode="9ball", shooter=0, pocketed=tuple("12345678"))
     m.pos[m.index("9")] = (m.table.length - 0.3, m.table.width - 0.3)
     m.pos[m.index("cue")] = (m.table.length - 0.8, m.table.width - 0.8)
-    app._turn_start()
+    return start_turn(s)
 
 
 def session(tmp_path: Path, force: bool = False):
     from termpool.ui.app import Options
     from termpool.ui.records import Records
 
-    app = App(Options(mode="9ball", opponent="human", colors="mono", seed=0))
-    app.records = Records(str(tmp_path / "m.json"), force)
-    return app
+    return App(Options(mode="9ball", opponent="human", colors="mono", seed=0),
+               records=Records(str(tmp_path / "m.json"), force))
 
 
 def win(app: App, t: float) -> float:
@@ -256,7 +261,7 @@ def win(app: App, t: float) -> float:
 
     nine_alone(app)
     play_keys(app, parse_script("down*4 space-hold 0.5 wait 20"), 100, 32)
-    assert app.phase == "over" and app.match.winner == 0
+    assert app.state.phase is Phase.OVER and app.state.match.winner == 0
     return t + 30.0
 
 
@@ -279,7 +284,7 @@ def test_a_match_won_is_saved_at_once_and_kept_after_the_menu(capsys, tmp_path) 
     assert replays(rec, capsys) == "1 shot: all identical"  # on disk before anything else
     app.key(Key("m"), t)
     app.key(Key("q"), t + 1)  # the menu's Q quits
-    assert app.done and app.match is None
+    assert app.done and app.state.match is None
     assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]
     assert replays(rec, capsys) == "1 shot: all identical"
 
@@ -355,21 +360,23 @@ def test_a_later_match_never_replaces_a_file_without_force(capsys, tmp_path,
 
 
 def test_a_signal_after_two_matches_keeps_both(capsys, tmp_path, monkeypatch) -> None:
-    new_match, tick = App.new_match, App.tick
+    from termpool.ui.phases import answer, turn
+
+    new_match, tick = turn.new_match, App.tick
     ended = []
 
-    def comes_down_to_the_9(self, mode, opponent):
-        new_match(self, mode, opponent)
-        nine_alone(self)
+    def comes_down_to_the_9(s, mode, opponent):
+        return nine_alone_in(new_match(s, mode, opponent))
 
     def term_after_two_wins(self, t):
         tick(self, t)
-        if self.phase == "over" and self.match not in ended:
-            ended.append(self.match)
+        if self.state.phase is Phase.OVER and self.state.match not in ended:
+            ended.append(self.state.match)
             if len(ended) == 2:
                 os.kill(os.getpid(), signal.SIGTERM)
 
-    monkeypatch.setattr(App, "new_match", comes_down_to_the_9)
+    monkeypatch.setattr(turn, "new_match", comes_down_to_the_9)  # the first match's
+    monkeypatch.setattr(answer, "new_match", comes_down_to_the_9)  # N on the game-over box
     monkeypatch.setattr(App, "tick", term_after_two_wins)
     rec = tmp_path / "m.json"
     script = "down*4 space-hold 0.5 wait 20 n down*4 space-hold 0.5 wait 20 wait 20"
@@ -392,12 +399,12 @@ def test_m_in_the_quit_question_goes_to_the_menu_and_keeps_the_match(capsys,
     from termpool.ui.keys import Key, parse_script
     from termpool.ui.records import Records
 
-    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
-    app.records = Records(str(tmp_path / "m.json"))
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0),
+              records=Records(str(tmp_path / "m.json")))
     play_keys(app, parse_script("enter space-hold 1.0 wait 20 q"), 80, 24)
     assert "m: menu" in screen_text(app.cells(80, 24)[0])
     app.key(Key("m"), 100.0)
-    assert app.phase == "menu" and app.match is None and not app.done
+    assert app.state.phase is Phase.MENU and app.state.match is None and not app.done
     rec = tmp_path / "m.json"
     assert replays(rec, capsys) == "1 shot: all identical"  # saved on the way to the menu
     app.key(Key("q"), 101.0)

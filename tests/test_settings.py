@@ -12,9 +12,11 @@ import pytest
 from unprivileged import as_nobody
 
 from termpool import cli
-from termpool.ui.app import App, Options, power_to_speed
+from termpool.ui.app import App, Options
 from termpool.ui.headless import screen_text
 from termpool.ui.keys import Key
+from termpool.ui.phases.boxes import open_settings
+from termpool.ui.phases.turn import new_match
 from termpool.ui.settings import (
     BY_KEY,
     DEFAULTS,
@@ -25,6 +27,8 @@ from termpool.ui.settings import (
     parse_settings,
     settings_path,
 )
+from termpool.ui.shots import power_to_speed
+from termpool.ui.state import Pause, Run, shooter_is_cpu
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -229,9 +233,7 @@ def test_a_malformed_file_is_one_line_per_bad_key_and_the_game_starts(tmp_path) 
 # ------------------------------------------------------------------------------ the screen
 
 def app_at_menu(**kw) -> App:
-    app = App(Options(colors="mono", seed=0, **kw))
-    app.prefs = load_settings()
-    return app
+    return App(Options(colors="mono", seed=0, **kw), prefs=load_settings())
 
 
 def keys(app: App, *names: str, t: float = 0.0) -> None:
@@ -243,7 +245,7 @@ def keys(app: App, *names: str, t: float = 0.0) -> None:
 
 
 def menu_item(label: str) -> str:
-    from termpool.ui.app import MENU
+    from termpool.ui.state import MENU
 
     return str([m[0] for m in MENU].index(label) + 1)
 
@@ -256,64 +258,64 @@ def test_the_menu_opens_the_settings_and_esc_saves_what_changed() -> None:
         assert s.label in text
     assert "‹ hard ›" in text and "settings.conf" in text
     keys(app, "down", "right", "esc")  # the table: 9ft -> 7ft (round)
-    assert app.screen is None and app.opts.table == "7ft"
+    assert app.state.box is None and app.state.opts.table == "7ft"
     saved = load_settings().saved
     assert saved["table"] == "7ft" and saved["level"] == "normal"
 
 
 def test_every_setting_can_be_changed_on_the_screen() -> None:
     app = app_at_menu()
-    start = {k: getattr(app.opts, k) for k in DEFAULTS}
+    start = {k: getattr(app.state.opts, k) for k in DEFAULTS}
     keys(app, menu_item("Settings"))
     for s in SETTINGS:
-        before = getattr(app.opts, s.key)
+        before = getattr(app.state.opts, s.key)
         if s.kind == "name":
             keys(app, "enter", "A", "n", "space", "n", "enter")
-            assert getattr(app.opts, s.key) == "An n"
+            assert getattr(app.state.opts, s.key) == "An n"
         else:
             keys(app, "right")
-            assert getattr(app.opts, s.key) != before
+            assert getattr(app.state.opts, s.key) != before
         keys(app, "down")
     keys(app, "esc")
     saved = load_settings().saved
-    assert all(saved[k] == getattr(app.opts, k) != start[k] for k in DEFAULTS)
+    assert all(saved[k] == getattr(app.state.opts, k) != start[k] for k in DEFAULTS)
 
 
 def test_a_name_is_typed_and_plays_under_it() -> None:
     app = app_at_menu()
     keys(app, menu_item("Settings"), *["down"] * 9, "enter", "q", "backspace", "Z", "o", "e",
          "enter", "esc")
-    assert app.opts.player1 == "Zoe"
+    assert app.state.opts.player1 == "Zoe"
     keys(app, "1")  # 8-ball against the computer
-    assert app.match.players == ("Zoe", "Computer")
+    assert app.state.match.players == ("Zoe", "Computer")
     assert "Zoe to break" in screen_text(app.cells(100, 32)[0])
 
 
 def test_a_name_stops_at_its_length_and_esc_leaves_it_as_it_was() -> None:
     app = app_at_menu()
     keys(app, menu_item("Settings"), *["down"] * 10, "enter", *["x"] * (MAX_NAME + 5), "enter")
-    assert app.opts.player2 == "x" * MAX_NAME
+    assert app.state.opts.player2 == "x" * MAX_NAME
     keys(app, "enter", "y", "esc")
-    assert app.opts.player2 == "x" * MAX_NAME
+    assert app.state.opts.player2 == "x" * MAX_NAME
 
 
 def test_from_pause_match_settings_wait_for_the_next_game() -> None:
-    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0))
-    app.prefs = load_settings()
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0),
+              prefs=load_settings())
     keys(app, "enter", "p")
     assert "S: settings" in screen_text(app.cells(100, 32)[0])
     keys(app, "s", "right")  # level: normal -> hard, for the next game
     text = screen_text(app.cells(100, 32)[0])
     assert "* next game" in text and "from the next game" in text
-    assert app.opts.level == "normal" and app.pending == {"level": "hard"}
+    assert app.state.opts.level == "normal" and app.state.pending == {"level": "hard"}
     keys(app, *["down"] * 5, "right")  # the aim aid: at once
-    assert app.opts.aid == "ghost"
+    assert app.state.opts.aid == "ghost"
     keys(app, "esc")
-    assert app.overlay == "pause"  # back to the pause box
+    assert isinstance(app.state.box, Pause)  # back to the pause box
     keys(app, "space")
-    assert app.overlay is None
-    app.new_match("8ball", "human")
-    assert app.opts.level == "hard" and app.pending == {}
+    assert app.state.box is None
+    app.state = new_match(app.state, "8ball", "human")
+    assert app.state.opts.level == "hard" and app.state.pending == {}
     assert load_settings().saved["level"] == "hard"
 
 
@@ -335,17 +337,17 @@ def test_the_colour_depth_changes_at_once() -> None:
 
 def test_an_unwritable_config_directory_costs_one_line(tmp_path) -> None:
     (tmp_path / "file").write_text("")
-    app = App(Options(colors="mono"))
-    app.prefs = load_settings(env={"XDG_CONFIG_HOME": str(tmp_path / "file")})
+    app = App(Options(colors="mono"),
+              prefs=load_settings(env={"XDG_CONFIG_HOME": str(tmp_path / "file")}))
     keys(app, menu_item("Settings"), "right", "esc")
-    assert app.opts.level == "hard"  # for this run
-    assert len(app.notes) == 1 and "cannot save the settings" in app.notes[0]
+    assert app.state.opts.level == "hard"  # for this run
+    assert len(app.state.notes) == 1 and "cannot save the settings" in app.state.notes[0]
 
 
 # ------------------------------------------------------------------------- what they do
 
 def shots(app: App) -> list[dict]:
-    return [rec["shot"] for rec in app.match.history]
+    return [rec["shot"] for rec in app.state.match.history]
 
 
 def run(app: App, script: str) -> None:
@@ -367,7 +369,7 @@ def test_power_digits_strikes_at_once_at_the_level_set() -> None:
 def test_power_meter_is_the_swinging_meter_even_with_key_releases() -> None:
     app = App(Options(mode="practice", opponent="human", colors="mono", seed=0,
                       power="meter"), input_mode="release")
-    assert app.charge.mode == "classic"
+    assert app.state.controls.charge.mode == "classic"
     run(app, "enter wait 0.2 space wait 0.5 space wait 5")
     assert len(shots(app)) == 1
 
@@ -378,15 +380,19 @@ def test_power_meter_is_the_swinging_meter_even_with_key_releases() -> None:
 def test_fast_forward_setting_starts_shots_at_x4(fast, human, cpu) -> None:
     app = App(Options(mode="8ball", opponent="cpu", colors="mono", seed=0, fast=fast))
     seen = []
-    real = app._shoot
 
-    def shoot(*a, **k):
-        real(*a, **k)
-        seen.append((app.shooter_is_cpu(), app.fast))
+    def noting(real):  # each shot as it starts: whose, and whether fast-forwarded
+        def call(*a):
+            real(*a)
+            part = app.state.part
+            new = isinstance(part, Run) and all(part.shot is not x for x, _ in seen)
+            if new:
+                seen.append((part.shot, (shooter_is_cpu(app.state), part.fast)))
+        return call
 
-    app._shoot = shoot
-    app.cpu = (False, True)
+    app.key, app.tick = noting(app.key), noting(app.tick)
     run(app, "enter wait 0.2 space-hold 0.3 wait 30")
+    seen = [x for _, x in seen]
     assert (False, human) in seen and (True, cpu) in seen
 
 
@@ -412,10 +418,11 @@ def test_level_from_settings_reaches_the_computer() -> None:
 def test_key_press_in_the_settings_never_reaches_the_game() -> None:
     app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
     keys(app, "enter", "p", "s")
-    angle = app.angle
+    angle = app.state.stroke.angle
     app.key(Key("space"), 1.0)
     app.key(Key("left"), 1.1)
-    assert app.angle == angle and app.match.history == [] and app.screen is not None
+    assert app.state.stroke.angle == angle and app.state.match.history == []
+    assert app.state.box is not None
 
 
 @pytest.mark.parametrize("cols, rows", [(80, 24), (120, 40), (60, 30)])
@@ -426,7 +433,7 @@ def test_the_settings_box_keeps_its_width_as_the_selection_moves(cols, rows) -> 
     from termpool.ui.settings import SETTINGS
 
     app = App(Options(colors="mono"))
-    app.open_screen("settings")
+    app.state = open_settings(app.state)
     widths = set()
     for k in range(len(SETTINGS) + 1):
         text = screen_text(app.cells(cols, rows)[0])

@@ -6,6 +6,7 @@ import json
 import math
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -13,10 +14,29 @@ import pytest
 
 from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.params import BALL_RADIUS
-from termpool.ui.app import CPU_AIM_S, CPU_SHOW_S, App, Options, power_to_speed
+from termpool.ui import aid
+from termpool.ui.app import App, Options
 from termpool.ui.controls import PowerCharge
 from termpool.ui.headless import play, screen_text
 from termpool.ui.keys import Key, legacy_events, parse_script
+from termpool.ui.phases import cpu
+from termpool.ui.phases.cpu import CPU_AIM_S, CPU_SHOW_S
+from termpool.ui.phases.turn import new_match, start_turn
+from termpool.ui.shots import DT, FAST, power_to_speed
+from termpool.ui.state import (
+    Aim,
+    Aiming,
+    Pause,
+    Phase,
+    Place,
+    Quit,
+    Run,
+    Thinking,
+    names,
+    shot_clock,
+)
+from termpool.ui.table_view import layout
+from termpool.ui.view import positions
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -34,7 +54,33 @@ def run_script(app: App, script: str, cols=100, rows=32, legacy=False, frames=No
 
 
 def shots(app: App) -> list[dict]:
-    return [rec["shot"] for rec in app.match.history]
+    return [rec["shot"] for rec in app.state.match.history]
+
+
+def strikes(app: App, events, cols=100, rows=32) -> list[float]:
+    """Play the events headless; the clock at each strike."""
+    found: list[float] = []
+
+    def noting(real):
+        def call(*a):
+            real(*a)
+            part = app.state.part
+            if isinstance(part, Run) and part.struck_at not in found:
+                found.append(part.struck_at)
+        return call
+
+    app.key, app.tick = noting(app.key), noting(app.tick)
+    play(app, events, cols, rows)
+    return found
+
+
+def put(app: App, **kw) -> None:
+    """Set parts of the app's state, as a test's starting point."""
+    app.state = replace(app.state, **kw)
+
+
+def stroke(app: App, **kw) -> None:
+    put(app, stroke=replace(app.state.stroke, **kw))
 
 
 # ------------------------------------------------------------------------- power and aim
@@ -66,11 +112,11 @@ def test_classic_meter_press_to_start_press_to_strike() -> None:
 
 def test_balls_move_and_the_turn_comes_back_to_aim() -> None:
     app = app_for()
-    rack = app.match.pos.copy()
+    rack = app.state.match.pos.copy()
     screen = run_script(app, "enter wait 0.2 space-hold 1.0 wait 1")
-    assert len(app.match.history) == 1
-    assert app.run is None and app.phase in ("aim", "place")
-    assert not np.allclose(app.match.pos[1:], rack[1:])
+    assert len(app.state.match.history) == 1
+    assert app.state.phase in (Phase.AIM, Phase.PLACE)
+    assert not np.allclose(app.state.match.pos[1:], rack[1:])
     assert "You to shoot" in screen or "You to break" in screen or "ball in hand" in screen
 
 
@@ -111,9 +157,9 @@ def test_every_tip_the_spin_keys_reach_is_one_the_strike_takes() -> None:
         reached = set()
         for tip in level:
             for name in "wasd":
-                app.side, app.top = tip
+                stroke(app, side=tip[0], top=tip[1])
                 app.key(Key(name), 0.0)
-                reached.add((app.side, app.top))
+                reached.add((app.state.stroke.side, app.state.stroke.top))
         level = reached - seen
         seen = seen | reached
     for tip in seen:
@@ -133,8 +179,9 @@ def test_a_shot_the_match_refuses_is_a_message_not_a_crash(monkeypatch) -> None:
 
     monkeypatch.setattr(Match, "begin", refuse)
     run_script(app, "space-hold 0.5 wait 1")
-    assert app.phase == "aim" and not app.match.history
-    assert app.message[0][0] == "that shot cannot be played: called: name the pocket for the 8"
+    assert app.state.phase is Phase.AIM and not app.state.match.history
+    assert app.state.message[0][0] == \
+        "that shot cannot be played: called: name the pocket for the 8"
 
 
 def test_no_shot_while_balls_move() -> None:
@@ -147,22 +194,24 @@ def test_no_shot_while_balls_move() -> None:
 
 def test_ball_in_hand_refuses_a_spot_on_another_ball() -> None:
     app = app_for()
-    assert app.phase == "place"
-    app.cursor = [float(v) for v in app.match.pos[app.match.ids.index("1")]]
+    assert app.state.phase is Phase.PLACE
+    m = app.state.match
+    put(app, part=Place(tuple(float(v) for v in m.pos[m.ids.index("1")])))
     app.key(Key("enter"), 0.0)
-    assert app.phase == "place"
+    assert app.state.phase is Phase.PLACE
     text = screen_text(app.cells(100, 32)[0])
     assert "Can't place the cue ball there" in text
 
 
 def test_ball_in_hand_arrows_move_the_cue_ball() -> None:
     app = app_for()
-    x0, y0 = app.cursor
+    x0, y0 = app.state.part.cursor
     run_script(app, "up*3 left*2")
-    assert app.cursor[1] > y0 and app.cursor[0] < x0
+    assert app.state.part.cursor[1] > y0 and app.state.part.cursor[0] < x0
+    cursor = app.state.part.cursor
     app.key(Key("enter"), 10.0)
-    c = app.match.ids.index("cue")
-    assert app.phase == "aim" and tuple(app.match.pos[c]) == pytest.approx(tuple(app.cursor))
+    c = app.state.match.ids.index("cue")
+    assert app.state.phase is Phase.AIM and tuple(app.state.match.pos[c]) == pytest.approx(cursor)
 
 
 # ---------------------------------------------------------------------- pause, quit, help
@@ -170,26 +219,26 @@ def test_ball_in_hand_arrows_move_the_cue_ball() -> None:
 def test_pause_freezes_the_shot_and_any_key_resumes() -> None:
     app = app_for()
     run_script(app, "enter wait 0.2 space-hold 1.0 wait 0.5 p")
-    assert app.phase == "run" and app.overlay == "pause"
-    t = app.shot_clock
+    assert app.state.phase is Phase.RUN and isinstance(app.state.box, Pause)
+    t = shot_clock(app.state)
     assert t > 0
     for k in range(300):
         app.tick(10.0 + k / 60)
-    assert app.shot_clock == t
+    assert shot_clock(app.state) == t
     assert "paused" in screen_text(app.cells(100, 32)[0])
     app.key(Key("x"), 20.0)
     for k in range(60):
         app.tick(20.0 + k / 60)
-    assert app.overlay is None and app.shot_clock > t
+    assert app.state.box is None and shot_clock(app.state) > t
 
 
 def test_quit_asks_first() -> None:
     app = app_for()
     run_script(app, "q")
-    assert app.overlay == "quit" and not app.done
+    assert isinstance(app.state.box, Quit) and not app.done
     assert "Quit termpool?" in screen_text(app.cells(100, 32)[0])
     app.key(Key("n"), 1.0)
-    assert app.overlay is None and not app.done
+    assert app.state.box is None and not app.done
     app.key(Key("q"), 2.0)
     app.key(Key("y"), 2.1)
     assert app.done
@@ -207,7 +256,7 @@ def test_help_lists_the_key_bindings() -> None:
     # Rebound keys show as bound, in the box and in the panel's key help and power label.
     app = App(Options(mode="practice", colors="mono"),
               keymap=parse_keymap("shoot = z\n"), input_mode="repeat")
-    assert isinstance(app.keymap, KeyMap)
+    assert isinstance(app.state.keymap, KeyMap)
     app.key(Key("enter"), 0.0)
     text = screen_text(app.cells(120, 40)[0])
     assert "Z: hold to charge" in text
@@ -219,10 +268,10 @@ def test_help_lists_the_key_bindings() -> None:
 
 def test_menu_picks_a_game() -> None:
     app = App(Options(colors="mono"))
-    assert app.phase == "menu"
+    assert app.state.phase is Phase.MENU
     assert "8-ball vs computer" in screen_text(app.cells(100, 32)[0])
     run_script(app, "down down enter")
-    assert app.match.mode == "9ball" and app.cpu == (False, True)
+    assert app.state.match.mode == "9ball" and app.state.cpu == (False, True)
 
 
 def test_settings_offer_every_level_of_the_computer() -> None:
@@ -232,7 +281,7 @@ def test_settings_offer_every_level_of_the_computer() -> None:
     assert BY_KEY["level"].values == tuple(ai.LEVELS)  # the levels the AI has, pro too
     app = App(Options(colors="mono", level="pro"))
     run_script(app, "1")  # 8-ball vs computer, at that level
-    assert app.match.mode == "8ball" and app.match.levels == (None, "pro")
+    assert app.state.match.mode == "8ball" and app.state.match.levels == (None, "pro")
 
 
 def test_tiny_window_gets_a_message_and_the_game_survives() -> None:
@@ -278,13 +327,13 @@ def test_panel_names_players_and_fouls_in_words() -> None:
     text = screen_text(app.cells(120, 40)[0])
     assert "Foul" in text
     assert "player 0" not in text and "player 1" not in text
-    assert app.match.shooter == 1
+    assert app.state.match.shooter == 1
 
 
 def test_computer_takes_its_turn() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     run_script(app, "enter space wait 60")
-    assert any(rec["player"] == 1 for rec in app.match.history)
+    assert any(rec["player"] == 1 for rec in app.state.match.history)
 
 
 # ---------------------------------------------------------------------------- the CLI
@@ -336,29 +385,29 @@ def test_bad_keymap_file_is_one_line_and_exit_2(tmp_path) -> None:
 def test_push_out_then_pass_with_p_which_is_not_pause_here() -> None:
     app = app_for(mode="9ball", opponent="human")
     run_script(app, "enter space-hold 1.2 wait 20")
-    if app.phase == "place":
+    if app.state.phase is Phase.PLACE:
         app.key(Key("enter"), 100.0)
-    assert app.match.state.push_out == "available"
-    pusher = app.match.shooter
+    assert app.state.match.state.push_out == "available"
+    pusher = app.state.match.shooter
     run_script(app, "o space-hold 0.3 wait 20")
-    assert app.phase == "option" and app.match.option == "shoot_or_pass"
-    assert app.match.shooter != pusher
+    assert app.state.phase is Phase.OPTION and app.state.match.option == "shoot_or_pass"
+    assert app.state.match.shooter != pusher
     assert "pass" in screen_text(app.cells(100, 32)[0])
     app.key(Key("p"), 200.0)
-    assert app.overlay is None and app.match.option is None
-    assert app.match.shooter == pusher
+    assert app.state.box is None and app.state.match.option is None
+    assert app.state.match.shooter == pusher
 
 
 def test_game_over_n_starts_a_new_game_and_does_not_toggle_the_bell() -> None:
     app = app_for(mode="8ball", opponent="human")
     run_script(app, "enter space-hold 1.0 wait 20")
-    app.match.winner = 0  # as if the 8 had just gone down legally
-    app._turn_start()
-    assert app.phase == "over" and "wins" in screen_text(app.cells(100, 32)[0])
-    bell = app.opts.bell
+    app.state.match.winner = 0  # as if the 8 had just gone down legally
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.OVER and "wins" in screen_text(app.cells(100, 32)[0])
+    bell = app.state.opts.bell
     app.key(Key("n"), 300.0)
-    assert app.opts.bell == bell
-    assert app.match.history == [] and app.phase == "place"
+    assert app.state.opts.bell == bell
+    assert app.state.match.history == [] and app.state.phase is Phase.PLACE
 
 
 @pytest.mark.parametrize("cols, rows", [(80, 24), (120, 40), (200, 60)])
@@ -373,9 +422,9 @@ def test_game_screen_at_sizes_and_depths(cols, rows, depth) -> None:
     pyte.Stream(scr).feed(Screen(cols, rows, depth).render(*app.cells(cols, rows)))
     text = "\n".join(scr.display)
     assert "Player 1 to break" in text
-    lay = app._geom[2]
-    c = app.match.ids.index("cue")
-    x, y = lay.to_pixels(*app.match.pos[c])
+    lay = app.seen.layout
+    c = app.state.match.ids.index("cue")
+    x, y = lay.to_pixels(*app.state.match.pos[c])
     cell = scr.buffer[int(y) // 2][int(x)]
     felt = scr.buffer[(lay.py + lay.ph // 4) // 2][lay.px + lay.pw // 2]  # open cloth
     if depth == "mono":
@@ -395,7 +444,7 @@ def test_resizing_during_a_shot_relays_out_without_losing_the_shot() -> None:
     app.key(Key("enter"), 0.0)
     app.key(Key("space"), 0.1)
     app.key(Key("space", kind="release"), 1.1)  # held for a second: the shot starts
-    assert app.phase == "run"
+    assert app.state.phase is Phase.RUN
     sizes = [(80, 24), (30, 10), (160, 50), (100, 32)]
     for k, (cols, rows) in enumerate(sizes):
         app.tick(10.0 + k * 0.1)
@@ -403,14 +452,12 @@ def test_resizing_during_a_shot_relays_out_without_losing_the_shot() -> None:
         assert chars.shape == (rows, cols)
     for k in range(60 * 60):
         app.tick(11.0 + k / 60)
-        if app.phase != "run":
+        if app.state.phase is not Phase.RUN:
             break
-    assert len(app.match.history) == 1
+    assert len(app.state.match.history) == 1
 
 
 def test_the_shot_plays_in_real_time_and_fast_forward_is_four_times_faster() -> None:
-    from termpool.ui.app import DT, FAST
-
     for fast in (False, True):
         app = app_for()
         app.key(Key("enter"), 0.0)
@@ -421,18 +468,18 @@ def test_the_shot_plays_in_real_time_and_fast_forward_is_four_times_faster() -> 
         for k in range(31):  # half a second of 60 Hz ticks
             app.tick(1.3 + k / 60)
         want = 0.5 * (FAST if fast else 1.0)
-        assert abs(app.shot_clock - want) <= DT + 1e-9
+        assert abs(shot_clock(app.state) - want) <= DT + 1e-9
         # What is drawn is the frame a match stepped live reaches at that time, bit for bit.
         from termpool.game import Match, Shot
 
         m = Match("practice", players=("You", "You"))
-        shot = app.run.shot.to_json()
-        m.place_cue(*app.match.pos[0])  # where the app's player put it (the head spot)
+        shot = app.state.part.shot.shot.to_json()
+        m.place_cue(*app.state.match.pos[0])  # where the app's player put it (the head spot)
         live = m.begin(Shot(**{k: shot[k] for k in ("speed", "angle", "side", "top")}))
-        for _ in range(app.shown):
+        for _ in range(app.state.part.shown):
             live.step(DT)
-        pos, _ = app._positions()
-        assert np.array_equal(pos[app.run.rows], live.engine.pos[0])
+        pos, _ = positions(app.state)
+        assert np.array_equal(pos[app.state.part.shot.rows], live.engine.pos[0])
 
 
 def test_three_foul_warning_shows_before_the_shot() -> None:
@@ -440,7 +487,7 @@ def test_three_foul_warning_shows_before_the_shot() -> None:
 
     app = app_for(mode="9ball", opponent="human", three_foul=True)
     app.key(Key("enter"), 0.0)
-    m = app.match
+    m = app.state.match
     m.state = replace(m.state, fouls=(2, 0))
     text = screen_text(app.cells(120, 40)[0])
     assert "Player 1 is on two fouls" in text
@@ -448,7 +495,7 @@ def test_three_foul_warning_shows_before_the_shot() -> None:
 
 def test_waiting_spot_is_legal_even_with_the_head_spot_taken() -> None:
     app = app_for(mode="8ball", opponent="human")
-    m = app.match
+    m = app.state.match
     k = m.ids.index("1")
     m.pos[k] = m.table.head_spot  # a ball sits on the head spot
     x, y = m.waiting_spot()  # the computer's fallback for ball in hand
@@ -457,14 +504,15 @@ def test_waiting_spot_is_legal_even_with_the_head_spot_taken() -> None:
 
 def test_referee_words_get_the_players_names() -> None:
     app = app_for(mode="8ball", opponent="human")
-    assert app.names("the table is open and player 0 continues") == \
+    assert names(app.state, "the table is open and player 0 continues") == \
         "the table is open and Player 1 continues"
-    assert app.names("Player 1 is on two fouls") == "Player 1 is on two fouls"
+    assert names(app.state, "Player 1 is on two fouls") == "Player 1 is on two fouls"
     app = app_for(mode="8ball", opponent="cpu")
-    assert app.names("it is player 0's turn; player 1 loses") == "it is your turn; Computer loses"
-    assert app.names("the table is open and player 0 continues") == \
+    assert names(app.state, "it is player 0's turn; player 1 loses") == \
+        "it is your turn; Computer loses"
+    assert names(app.state, "the table is open and player 0 continues") == \
         "the table is open and you continue"
-    assert app.names("player 0 continues; the 3 went into the foot_left pocket") == \
+    assert names(app.state, "player 0 continues; the 3 went into the foot_left pocket") == \
         "You continue; the 3 went into the foot left pocket"
 
 
@@ -492,7 +540,7 @@ def test_scripts_click_and_legacy_terminals_keep_mouse_releases() -> None:
 
 def cell_of(app: App, x: float, y: float, cols=120, rows=40) -> tuple[int, int]:
     app.cells(cols, rows)
-    lay = app._geom[2]
+    lay = app.seen.layout
     px, py = lay.to_pixels(x, y)
     return int(px), int(py) // 2
 
@@ -501,15 +549,16 @@ def test_click_aims_at_the_point_and_places_the_ball_in_hand() -> None:
     from termpool.ui.keys import Mouse
 
     app = app_for(mode="8ball", opponent="human")
-    m = app.match
+    m = app.state.match
     # Ball in hand: a click puts the cursor at the clicked cell.
     col, row = cell_of(app, 0.4, 0.3)
     app.mouse(Mouse(col, row, "press"), 0.0)
-    lay = app._geom[2]
+    lay = app.seen.layout
     cell_m = 2.0 / lay.scale  # a cell is two pixels high
-    assert abs(app.cursor[0] - 0.4) <= cell_m and abs(app.cursor[1] - 0.3) <= cell_m
+    x, y = app.state.part.cursor
+    assert abs(x - 0.4) <= cell_m and abs(y - 0.3) <= cell_m
     app.key(Key("enter"), 0.1)
-    assert app.phase == "aim"
+    assert app.state.phase is Phase.AIM
     # Aiming: a click on a ball turns the stick at it, to within the cell's size.
     k = m.ids.index("5")
     col, row = cell_of(app, *m.pos[k])
@@ -517,47 +566,49 @@ def test_click_aims_at_the_point_and_places_the_ball_in_hand() -> None:
     d = m.pos[k] - m.pos[0]
     want = math.degrees(math.atan2(d[1], d[0])) % 360
     tol = math.degrees(math.atan2(cell_m, float(np.hypot(*d))))
-    assert abs(app.angle - want) <= tol
+    assert abs(app.state.stroke.angle - want) <= tol
     # A right click or a release does nothing.
-    before = app.angle
+    before = app.state.stroke.angle
     app.mouse(Mouse(0, 0, "press", 2), 0.3)
     app.mouse(Mouse(0, 0, "release", 0), 0.4)
-    assert app.angle == before
+    assert app.state.stroke.angle == before
 
 
 # ---------------------------------------------------------------- from the QA session
 
 def test_ball_in_hand_taps_move_a_centimetre_and_a_hold_crosses_the_table_but_stays_on_it():
     app = app_for(mode="practice")
-    x0, y0 = app.cursor
+    x0, y0 = app.state.part.cursor
     run_script(app, "down")
-    assert app.cursor[1] == pytest.approx(y0 - 0.01)  # up/down move as much as left/right
+    # Up and down move as much as left and right.
+    assert app.state.part.cursor[1] == pytest.approx(y0 - 0.01)
     run_script(app, "right*3", legacy=True)  # legacy taps 50 ms apart count as a short hold
-    assert app.cursor[0] > x0
+    assert app.state.part.cursor[0] > x0
     run_script(app, "left-hold 4")
-    r = float(app.match.radius[0])
-    assert app.cursor[0] == pytest.approx(r)  # clamped at the cushion, still on the cloth
+    r = float(app.state.match.radius[0])
+    # Clamped at the cushion, still on the cloth.
+    assert app.state.part.cursor[0] == pytest.approx(r)
     run_script(app, "up-hold 4")
-    assert app.cursor[1] == pytest.approx(app.table.width - r)
+    assert app.state.part.cursor[1] == pytest.approx(app.state.match.table.width - r)
     app.key(Key("enter"), 100.0)  # the corner is a pocket's mouth: refused, in words
-    assert app.phase == "place" and "Can't place" in app.message[0][0]
+    assert app.state.phase is Phase.PLACE and "Can't place" in app.state.message[0][0]
     run_script(app, "right-hold 1.5")
     app.key(Key("enter"), 200.0)
-    assert app.phase == "aim"
+    assert app.state.phase is Phase.AIM
 
 
 def test_kitchen_keeps_the_ball_in_hand_behind_the_head_string():
     app = app_for(mode="8ball", opponent="human")
-    assert app.match.ball_in_hand == "kitchen"
+    assert app.state.match.ball_in_hand == "kitchen"
     run_script(app, "right-hold 3")
-    assert app.cursor[0] == pytest.approx(app.table.length / 4)
+    assert app.state.part.cursor[0] == pytest.approx(app.state.match.table.length / 4)
     app.key(Key("enter"), 100.0)
-    assert app.phase == "aim"
+    assert app.state.phase is Phase.AIM
 
 
 def test_mono_shows_the_ball_in_hand_at_the_cursor():
     app = app_for(mode="practice")
-    col, row = cell_of(app, *app.cursor, cols=100, rows=32)
+    col, row = cell_of(app, *app.state.part.cursor, cols=100, rows=32)
     chars = app.cells(100, 32)[0]
     assert chars[row, col] == "○"
 
@@ -565,8 +616,8 @@ def test_mono_shows_the_ball_in_hand_at_the_cursor():
 def test_mono_at_80x24_shows_the_power_while_charging():
     app = app_for(mode="8ball", opponent="human", input_mode="classic")
     app.key(Key("enter"), 0.0)
-    app.message = [("a verdict long enough to wrap onto a second line of the narrow bottom "
-                    "panel at eighty columns, as real ones do", "plain")]
+    put(app, message=(("a verdict long enough to wrap onto a second line of the narrow "
+                       "bottom panel at eighty columns, as real ones do", "plain"),))
     app.key(Key("space"), 1.0)
     app.tick(1.6)
     text = screen_text(app.cells(80, 24)[0])
@@ -576,13 +627,13 @@ def test_mono_at_80x24_shows_the_power_while_charging():
 def test_a_finished_match_is_kept_for_the_record_after_n():
     app = app_for(mode="8ball", opponent="human")
     run_script(app, "enter space-hold 1.0 wait 20")
-    first = app.match
-    app.match.winner = 0
-    app._turn_start()
+    first = app.state.match
+    app.state.match.winner = 0
+    app.state = start_turn(app.state)
     app.key(Key("enter"), 300.0)  # Enter is not "new game" on the game-over box
-    assert app.match is first
+    assert app.state.match is first
     app.key(Key("n"), 301.0)
-    assert app.match is not first and app.record() is first
+    assert app.state.match is not first and app.record() is first
 
 
 def test_fast_forward_lasts_one_shot():
@@ -591,17 +642,17 @@ def test_fast_forward_lasts_one_shot():
     assert len(shots(app)) == 1
     app.key(Key("space"), 100.0)
     app.key(Key("space", kind="release"), 100.5)
-    assert app.phase == "run" and not app.fast
+    assert app.state.phase is Phase.RUN and not app.state.part.fast
 
 
 def test_frame_result_stays_in_view_while_the_computer_thinks():
     app = app_for(mode="8ball", opponent="cpu", frames=2)
-    app.message = [("You win the frame (1-0); Computer breaks", "good")]
-    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1)
-    app.phase, app._cpu_plan, app._cpu_t0 = "cpu", None, None
+    put(app, message=(("You win the frame (1-0); Computer breaks", "good"),))
+    app.state.match.state = replace(app.state.match.state, shooter=1)
+    put(app, part=Thinking())
     app.tick(0.0)
     app.tick(0.1)  # the computer decides
-    assert any("wins the frame" in m or "win the frame" in m for m, _ in app.message)
+    assert any("wins the frame" in m or "win the frame" in m for m, _ in app.state.message)
     text = screen_text(app.cells(120, 40)[0])
     assert "frames 0/2" in text
 
@@ -622,9 +673,9 @@ def test_quit_question_shows_even_when_the_window_is_too_small():
 
 def test_a_click_as_the_first_script_token_works():
     app = app_for(mode="practice")
-    before = list(app.cursor)
+    before = app.state.part.cursor
     run_script(app, "click 30 8")
-    assert app.cursor != before
+    assert app.state.part.cursor != before
 
 
 def test_play_only_options_and_play_as_the_default_command():
@@ -637,12 +688,12 @@ def test_play_only_options_and_play_as_the_default_command():
 def test_keys_that_do_not_apply_say_why():
     app = app_for(mode="8ball", opponent="human")
     run_script(app, "enter o")
-    assert "push-out is only" in app.message[0][0]
+    assert "push-out is only" in app.state.message[0][0]
     run_script(app, "c")
-    assert "no call needed" in app.message[0][0]
+    assert "no call needed" in app.state.message[0][0]
     app = app_for(mode="practice")
     run_script(app, "enter u")
-    assert app.message[0][0] == "nothing to take back"
+    assert app.state.message[0][0] == "nothing to take back"
 
 
 # ------------------------------------------------------------- from QA round 2
@@ -651,7 +702,7 @@ def eight_on_the_8(app: App):
     """Player 1 has cleared the solids: the 8 is next and must be called."""
     from dataclasses import replace
 
-    m = app.match
+    m = app.state.match
     m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
     m.ball_in_hand = None
     for b in "1234567":
@@ -659,7 +710,8 @@ def eight_on_the_8(app: App):
     L, W = m.table.length, m.table.width
     m.pos[m.index("8")] = (L - 0.4, W - 0.3)
     m.pos[0] = (L - 0.9, W - 0.8)  # cue, 8 and the foot_left corner in line
-    app.phase, app.angle, app._aim_cache = "aim", 45.0, None
+    put(app, part=Aim())
+    stroke(app, angle=45.0)
     assert m.needs_call()
     return app
 
@@ -668,60 +720,62 @@ def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
     app = app_for(mode="8ball", opponent="human")
     app.key(Key("enter"), 0.0)
     eight_on_the_8(app)
-    assert app._called() == ("8", "foot_left")
+    assert aid.called(app.state) == ("8", "foot_left")
     assert "calling the 8 in foot left" in screen_text(app.cells(120, 40)[0])
     app.key(Key("c"), 1.0)  # the player picks another pocket
-    assert app._called()[1] != "foot_left"
+    assert aid.called(app.state)[1] != "foot_left"
     app.key(Key("left"), 2.0)
     app.key(Key("left", kind="release"), 2.01)
     app.key(Key("right"), 2.1)
     app.key(Key("right", kind="release"), 2.11)
-    assert app._called() == ("8", "foot_left")  # a new aim: the call follows it again
+    assert aid.called(app.state) == ("8", "foot_left")  # a new aim: the call follows it again
     app.key(Key("space"), 3.0)
     app.key(Key("space", kind="release"), 3.3)
-    assert app.run.shot.called == ("8", "foot_left")
+    assert app.state.part.shot.shot.called == ("8", "foot_left")
 
 
 def test_holding_space_to_place_the_ball_does_not_also_shoot():
     for legacy in (True, False):
         app = app_for(mode="practice", input_mode="repeat" if legacy else "release")
         run_script(app, "space-hold 0.8 wait 1", legacy=legacy)
-        assert app.phase == "aim" and not app.match.history and not app.charge.active
+        assert app.state.phase is Phase.AIM and not app.state.match.history
+        assert not app.state.controls.charge.active
         run_script(app, "space-hold 0.8 wait 1", legacy=legacy)  # a new press shoots
-        assert len(app.match.history) == 1
+        assert len(app.state.match.history) == 1
 
 
 def test_ball_in_hand_taps_with_releases_are_taps_and_shift_is_fine_when_held():
     app = app_for(mode="practice")
-    x0, y0 = app.cursor
+    x0, y0 = app.state.part.cursor
     run_script(app, "left*10")
-    assert app.cursor[0] == pytest.approx(x0 - 0.10)
+    assert app.state.part.cursor[0] == pytest.approx(x0 - 0.10)
     run_script(app, "shift+up*2")
-    assert app.cursor[1] == pytest.approx(y0 + 0.004)
-    x1 = app.cursor[0]
+    assert app.state.part.cursor[1] == pytest.approx(y0 + 0.004)
+    x1 = app.state.part.cursor[0]
     run_script(app, "shift+right-hold 1")
-    assert 0 < app.cursor[0] - x1 < 0.1  # a second of fine steps: centimetres, not metres
+    # A second of fine steps: centimetres, not metres.
+    assert 0 < app.state.part.cursor[0] - x1 < 0.1
 
 
 def test_refusals_name_pockets_in_words_and_clicks_off_the_table_are_ignored():
     from termpool.ui.keys import Mouse
 
     app = app_for(mode="practice")
-    app.cursor = [0.03, 0.03]  # the head right corner's mouth
+    put(app, part=Place((0.03, 0.03)))  # the head right corner's mouth
     app.key(Key("enter"), 0.0)
-    assert "head right pocket" in app.message[0][0]
+    assert "head right pocket" in app.state.message[0][0]
     app.cells(100, 32)
-    before = list(app.cursor)
+    before = app.state.part.cursor
     app.mouse(Mouse(50, 31, "press"), 1.0)  # the panel's last row
-    assert app.cursor == before
+    assert app.state.part.cursor == before
 
 
 def test_nine_ball_says_which_ball_is_on():
     app = app_for(mode="9ball", opponent="human")
     run_script(app, "enter space-hold 1.2 wait 20")
-    if app.phase == "place":
+    if app.state.phase is Phase.PLACE:
         app.key(Key("enter"), 100.0)
-    m = app.match
+    m = app.state.match
     low = min((b for b in m.ids[1:] if m.on_table[m.index(b)]), key=int)
     assert f"the {low} is on" in screen_text(app.cells(120, 40)[0])
 
@@ -744,12 +798,12 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
     monkeypatch.setattr(ai, "choose_shot", plan)
     app = app_for(mode="9ball", opponent="cpu")
-    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1)
-    app.match.ball_in_hand = None
-    app.phase, app._cpu_plan, app._cpu_t0 = "cpu", None, None
+    app.state.match.state = replace(app.state.match.state, shooter=1)
+    app.state.match.ball_in_hand = None
+    put(app, part=Thinking())
     app.tick(0.0)
     app.tick(0.1)
-    assert not any("wins" in m for m, _ in app.message)
+    assert not any("wins" in m for m, _ in app.state.message)
 
 
 def test_referee_words_take_the_theme_s_group_names():
@@ -759,17 +813,17 @@ def test_referee_words_take_the_theme_s_group_names():
         "Ann takes the yellows"
     assert in_names("player 1 takes the solids", ["Ann", "Bob"]) == "Bob takes the solids"
     app = app_for(mode="8ball", opponent="human", theme="classic")
-    assert app.names("not one of the solids") == "not one of the reds"
+    assert names(app.state, "not one of the solids") == "not one of the reds"
 
 
 def test_the_record_keeps_the_computer_s_level():
-    assert app_for(mode="9ball", opponent="cpu", level="hard").match.levels == (None, "hard")
-    assert app_for(mode="9ball", opponent="human", level="hard").match.levels == (None, None)
+    assert app_for(mode="9ball", opponent="cpu", level="hard").state.match.levels == (None, "hard")
+    assert app_for(mode="9ball", opponent="human", level="hard").state.match.levels == (None, None)
 
 
 def test_the_eight_on_the_break_variant_reaches_the_match():
-    assert app_for(mode="8ball", eight_break="rerack").match.eight_break == "rerack"
-    assert app_for(mode="8ball").match.eight_break == "respot"
+    assert app_for(mode="8ball", eight_break="rerack").state.match.eight_break == "rerack"
+    assert app_for(mode="8ball").state.match.eight_break == "respot"
     p = cli("play", "--headless", "--keys", "-", "--eight-break", "sometimes", stdin="q y")
     assert p.returncode == 2 and "--eight-break" in p.stderr
 
@@ -784,11 +838,11 @@ def test_legacy_terminal_softest_hold_is_gentle_and_strikes_within_100_ms(delay)
         app = app_for(input_mode="repeat")
         events = legacy_events(parse_script(f"repeat {delay} 0.033 enter wait 0.2 "
                                             f"space-hold {hold} wait 1"))
-        play(app, events, 100, 32)
+        (struck,) = strikes(app, events)
         (shot,) = shots(app)
         assert shot["speed"] <= power_to_speed(most)
         last = max(t for t, k in events if k.name == "space")
-        assert 0.0 < app.struck_at - last <= 0.1
+        assert 0.0 < struck - last <= 0.1
 
 
 def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() -> None:
@@ -827,7 +881,7 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
     from dataclasses import replace
 
     app = app_for(mode="8ball", opponent="human")
-    m = app.match
+    m = app.state.match
     m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
     m.ball_in_hand = None
     m.on_table[:] = False
@@ -836,12 +890,12 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
     for b, p in place.items():
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
-    app._turn_start()
+    app.state = start_turn(app.state)
     # The 1 is nearer, but the 9 (not the shooter's) is in its way: the aim goes to the 2.
-    assert app.angle == pytest.approx(math.degrees(math.atan2(0.4, 0.6)))
+    assert app.state.stroke.angle == pytest.approx(math.degrees(math.atan2(0.4, 0.6)))
     m.pos[m.ids.index("9")] = (0.75, 0.2)  # out of the way: the nearest again
-    app._turn_start()
-    assert app.angle == pytest.approx(0.0)
+    app.state = start_turn(app.state)
+    assert app.state.stroke.angle == pytest.approx(0.0)
 
 
 # -------------------------------------------------------------------- the computer's turn
@@ -854,45 +908,45 @@ def cpu_to_shoot(monkeypatch, note="3 in the foot_left pocket"):
     monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
     monkeypatch.setattr(ai, "as_struck", lambda p, *a, **k: p)
     app = app_for(mode="8ball", opponent="cpu")
-    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
-                                                        is_break=False)
-    app.match.ball_in_hand = None
-    app._turn_start()
-    assert app.phase == "cpu"
+    app.state.match.state = replace(app.state.match.state, shooter=1, is_break=False)
+    app.state.match.ball_in_hand = None
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.CPU
     return app, plan
 
 
 def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monkeypatch):
     app, plan = cpu_to_shoot(monkeypatch)
     t, aimed = 0.0, None
-    while app.phase == "cpu":
+    while app.state.phase is Phase.CPU:
         app.tick(t)
         screen = screen_text(app.cells(120, 40)[0])
-        if app._cpu_plan not in (None, "done"):
+        if isinstance(app.state.part, Aiming):
             assert "Computer: 3 in the foot left pocket" in screen
-            assert app.prediction() is not None and "o" in screen  # its ghost ball
-            if aimed is None and app.angle == plan.angle:
+            assert aid.prediction(app.state) is not None and "o" in screen  # its ghost ball
+            if aimed is None and app.state.stroke.angle == plan.angle:
                 aimed = t
         t += 1 / 60
-    assert aimed is not None and app.struck_at - aimed >= 1.2
-    while app.phase == "run":  # its words stay up while the shot runs ...
+    assert aimed is not None and app.state.part.struck_at - aimed >= 1.2
+    while app.state.phase is Phase.RUN:  # its words stay up while the shot runs ...
         assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
         app.tick(t)
         t += 1 / 60
     # ... and when it is over, beside the verdict, until the next shot
-    assert app.message[0][0] == "Computer: 3 in the foot left pocket" and len(app.message) == 2
+    assert app.state.message[0][0] == "Computer: 3 in the foot left pocket"
+    assert len(app.state.message) == 2
     assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
 
 
 def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monkeypatch):
     app, plan = cpu_to_shoot(monkeypatch)
     t = 0.0
-    while app.phase in ("cpu", "run"):
+    while app.state.phase in (Phase.CPU, Phase.RUN):
         app.tick(t)
         t += 1 / 60
-    verdict = app.message[-1]
-    m = app.match
-    m.state = __import__("dataclasses").replace(m.state, shooter=1)
+    verdict = app.state.message[-1]
+    m = app.state.match
+    m.state = replace(m.state, shooter=1)
     m.ball_in_hand = None
     m.on_table[:] = False
     for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
@@ -900,16 +954,17 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
         m.on_table[m.ids.index(b)] = True
     monkeypatch.setattr(__import__("termpool").ai, "choose_shot",
                         lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
-    app._turn_start()
-    app.angle = 90.0  # its stick starts away from its aim, on the 8
+    app.state = start_turn(app.state)
+    stroke(app, angle=90.0)  # its stick starts away from its aim, on the 8
     app.tick(t)
     app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
-    assert app.message == [verdict, ("Computer: 3 in the side", "turn")]
+    assert app.state.message == (verdict, ("Computer: 3 in the side", "turn"))
     # While its stick turns it names no ball (the stick sweeps past others); on its aim, the 3.
-    assert app.angle != 0.0 and "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
+    assert app.state.stroke.angle != 0.0
+    assert "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
     app.tick(t + 0.2)  # the first frame with its plan: the stick starts to turn
     app.tick(t + 0.2 + 0.7)
-    assert app.angle == 0.0 and "Computer is aiming at the 3" in \
+    assert app.state.stroke.angle == 0.0 and "Computer is aiming at the 3" in \
         screen_text(app.cells(120, 40)[0])
 
 
@@ -921,44 +976,43 @@ def test_the_computer_s_thinking_time_does_not_eat_its_aim(monkeypatch):
     app.tick(0.1)  # it plans (here at once; in play this tick blocks for about a second)
     shown = 1.1
     t, aimed = shown, None
-    while app.phase == "cpu":
+    while app.state.phase is Phase.CPU:
         app.tick(t)
-        if aimed is None and app.angle == plan.angle:
+        if aimed is None and app.state.stroke.angle == plan.angle:
             aimed = t
         t += 1 / 60
-    assert aimed - shown >= CPU_AIM_S - 1e-9 and app.struck_at - aimed >= CPU_SHOW_S - 1e-9
+    assert aimed - shown >= CPU_AIM_S - 1e-9
+    assert app.state.part.struck_at - aimed >= CPU_SHOW_S - 1e-9
 
 
 def test_a_key_skips_the_computer_s_wait(monkeypatch):
     app, plan = cpu_to_shoot(monkeypatch)
     app.tick(0.0)
     app.tick(0.1)  # it has its plan, and starts turning its stick
-    assert app._cpu_plan not in (None, "done")
+    assert isinstance(app.state.part, Aiming)
     app.key(Key("x"), 0.2)
     app.tick(0.2)
-    assert app.phase == "run" and app.struck_at == 0.2
-    assert shots(app) == [] and app.match.running.shot.angle == plan.angle
+    assert app.state.phase is Phase.RUN and app.state.part.struck_at == 0.2
+    assert shots(app) == [] and app.state.match.running.shot.angle == plan.angle
 
 
 def test_the_computer_says_what_it_chose(monkeypatch):
     # After the human's push-out, the computer shoots or passes, and says which.
     app = app_for(mode="9ball", opponent="cpu")
-    app.match.option = "shoot_or_pass"
-    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
-                                                        is_break=False)
-    app.match.ball_in_hand = None
-    app._turn_start()
+    app.state.match.option = "shoot_or_pass"
+    app.state.match.state = replace(app.state.match.state, shooter=1, is_break=False)
+    app.state.match.ball_in_hand = None
+    app.state = start_turn(app.state)
     for k in range(5):
         app.tick(k / 60)
-    assert app.match.option is None
+    assert app.state.match.option is None
     words = screen_text(app.cells(120, 40)[0])
     assert "Computer chose to shoot" in words
     # After an illegal break the computer accepts the table, in words too.
     app = app_for(mode="8ball", opponent="cpu")
-    app.match.option = "rerack_or_accept"
-    app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
-                                                        is_break=False)
-    app._turn_start()
+    app.state.match.option = "rerack_or_accept"
+    app.state.match.state = replace(app.state.match.state, shooter=1, is_break=False)
+    app.state = start_turn(app.state)
     for k in range(5):
         app.tick(k / 60)
     assert "Computer chose to accept the table" in screen_text(app.cells(120, 40)[0])
@@ -971,14 +1025,15 @@ def test_racks_differ_from_game_to_game_unless_a_seed_is_given(tmp_path) -> None
     seeds = set()
     for _ in range(3):
         app = App(Options(mode="8ball", opponent="human", colors="mono"))
-        racks.add(app.match.pos.round(9).tobytes())
-        seeds.add(app.match.seed)
+        racks.add(app.state.match.pos.round(9).tobytes())
+        seeds.add(app.state.match.seed)
     assert len(racks) == 3 and len(seeds) == 3
     app = App(Options(mode="8ball", opponent="human", colors="mono"))
-    first = app.match.pos.copy()
-    app.new_match("8ball", "human")  # a new game (N on the game-over screen) deals anew
-    assert not np.array_equal(app.match.pos, first)
-    same = [App(Options(mode="9ball", colors="mono", seed=7)).match.pos for _ in range(2)]
+    first = app.state.match.pos.copy()
+    # A new game (N on the game-over screen) deals anew.
+    app.state = new_match(app.state, "8ball", "human")
+    assert not np.array_equal(app.state.match.pos, first)
+    same = [App(Options(mode="9ball", colors="mono", seed=7)).state.match.pos for _ in range(2)]
     assert np.array_equal(*same)
     # The seed goes into the record, and deals the same rack again.
     rec = tmp_path / "m.json"
@@ -1001,16 +1056,16 @@ def test_balls_three_cells_wide_carry_their_numbers(cols, rows, numbered) -> Non
 
     app = app_for(mode="9ball", opponent="human", colors="truecolor")
     # Spread the rack out so that no two balls share a cell row and column span.
-    for k in range(1, len(app.match.ids)):
-        app.match.pos[k] = (0.4 + 0.2 * k, 0.3 + 0.07 * k)
+    for k in range(1, len(app.state.match.ids)):
+        app.state.match.pos[k] = (0.4 + 0.2 * k, 0.3 + 0.07 * k)
     chars, fg, bg = app.cells(cols, rows)
-    lay, _ = app._geometry(cols, rows)
+    lay = layout(cols, rows, app.state.match.table)
     wide = 2 * BALL_RADIUS * lay.scale >= 3
     assert wide == numbered
-    for k, b in enumerate(app.match.ids):
+    for k, b in enumerate(app.state.match.ids):
         if b == "cue":
             continue
-        x, y = lay.to_pixels(*app.match.pos[k])
+        x, y = lay.to_pixels(*app.state.match.pos[k])
         r = int(y) // 2
         line = "".join(chars[r])
         at = line.find(b, int(x) - 2)
@@ -1025,22 +1080,22 @@ def test_the_called_pocket_is_marked_on_the_table_and_follows_c() -> None:
     from termpool.ui.palette import CALL_C
 
     app = eight_on_the_8(app_for(mode="8ball", opponent="human", colors="truecolor"))
-    lay, _ = app._geometry(120, 40)
+    lay = layout(120, 40, app.state.match.table)
 
     def marked():
         _, fg, bg = app.cells(120, 40)
         hits = (fg == CALL_C.rgb).all(axis=2) | (bg == CALL_C.rgb).all(axis=2)
         rr, cc = np.nonzero(hits)
-        holes = app.table.hole_c.reshape(-1, 2)
+        holes = app.state.match.table.hole_c.reshape(-1, 2)
         px = np.array([lay.to_pixels(*h) for h in holes])
         near = [np.hypot(cc + 0.5 - px[k, 0], 2 * rr + 1 - px[k, 1]).min() for k in range(6)]
         return int(np.argmin(near)), len(rr)
 
     k, n = marked()
-    assert n > 0 and app.table.hole_names[k] == app._called()[1]
+    assert n > 0 and app.state.match.table.hole_names[k] == aid.called(app.state)[1]
     app.key(Key("c"), 1.0)
     k2, _ = marked()
-    assert k2 != k and app.table.hole_names[k2] == app._called()[1]
+    assert k2 != k and app.state.match.table.hole_names[k2] == aid.called(app.state)[1]
     mono = eight_on_the_8(app_for(mode="8ball", opponent="human"))
     assert "*" in screen_text(mono.cells(120, 40)[0])
 
@@ -1050,11 +1105,11 @@ def test_the_head_string_shows_while_the_ball_in_hand_must_stay_behind_it() -> N
 
     for mode, kitchen in (("8ball", True), ("practice", False)):
         app = app_for(mode=mode, opponent="human", colors="truecolor")
-        assert app.phase == "place"
-        lay, _ = app._geometry(120, 40)
+        assert app.state.phase is Phase.PLACE
+        lay = layout(120, 40, app.state.match.table)
         chars, fg, bg = app.cells(120, 40)
         guide = (fg == GUIDE_C.rgb).all(axis=2) | (bg == GUIDE_C.rgb).all(axis=2)
-        col = int(lay.to_pixels(app.table.length / 4, 0.0)[0])
+        col = int(lay.to_pixels(app.state.match.table.length / 4, 0.0)[0])
         rows = np.nonzero(guide[:, col])[0]
         if kitchen:
             assert len(rows) >= 0.4 * lay.ph / 2  # dotted, from rail to rail
@@ -1063,7 +1118,8 @@ def test_the_head_string_shows_while_the_ball_in_hand_must_stay_behind_it() -> N
             assert not guide.any()
     mono = app_for(mode="8ball", opponent="human")
     text = screen_text(mono.cells(120, 40)[0]).splitlines()
-    col = int(mono._geometry(120, 40)[0].to_pixels(mono.table.length / 4, 0.0)[0])
+    table = mono.state.match.table
+    col = int(layout(120, 40, table).to_pixels(table.length / 4, 0.0)[0])
     assert sum(line[col:col + 1] == ":" for line in text) >= 10
 
 
@@ -1072,16 +1128,16 @@ def test_the_head_string_shows_while_the_ball_in_hand_must_stay_behind_it() -> N
 def grouped(app: App, frames_won=(0, 0)) -> App:
     from dataclasses import replace
 
-    m = app.match
+    m = app.state.match
     m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
     m.ball_in_hand = None
     m.scores = list(frames_won)
-    app.phase = "aim"
+    put(app, part=Aim())
     return app
 
 
 def panel_text(app: App, cols: int, rows: int) -> list[str]:
-    lay, _ = app._geometry(cols, rows)
+    lay = layout(cols, rows, app.state.match.table)
     text = screen_text(app.cells(cols, rows)[0]).split("\n")
     c, r, w, _ = lay.panel_rect
     return [line[c:c + w] for line in text[r:]]
@@ -1090,22 +1146,23 @@ def panel_text(app: App, cols: int, rows: int) -> list[str]:
 @pytest.mark.parametrize("colors", ["mono", "256"])
 @pytest.mark.parametrize("frames", [1, 3])
 def test_at_80x24_both_players_groups_are_listed_whole(colors, frames) -> None:
-    for names in ("cpu", "human"):
-        app = grouped(app_for(mode="8ball", opponent=names, colors=colors, frames=frames))
-        app.side, app.top = 0.1, -0.2
+    for opponent in ("cpu", "human"):
+        app = grouped(app_for(mode="8ball", opponent=opponent, colors=colors, frames=frames))
+        stroke(app, side=0.1, top=-0.2)
         panel = panel_text(app, 80, 24)
         rows = " ".join(panel)
         for k in range(1, 16):
             if k != 8:
                 assert f"{k}" in rows.replace("10", " ").replace("11", " ") or k > 9
         for p in (0, 1):  # each player's row holds all their balls, in order
-            row = next(line for line in panel if app.match.players[p] in line)
+            row = next(line for line in panel if app.state.match.players[p] in line)
             want = "1 2 3 4 5 6 7" if p == 0 else "9 10 11 12 13 14 15"
             got = " ".join(row.replace("●", " ").replace("◐", " ").split())
             assert want in got, row
             if frames > 1:
                 assert "0/3" in row
-        assert any(line.strip().startswith(f"{app.match.players[0]} to shoot") for line in panel)
+        name = app.state.match.players[0]
+        assert any(line.strip().startswith(f"{name} to shoot") for line in panel)
         # the spin, in words where no face fits
         assert "tip +0.1 side -0.2 top" in " ".join(rows.split())
 
@@ -1114,9 +1171,10 @@ def test_at_200x60_the_spin_readout_shows() -> None:
     for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
                          ("mono", ("tip +0.3 side -0.1 top",))):
         app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
-        app.message = [("Computer: 12 in the head right pocket", "dim"),
-                       ("legal break: the 6 and the 7 pocketed; the table is open", "plain")]
-        app.side, app.top = 0.3, -0.1
+        put(app, message=(("Computer: 12 in the head right pocket", "dim"),
+                          ("legal break: the 6 and the 7 pocketed; the table is open",
+                           "plain")))
+        stroke(app, side=0.3, top=-0.1)
         for size in ((200, 60), (120, 40), (100, 32)):
             text = " ".join(" ".join(panel_text(app, *size)).split())
             for w in want:
@@ -1126,13 +1184,13 @@ def test_at_200x60_the_spin_readout_shows() -> None:
 @pytest.mark.parametrize("size", [(40, 12), (45, 14), (60, 16)])
 @pytest.mark.parametrize("mode", ["release", "repeat", "classic"])
 def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
-    from termpool.ui.app_screen import hint_lines
     from termpool.ui.panel import fit_hint
+    from termpool.ui.view import hint_lines
 
     app = grouped(app_for(mode="8ball", opponent="human", input_mode=mode))
     hint = panel_text(app, *size)[-1].strip()
-    parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app)]
-    assert hint == fit_hint(hint_lines(app), size[0] - 3)  # the panel's text width
+    parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app.state)]
+    assert hint == fit_hint(hint_lines(app.state), size[0] - 3)  # the panel's text width
     assert hint.endswith("Q quit") and hint.startswith("←→ aim")
     assert {"release": "Space:hold", "repeat": "Space:hold",
             "classic": "Space:meter"}[mode] in hint.replace(": ", ":").replace(", let go", "")
@@ -1143,17 +1201,17 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
 
 def test_game_over_says_you_win_and_q_quits_at_once() -> None:
     app = app_for(mode="8ball", opponent="cpu")
-    app.match.winner = 0
-    app.message = [("the 8 went into the foot left pocket: You win", "good")]
-    app._turn_start()
-    assert app.phase == "over"
+    app.state.match.winner = 0
+    put(app, message=(("the 8 went into the foot left pocket: You win", "good"),))
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.OVER
     text = screen_text(app.cells(120, 40)[0])
     assert "You win!" in text and "You wins" not in text
     app.key(Key("q"), 1.0)
-    assert app.done and app.overlay is None  # no second "Quit termpool?" on top
+    assert app.done and app.state.box is None  # no second "Quit termpool?" on top
     app = app_for(mode="8ball", opponent="human")
-    app.match.winner = 1
-    app._turn_start()
+    app.state.match.winner = 1
+    app.state = start_turn(app.state)
     assert "Player 2 wins!" in screen_text(app.cells(120, 40)[0])
 
 
@@ -1164,7 +1222,7 @@ def test_a_verdict_too_long_for_the_panel_ends_in_an_ellipsis(cols, rows) -> Non
              "no ball reached a cushion after contact and nothing was pocketed; you have ball "
              "in hand")
     app = app_for(mode="8ball")
-    app.message = [(words, "foul")]
+    put(app, message=((words, "foul"),))
     text = screen_text(app.cells(cols, rows)[0])
     assert any(s.rstrip().endswith("…") for s in text.splitlines())
     assert "ball in hand" in text  # the status still says it
@@ -1208,11 +1266,11 @@ def test_power_set_with_a_digit_does_not_carry_into_the_next_game() -> None:
         run_script(app, "enter 2 space wait 20")
         assert shots(app)[0]["speed"] == power_to_speed(0.2)
         app.key(Key("2"), 100.0)  # set for the next shot ...
-        app.match.winner = 0
-        app._turn_start()
+        app.state.match.winner = 0
+        app.state = start_turn(app.state)
         app.key(Key("n"), 101.0)  # ... but a new game starts afresh
-        assert app.charge.preset_level == (0.5 if power == "digits" else None)
-        assert app.last_power == 0.5
+        assert app.state.controls.charge.preset_level == (0.5 if power == "digits" else None)
+        assert app.state.last_power == 0.5
 
 
 def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
@@ -1221,8 +1279,8 @@ def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
     text = screen_text(app.cells(120, 40)[0])
     assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
     run_script(app, "space-hold 0.6 wait 20")
-    while app.phase != "aim":  # the next shooter may have ball in hand
-        app.key(Key("enter"), app.now + 1.0)
+    while app.state.phase is not Phase.AIM:  # the next shooter may have ball in hand
+        app.key(Key("enter"), app.state.now + 1.0)
     text = screen_text(app.cells(120, 40)[0])
     assert "aid at 50% power (the last shot's)" in text
 
@@ -1235,34 +1293,34 @@ def _to_the_computer(app: App) -> float:
     app.key(Key("space"), 1.0)
     app.key(Key("space", "release"), 2.0)
     t = 2.0
-    while not (app.phase == "cpu" and app._cpu_plan is not None) and t < 100:
+    while not isinstance(app.state.part, Aiming) and t < 100:
         t += 1 / 30
         app.tick(t)
-    assert app.phase == "cpu"
+    assert app.state.phase is Phase.CPU
     return t
 
 
 def test_the_verdict_on_the_players_shot_stays_through_the_computers_turn() -> None:
     app = app_for(mode="8ball", opponent="cpu", seed=3)
     _to_the_computer(app)
-    (verdict,) = [x for x in app.message if x not in app._cpu_note]
+    (verdict,) = [x for x in app.state.message if x not in app.state.cpu_note]
     assert "Computer's turn" in verdict[0]  # the referee on the player's break
     assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
     # The computer's first shot ends and leaves it at the table: its next plan keeps the
     # player's verdict in view, not the computer's own.
-    note = app._cpu_note
-    app._shot_note = note
-    app.message = [*note, ("the 6 went in: Computer's turn again", "good")]
-    app._cpu_plan = app._plan()
-    assert app.message[0] == verdict
+    note = app.state.cpu_note
+    put(app, shot_note=note, message=(*note, ("the 6 went in: Computer's turn again", "good")))
+    app.state, plan = cpu.plan(app.state)
+    put(app, part=Aiming(plan, app.state.stroke.angle))
+    assert app.state.message[0] == verdict
     assert "the 6 went in" not in screen_text(app.cells(120, 40)[0])
     # ... and while its shot runs.
-    app._cpu_skip = True
-    t = app.now
-    while app.phase == "cpu":
+    put(app, part=replace(app.state.part, skip=True))
+    t = app.state.now
+    while app.state.phase is Phase.CPU:
         t += 1 / 30
         app.tick(t)
-    assert app.phase == "run" and app.message[0] == verdict
+    assert app.state.phase is Phase.RUN and app.state.message[0] == verdict
     assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
 
 
@@ -1270,10 +1328,10 @@ def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> No
     app = app_for(mode="8ball", opponent="cpu", seed=4)
     app.key(Key("enter"), 0.0)
     run_script(app, "")
-    app._shot_note = [("Computer: 3 in the side right pocket", "turn")]
-    app.message = [*app._shot_note, ("nothing pocketed: your turn", "plain")]
-    assert app.phase in ("aim", "place")
-    app.phase = "aim"
+    note = (("Computer: 3 in the side right pocket", "turn"),)
+    put(app, shot_note=note, message=(*note, ("nothing pocketed: your turn", "plain")))
+    assert app.state.phase in (Phase.AIM, Phase.PLACE)
+    put(app, part=Aim())
     lines = screen_text(app.cells(80, 24)[0]).splitlines()[-5:]
     assert lines[1].strip().startswith("You to")
     assert lines[2].strip().startswith("aid at 50% power") and "first ball" in lines[2]
@@ -1294,13 +1352,13 @@ def test_the_second_players_name_stays_put_from_ball_in_hand_to_aim_to_charge(co
     where.append(column())  # aiming, the spin face up
     app.key(Key("space"), 1.0)
     app.tick(1.5)
-    assert app.charge.active
+    assert app.state.controls.charge.active
     where.append(column())  # charging, the power meter up too
     assert len(set(where)) == 1, where
 
 
 def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
-    from termpool.ui.app_screen import panel_info
+    from termpool.ui.view import panel_info
 
     app = app_for(mode="8ball", opponent="human", colors="256")
     app.key(Key("enter"), 0.0)
@@ -1311,7 +1369,7 @@ def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
     # Each number in its ball's colour, as the players' lines show a group's balls.
     from termpool.ui.panel import ball_tokens
 
-    m = app.match
+    m = app.state.match
     want = ball_tokens(m.ids, [m.index(str(n)) for n in range(1, 16)], False)
     col = lines[row].index("balls ") + len("balls")
     for text, f, b in want:
@@ -1320,6 +1378,6 @@ def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
         assert tuple(bg[row, col]) == tuple(b) and tuple(fg[row, col + len(text) - 1]) == f
         col += len(text)
     # Once the groups are set, the players' lines show them instead.
-    app.match.state = app.match.state.__class__(mode="8ball", shooter=0,
+    app.state.match.state = app.state.match.state.__class__(mode="8ball", shooter=0,
                                                 groups={0: "solids", 1: "stripes"})
-    assert panel_info(app).legend == []
+    assert panel_info(app.state).legend == []

@@ -11,9 +11,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from termpool.ui.app import DT, FAST, App, Options
+from termpool.ui.app import App, Options
 from termpool.ui.headless import play, screen_text
 from termpool.ui.keys import Key, parse_script
+from termpool.ui.phases.turn import start_turn
+from termpool.ui.shots import DT, FAST
+from termpool.ui.state import Phase
 from termpool.ui.table_view import layout
 from termpool.ui.watch import AIM_S, VERDICT_S, Watch
 
@@ -33,15 +36,15 @@ def table_mask(table, cols: int = COLS, rows: int = ROWS) -> np.ndarray:
     return mask
 
 
-def capture(app, key_of, mask_of):
-    """Wrap `app.cells` to keep the table cells of every frame drawn while a shot runs, by
-    key_of(app) (the shot and the frame shown)."""
+def capture(app, key_of, mask_of, running):
+    """Wrap `app.cells` to keep the table cells of every frame drawn while a shot runs
+    (`running(app)`), by key_of(app) (the shot and the frame shown)."""
     seen = {}
     cells = app.cells
 
     def wrapped(cols, rows):
         out = cells(cols, rows)
-        if app.phase == "run":
+        if running(app):
             m = mask_of(app)
             seen[key_of(app)] = tuple(None if a is None else a[m].copy() for a in out)
         return out
@@ -55,19 +58,21 @@ def live(request):
     """A two-player 8-ball match played headless, with the table cells of every frame of
     every shot as the game drew them."""
     app = App(Options(mode="8ball", opponent="human", seed=3, colors=request.param))
-    seen = capture(app, lambda a: (len(a.match.history) + 1, a.shown),
-                   lambda a: table_mask(a.table))
+    seen = capture(app, lambda a: (len(a.state.match.history) + 1, a.state.part.shown),
+                   lambda a: table_mask(a.state.match.table),
+                   lambda a: a.state.phase is Phase.RUN)
     play(app, parse_script(MATCH_KEYS), COLS, ROWS)
-    assert app.phase == "aim" and len(app.match.history) == 4
+    assert app.state.phase is Phase.AIM and len(app.state.match.history) == 4
     return app, seen, request.param
 
 
 def test_watched_frames_equal_the_live_frames_at_the_same_times(live) -> None:
     app, seen, depth = live
-    data = app.match.to_json()
+    data = app.state.match.to_json()
     watch = Watch(data, depth)
     table = watch.scenes[0][0].table
-    watched = capture(watch, lambda w: (w.i + 1, w.shown), lambda w: table_mask(table))
+    watched = capture(watch, lambda w: (w.i + 1, w.shown), lambda w: table_mask(table),
+                      lambda w: w.phase == "run")
     play(watch, [], COLS, ROWS)
     assert watch.phase == "end"
     common = set(seen) & set(watched)
@@ -94,7 +99,7 @@ def record() -> dict:
     """The match of `live`, played in mono."""
     app = App(Options(mode="8ball", opponent="human", seed=3, colors="mono"))
     play(app, parse_script(MATCH_KEYS), COLS, ROWS)
-    return app.match.to_json()
+    return app.state.match.to_json()
 
 
 def watch_for(record, **kw) -> Watch:
@@ -255,17 +260,17 @@ def test_a_race_shows_frames_and_the_match_winner(record) -> None:
 def test_w_at_the_end_of_a_match_watches_it_and_q_comes_back() -> None:
     app = App(Options(mode="8ball", opponent="human", seed=3, colors="mono"))
     play(app, parse_script("enter space-hold 1.3 wait 12"), COLS, ROWS)
-    app.match.winner = 0  # as if the 8 had just gone down legally
-    app._turn_start()
+    app.state.match.winner = 0  # as if the 8 had just gone down legally
+    app.state = start_turn(app.state)
     assert "w: watch this match" in screen_text(app.cells(COLS, ROWS)[0])
     app.key(Key("w"), 100.0)
-    assert app.watching is not None and app.wake_in(100.0) == 0.0
+    assert app.state.watch is not None and app.wake_in(100.0) == 0.0
     assert "shot 1 of 1 · Player 1 · the break" in screen_text(app.cells(COLS, ROWS)[0])
     for k in range(120):
         app.tick(100.0 + k / 60)
-    assert app.watching.phase == "run" and app.dirty
+    assert app.state.watch.phase == "run" and app.dirty
     app.key(Key("q"), 103.0)  # stops watching: the game-over box again, not a quit question
-    assert app.watching is None and not app.done and app.overlay is None
+    assert app.state.watch is None and not app.done and app.state.box is None
     assert "w: watch this match" in screen_text(app.cells(COLS, ROWS)[0])
 
 

@@ -98,7 +98,7 @@ def _settings(args: argparse.Namespace):
 
 
 def _options(args: argparse.Namespace, values: dict):
-    from termpool.ui.app import Options
+    from termpool.ui.state import Options
 
     return Options(mode=args.mode, opponent=args.opponent, seed=args.seed,
                    three_foul=args.three_foul, eight_break=args.eight_break, **values)
@@ -154,21 +154,19 @@ def run(args: argparse.Namespace) -> int:
                 raise PlayError(f"{flag}: only with --headless (a terminal has its own size "
                                 "and keys)")
     _check_record(args)
+    from termpool.game.history import Recorder
+    from termpool.ui.records import Records
+
+    files = {"prefs": store, "history": Recorder(), "records": Records(args.record, args.force)}
     if args.headless:
-        app, play = _headless(args, opts, _keymap(args.keymap))
+        app, play = _headless(args, opts, _keymap(args.keymap), files)
     else:
         if not (os.isatty(sys.stdin.fileno()) and os.isatty(sys.stdout.fileno())):
             from termpool.ui.term import no_tty_message
 
             sys.stderr.write(no_tty_message() + "\n")
             return 2
-        app, play = _terminal(args, opts, _keymap(args.keymap))
-    from termpool.game.history import Recorder
-    from termpool.ui.records import Records
-
-    app.prefs = store
-    app.history = Recorder()
-    app.records = Records(args.record, args.force)
+        app, play = _terminal(args, opts, _keymap(args.keymap), files)
     try:
         rc = play()
     except BaseException:
@@ -186,22 +184,18 @@ def _leave(app, args: argparse.Namespace) -> int:
     from termpool.ui.term import signals_held
 
     with signals_held():
-        app.record()  # a shot still rolling is played out first
-        app.log_match()
-        lines, status = app.records.finish(app.match) if app.records is not None \
-            else ([], 0)
-    for line in [*app.notes, *lines]:
+        lines, status = app.leave()  # a shot still rolling is played out first
+    for line in lines:
         say(line)
-    app.notes.clear()
     return status
 
 
-def _terminal(args: argparse.Namespace, opts, keymap):
+def _terminal(args: argparse.Namespace, opts, keymap, files: dict):
     from termpool.ui import term
     from termpool.ui.app import App
 
     mode = {"kitty": "release"}.get(args.input, args.input)
-    app = App(opts, keymap, "repeat" if mode == "auto" else mode)
+    app = App(opts, keymap, "repeat" if mode == "auto" else mode, **files)
 
     def play() -> int:
         return term.run(app, app.depth, kitty=args.input in ("auto", "kitty"),
@@ -211,7 +205,7 @@ def _terminal(args: argparse.Namespace, opts, keymap):
     return app, play
 
 
-def _headless(args: argparse.Namespace, opts, keymap):
+def _headless(args: argparse.Namespace, opts, keymap, files: dict):
     from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
     from termpool.ui.app import App
     from termpool.ui.headless import play as play_keys
@@ -232,7 +226,7 @@ def _headless(args: argparse.Namespace, opts, keymap):
     mode = {"auto": "release", "kitty": "release"}.get(args.input, args.input)
     if mode != "release":  # without the kitty protocol a terminal never reports releases
         events = legacy_events(events)
-    app = App(opts, keymap, mode)
+    app = App(opts, keymap, mode, **files)
 
     def play() -> int:
         try:

@@ -1,0 +1,104 @@
+"""The app's update: a state and an event (a key, a mouse event, a clock tick) in, the next
+state out. Each phase has its module (menu, aim, place, shot, cpu, answer: its keys and, where
+time moves it, its tick); the boxes over any phase have theirs (boxes); `turn` holds the steps
+they share. The driver (ui.app) tells each event the screen it came from (`Seen`), for the
+mouse and the help's pages.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+from termpool.ui import aid
+from termpool.ui.phases import aim, answer, boxes, cpu, menu, place, shot
+from termpool.ui.state import Help, Pause, Phase, Quit, Run, Seen, State
+
+KEYS: dict[Phase, Callable] = {Phase.MENU: menu.key, Phase.AIM: aim.key, Phase.PLACE: place.key,
+                               Phase.RUN: shot.key, Phase.CPU: cpu.key,
+                               Phase.OPTION: answer.nothing, Phase.OVER: answer.nothing}
+TICKS: dict[Phase, Callable] = {Phase.AIM: aim.tick, Phase.RUN: shot.tick, Phase.CPU: cpu.tick}
+POINTS: dict[Phase, Callable] = {Phase.AIM: aim.point, Phase.PLACE: place.point}
+
+
+def key(s: State, key, t: float, seen: Seen | None = None) -> State:
+    s = replace(s, now=t)
+    if s.watch is not None:
+        s.watch.key(key, t)
+        return replace(s, watch=None) if s.watch.done else s  # back to the match's end
+    action = s.keymap.action(key)
+    if key.kind == "release" and action != "shoot":
+        s.controls.aim.step(key, t)  # a release ends an aim hold: the next press is a tap
+        s.controls.place.release(key.name)  # ... and a ball-in-hand hold
+        if s.controls.swallow is not None and key.name == s.controls.swallow[0]:
+            return replace(s, controls=replace(s.controls, swallow=None))
+        return s
+    if s.box is not None:
+        return boxes.key(s, key, action, seen)
+    if s.phase in (Phase.OPTION, Phase.OVER) and key.kind == "press":
+        answered = answer.key(s, key)
+        if answered is not None:
+            return answered  # their letters (P: pass, N: new game) come before the rest
+    press = key.kind == "press"
+    if action == "help" and press:
+        return replace(s, box=Help())
+    if action == "quit" and press:
+        return replace(s, done=True) if s.phase is Phase.MENU else replace(s, box=Quit())
+    if action == "pause" and press and s.phase is not Phase.MENU:
+        return replace(s, box=Pause())
+    if action == "bell" and press:
+        bell = not s.opts.bell
+        return replace(s, opts=replace(s.opts, bell=bell),
+                       message=(("sound on" if bell else "sound off", "dim"),))
+    return KEYS[s.phase](s, key, action, t)
+
+
+def mouse(s: State, ev, t: float, seen: Seen | None) -> State:
+    """A left press or drag on the table aims at that point (or, with ball in hand, moves
+    the cue ball there); the arrows then refine. `seen` is the screen it was on: a table not
+    drawn yet there takes no clicks."""
+    s = replace(s, now=t)
+    if (s.box is not None or s.match is None or s.watch is not None or seen is None
+            or seen.layout is None or seen.table is not s.match.table
+            or s.phase not in POINTS or ev.button != 0 or ev.kind not in ("press", "drag")):
+        return s
+    lay = seen.layout
+    ox, oy, ow, oh = lay.outer
+    if not (ox <= ev.col < ox + ow and oy <= 2 * ev.row + 1 < oy + oh):
+        return s  # the panel, or beside the table
+    x = (ev.col + 0.5 - lay.px) / lay.sx  # the cell's centre, in table metres
+    y = lay.width - (2 * ev.row + 1 - lay.py) / lay.sy
+    return POINTS[s.phase](s, x, y)
+
+
+def tick(s: State, t: float) -> State:
+    s = replace(s, now=t)
+    if s.watch is not None:
+        s.watch.tick(t)
+        return s
+    s = aid.advance(s)  # the aid fills in
+    if s.box is not None:  # paused or asking: a shot waits
+        return shot.pause(s) if isinstance(s.part, Run) else s
+    step = TICKS.get(s.phase)
+    return s if step is None else step(s, t)
+
+
+def wake_in(s: State, t: float) -> float | None:
+    """Seconds until the app needs a tick (None: only on a key)."""
+    if s.watch is not None:
+        return s.watch.wake_in(t)
+    if s.box is not None:
+        return None
+    if s.phase in (Phase.RUN, Phase.CPU) or aid.running(s):
+        return 0.0
+    charge = s.controls.charge
+    if charge.active:  # the meter moves; an inferred release is due at its time
+        due = charge.release_due()
+        return 0.0 if due is None else max(0.0, due - t)
+    return None
+
+
+def moving(s: State) -> bool:
+    """Whether the screen changes with the clock alone: a charge or meter running."""
+    return s.phase is Phase.AIM and s.controls.charge.active
+

@@ -1,0 +1,134 @@
+"""A player aims: the stick, the cue tip, the power (held, a meter or set with a digit), the
+call for the 8, a push-out, the aid's level, and practice's take-back and re-rack."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from termpool.physics.cue import clamp_tip
+from termpool.physics.table import POCKET_NAMES
+from termpool.ui import aid
+from termpool.ui.phases.turn import shoot_human, start_turn
+from termpool.ui.predict import LEVELS
+from termpool.ui.state import Place, State, cue_index, say
+
+SPIN_STEP = 0.1  # tip offset per key, in units of R
+SPIN_KEYS = {"spin_up": (0, 1), "spin_down": (0, -1), "spin_left": (-1, 0), "spin_right": (1, 0)}
+AIM_KEYS = ("aim_ccw", "aim_cw", "aim_fine_ccw", "aim_fine_cw")
+AID_WORDS = {"full": "aim aid: every path (G: ghost ball only)",
+             "ghost": "aim aid: the ghost ball only (G: off)", "off": "aim aid off (G: on)"}
+
+
+def power_digit(key) -> float | None:
+    """The power a digit key sets (1-9: 10-90%, 0: 100%), or None for any other key."""
+    if key.kind != "press" or key.ctrl or key.alt or len(key.name) != 1 \
+            or key.name not in "0123456789":
+        return None
+    return (int(key.name) or 10) / 10
+
+
+def strike(s: State, level: float) -> State:
+    """The player's shot at power `level`, with the 8's call when one is needed."""
+    called = None
+    if s.match.needs_call():
+        s = aid.refresh(s)
+        called = aid.called(s)
+    return shoot_human(s, level, called)
+
+
+def key(s: State, key, action: str | None, t: float) -> State:
+    swallow = s.controls.swallow
+    if swallow is not None and key.name == swallow[0]:
+        name, last, repeating = swallow
+        # Auto-repeat starts up to 0.75 s after the press, then comes every 20-100 ms.
+        if key.kind == "repeat" or (key.kind == "press"
+                                    and t - last <= (0.15 if repeating else 0.75)):
+            return replace(s, controls=replace(s.controls, swallow=(name, t, True)))
+        s = replace(s, controls=replace(s.controls, swallow=None))
+        if key.kind == "release":
+            return s
+    charge = s.controls.charge
+    if action == "shoot":
+        level = charge.key(key, t)
+        return s if level is None else strike(s, level)
+    if key.kind == "release":
+        return s
+    m, st = s.match, s.stroke
+    if action in AIM_KEYS:
+        angle = (st.angle + s.controls.aim.step(key, t)) % 360.0
+        # A new aim: the 8's call follows it again.
+        return replace(s, stroke=replace(st, angle=angle, call_picked=False))
+    if action in SPIN_KEYS:
+        dx, dy = SPIN_KEYS[action]
+        # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue limit
+        # the tip slides along it.
+        side, top = clamp_tip(round(st.side + dx * SPIN_STEP, 6), round(st.top + dy * SPIN_STEP, 6))
+        return replace(s, stroke=replace(st, side=side, top=top))
+    if action == "spin_reset":
+        return replace(s, stroke=replace(st, side=0.0, top=0.0))
+    if action == "cancel":
+        if charge.active:
+            charge.cancel()
+        elif charge.preset_level is not None and s.opts.power != "digits":
+            charge.preset(None)
+            return say(s, f"power: hold {charge.key_label} again")
+        return s
+    if action is None and power_digit(key) is not None:
+        charge.preset(power_digit(key))
+        return s
+    if action == "aim_aid":
+        level = LEVELS[(LEVELS.index(s.opts.aid) - 1) % len(LEVELS)]
+        return say(replace(s, opts=replace(s.opts, aid=level)), AID_WORDS[level])
+    if action == "call_pocket":
+        if m.needs_call():
+            if st.call_picked:
+                start = st.called_k
+            else:
+                s = aid.refresh(s)
+                start = aid.aimed_pocket(s)
+            return replace(s, stroke=replace(st, called_k=(start + 1) % len(POCKET_NAMES),
+                                             call_picked=True))
+        if m.state.mode == "8ball":
+            return say(s, "no call needed: only the 8 is called, once your group is down")
+        return say(s, "no calls in this game")
+    if action == "push_out":
+        if m.state.push_out == "available":
+            return replace(s, stroke=replace(st, push_out=not st.push_out))
+        return say(s, "a push-out is only for the shot after a 9-ball break")
+    if action == "place" and m.ball_in_hand:
+        x, y = m.pos[cue_index(s)]
+        return replace(s, part=Place((float(x), float(y))))
+    if action in ("undo", "rerack") and m.state.mode != "practice":
+        return say(s, "take back and re-rack are for practice")
+    if action == "undo":
+        try:
+            m.take_back()
+            s = say(s, "took the last shot back")
+        except ValueError:
+            s = say(s, "nothing to take back")
+        return start_turn(s)
+    if action == "rerack":
+        m.rerack()
+        return start_turn(say(s, "re-racked"))
+    return s
+
+
+def tick(s: State, t: float) -> State:
+    """A charge running: the meter moves, and a release inferred (or the meter's end) may
+    strike."""
+    charge = s.controls.charge
+    if charge.active:
+        level = charge.poll(t)
+        if level is not None:
+            return strike(s, level)
+    return s
+
+
+def point(s: State, x: float, y: float) -> State:
+    """Aim at the point (x, y) of the table (the mouse)."""
+    cx, cy = s.match.pos[cue_index(s)]
+    if math.hypot(x - cx, y - cy) < 1e-9:
+        return s
+    angle = math.degrees(math.atan2(y - cy, x - cx)) % 360.0
+    return replace(s, stroke=replace(s.stroke, angle=angle, call_picked=False))

@@ -1,0 +1,39 @@
+"""The boxes a letter answers: the option (re-rack or accept, shoot or pass) and the game's
+end (a new game, the menu, watching the match, quit)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from termpool.ui.phases.turn import new_match, start_turn, to_menu
+from termpool.ui.state import Phase, State
+from termpool.ui.watch import Watch
+from termpool.ui.words import OPTION_KEYS, chose
+
+
+def key(s: State, key) -> State | None:
+    """The state after a letter answering the box on show; None if the key is not one (the
+    other keys then do what they do in any phase)."""
+    m = s.match
+    if s.phase is Phase.OPTION:
+        pick = OPTION_KEYS.get(m.option, {}).get(key.name)
+        if pick is None:
+            return None
+        line = (chose(m.players[m.shooter], pick), "dim")
+        player = m.shooter
+        m.choose(pick)
+        return start_turn(replace(s, message=(line,), chosen=(player, line)))
+    if key.name == "n":
+        return new_match(s, s.opts.mode, s.opts.opponent)
+    if key.name == "m":
+        return to_menu(s)
+    if key.name == "w":  # watch the match just played, then come back here
+        return replace(s, watch=Watch(m.to_json(), s.depth))
+    if key.name == "q" or s.keymap.action(key) == "quit":
+        return replace(s, done=True)  # the box says "q: quit": no second question on top
+    return None
+
+
+def nothing(s: State, key, action: str | None, t: float) -> State:
+    """Keys that are not an answer do nothing more here (see `key`)."""
+    return s

@@ -1,0 +1,158 @@
+"""The boxes over any phase take the keys while they are open: the help's pages, the pause,
+the quit question, and the Settings and Stats screens (their lines: ui.screens)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+from termpool.game.history import history_path, read_history, summary
+from termpool.text import shown
+from termpool.ui.help import page_key
+from termpool.ui.output import resolve_depth
+from termpool.ui.phases.turn import apply_pending, set_input_mode, to_menu
+from termpool.ui.screens import STATS_ROWS, current, stats_room, stats_top
+from termpool.ui.settings import BY_KEY, MAX_NAME, SETTINGS, check_name
+from termpool.ui.state import Help, Pause, Quit, Seen, Settings, State, Stats, help_of
+from termpool.ui.stats import stats_lines
+
+
+def key(s: State, key, action: str | None, seen: Seen | None) -> State:
+    box = s.box
+    if isinstance(box, Settings):
+        return settings_key(s, box, key, action)
+    if isinstance(box, Stats):
+        return stats_key(s, box, key, seen.rows if seen is not None else STATS_ROWS)
+    if key.kind != "press":
+        return s
+    if isinstance(box, Pause) and key.name == "s" and not (key.ctrl or key.alt):
+        return open_settings(s, Pause())
+    if isinstance(box, Quit):
+        if key.name in ("y", "q") or action == "quit":
+            return replace(s, done=True)
+        if key.name == "m" and not (key.ctrl or key.alt):
+            return to_menu(s)
+        if key.name == "n" or action in ("cancel", "confirm"):
+            return replace(s, box=None)
+        return s
+    if isinstance(box, Help):
+        # The pages are the ones the screen showed last (they depend on its size).
+        pages = len(help_of(s, seen.cols, seen.rows)) if seen is not None else 1
+        page, close = page_key(key.name, min(box.page, pages - 1), pages)
+        return replace(s, box=None if close else Help(page))
+    return replace(s, box=None)  # any key ends the pause
+
+
+# ---------------------------------------------------------------------------- Settings
+def open_settings(s: State, back: Pause | None = None) -> State:
+    if s.match is None:
+        s = apply_pending(s)
+    return replace(s, box=Settings({x.key: current(s, x.key) for x in SETTINGS}, back))
+
+
+def set_value(s: State, key: str, value: Any) -> State:
+    """Change a setting: at once, or (one that shapes a match, while a match is on) from the
+    next game."""
+    if BY_KEY[key].later and s.match is not None:
+        pending = {**s.pending, key: value}
+        if value == getattr(s.opts, key):
+            del pending[key]
+        return replace(s, pending=pending)
+    s = replace(s, opts=replace(s.opts, **{key: value}))
+    if key == "colors":
+        return replace(s, depth=resolve_depth(value, s.env))
+    if key == "power":
+        return set_input_mode(s, s.input_mode)
+    return s
+
+
+def _step(setting, value: Any, d: int) -> Any:
+    """The value d steps on (choices go round; a count stops at its ends)."""
+    if setting.kind == "switch":
+        return not value
+    if setting.kind == "count":
+        return min(setting.hi, max(setting.lo, value + d))
+    vals = setting.values
+    return vals[(vals.index(value) + d) % len(vals)]
+
+
+def _typed(key) -> str | None:
+    """The character a key types into a name, or None."""
+    if key.ctrl or key.alt:
+        return None
+    if key.name == "space":
+        return " "
+    if len(key.name) == 1 and key.name.isprintable():
+        return key.name.upper() if key.shift and key.name.isalpha() else key.name
+    return None
+
+
+def settings_key(s: State, box: Settings, key, action: str | None) -> State:
+    if key.kind == "release":
+        return s
+    setting = SETTINGS[box.index]
+    if box.editing is not None:
+        return _type(s, box, key)
+    if key.name in ("up", "k") or (key.name == "tab" and key.shift):
+        return replace(s, box=replace(box, index=(box.index - 1) % len(SETTINGS)))
+    if key.name in ("down", "j", "tab"):
+        return replace(s, box=replace(box, index=(box.index + 1) % len(SETTINGS)))
+    if key.name in ("left", "right") and setting.kind != "name":
+        d = -1 if key.name == "left" else 1
+        return set_value(s, setting.key, _step(setting, current(s, setting.key), d))
+    if setting.kind == "name" and (key.name == "enter" or action == "confirm"):
+        return replace(s, box=replace(box, editing=current(s, setting.key)))
+    if key.name in ("esc", "q", "enter") or action in ("cancel", "quit", "confirm"):
+        return _close(s, box)
+    return s
+
+
+def _type(s: State, box: Settings, key) -> State:
+    if key.name == "esc":
+        return replace(s, box=replace(box, editing=None))
+    if key.name == "enter":  # only printable characters can be typed (see _typed)
+        s = set_value(s, SETTINGS[box.index].key, check_name(box.editing.strip()))
+        return replace(s, box=replace(box, editing=None))
+    if key.name == "backspace":
+        return replace(s, box=replace(box, editing=box.editing[:-1]))
+    ch = _typed(key)
+    if ch is not None and len(box.editing) < MAX_NAME:
+        return replace(s, box=replace(box, editing=box.editing + ch))
+    return s
+
+
+def _close(s: State, box: Settings) -> State:
+    """Done: the changes made here are saved (the flags of this run are not), and the box
+    it came from is back."""
+    s = replace(s, box=box.back)
+    changes = {k: current(s, k) for k, v in box.before.items() if current(s, k) != v}
+    if changes and s.files.prefs is not None:
+        warning = s.files.prefs.save(changes)
+        if warning:
+            return replace(s, message=((warning, "foul"),), notes=(*s.notes, warning))
+    return s
+
+
+# ------------------------------------------------------------------------------- Stats
+def open_stats(s: State, back: Pause | None = None) -> State:
+    history = s.files.history
+    path = history.path if history is not None else history_path(s.env)
+    found, warning, _ = read_history(path)
+    text = tuple(shown(x) for x in ([warning, ""] if warning else []) +
+                 stats_lines(summary(found)))
+    return replace(s, box=Stats(text, back))
+
+
+def stats_key(s: State, box: Stats, key, rows: int) -> State:
+    """The arrows and pages scroll (by the page the screen last showed); any other key
+    closes the box."""
+    if key.kind == "release":
+        return s
+    page = stats_room(rows)
+    most = max(0, len(box.text) - page)
+    top = stats_top(box, rows)
+    moves = {"up": -1, "k": -1, "down": 1, "j": 1, "pageup": -page, "pagedown": page,
+             "space": page, "home": -len(box.text), "end": len(box.text)}
+    if key.name in moves and most:
+        return replace(s, box=replace(box, top=min(most, max(0, top + moves[key.name]))))
+    return replace(s, box=box.back)

@@ -1,0 +1,87 @@
+"""The computer's turn: it shows that it is thinking, decides (an option's answer, where to
+put the ball in hand, its shot), turns its stick onto its aim, holds it there with its plan
+in words, then shoots. Any key makes it shoot at once."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+from termpool import ai
+from termpool.ui.phases.turn import shoot, start_turn
+from termpool.ui.state import Aiming, Answering, State, Thinking, names
+from termpool.ui.words import chose
+
+CPU_AIM_S = 0.6  # the computer turns its stick onto its aim over this long ...
+CPU_SHOW_S = 1.2  # ... then holds it there, its aid and plan on show, this long before it
+# shoots (a key shoots at once)
+CPU_THINK_FRAME_S = 0.05  # show "thinking" for at least this long before blocking on the plan
+
+
+def key(s: State, key, action: str | None, t: float) -> State:
+    if key.kind == "press" and isinstance(s.part, Thinking | Aiming):
+        s = replace(s, part=replace(s.part, skip=True))  # no more waiting for its shot
+    if action == "shoot":
+        s.controls.charge.observe(key, t)  # a key still held after the strike: its repeats
+    return s
+
+
+def tick(s: State, t: float) -> State:
+    part = s.part
+    if isinstance(part, Thinking):
+        if part.since is None:  # draw "thinking" first, then block on the plan
+            return replace(s, part=replace(part, since=t))
+        if t - part.since < CPU_THINK_FRAME_S:
+            return s
+        s, decision = plan(s)
+        if isinstance(decision, str):
+            return replace(s, part=Answering(decision))
+        # Its turn is timed from the first frame that shows the plan: `t` is from before
+        # the plan, which takes a second of its own.
+        return replace(s, part=Aiming(decision, s.stroke.angle, skip=part.skip))
+    if isinstance(part, Answering):
+        m = s.match
+        line = (chose(m.players[m.shooter], part.choice), "turn")
+        player = m.shooter
+        m.choose(part.choice)
+        return start_turn(replace(s, message=(line,), chosen=(player, line)))
+    since = t if part.since is None else part.since
+    elapsed = t - since
+    f = 1.0 if part.skip else min(1.0, elapsed / CPU_AIM_S)
+    p = part.plan
+    turn = (p.angle - part.start + 180.0) % 360.0 - 180.0
+    angle = p.angle if f >= 1.0 else (part.start + f * turn) % 360.0
+    s = replace(s, part=replace(part, since=since),
+                stroke=replace(s.stroke, angle=angle, side=p.side * f, top=p.top * f))
+    if part.skip or elapsed >= CPU_AIM_S + CPU_SHOW_S:
+        return shoot(s, p.speed, p.angle, p.side, p.top, p.called, keep_message=True)
+    return s
+
+
+def plan(s: State) -> tuple[State, ai.Plan | str]:
+    """The computer's decision: an option's answer, or a placement and then a shot (with its
+    plan in words for the panel)."""
+    m = s.match
+    if m.option is not None:
+        return s, ai.choose_option(m.option)
+    level = s.opts.level
+    args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
+    seed = m.seed * 1000 + len(m.history)
+    if m.ball_in_hand:
+        x, y = ai.choose_placement(*args, m.ball_in_hand, level=level, seed=seed)
+        if m.placement_error(x, y):  # never expected; where a scratched cue ball waits
+            x, y = m.waiting_spot()
+        m.place_cue(x, y)
+    decision = ai.choose_shot(*args[:6], m.on_table, m.state, level=level, seed=seed)
+    decision = ai.as_struck(decision, level, seed)
+    foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", decision.note or "")
+    note = ((names(s, f"Computer: {decision.note}"), "turn"),) if decision.note and not \
+        foresees else ()  # a plan ("3 in the foot left pocket"), not the result it simulated
+    # The verdict on the player's own last shot stays in view through the computer's turn,
+    # however many shots it takes (with the computer's answer to an option, if it just gave
+    # one); else the last verdict (without the plan of the shot it was about).
+    last = tuple(x for x in s.message if x not in s.shot_note)[:2]
+    if s.your_verdict is not None:
+        mine = s.chosen[1] if s.chosen is not None and s.chosen[0] == m.shooter else None
+        last = (s.your_verdict, *(x for x in last if x == mine))
+    return replace(s, message=last + note, cpu_note=note), decision

@@ -1,0 +1,46 @@
+"""Ball in hand: the arrows (and the mouse) move the cue ball, Enter puts it down."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from termpool.ui.state import Aim, Place, State, cue_index, names, nearest_angle
+
+PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
+ARROWS = {"left": (-1, 0), "right": (1, 0), "up": (0, 1), "down": (0, -1)}
+
+
+def clamp(s: State, x: float, y: float) -> tuple[float, float]:
+    """Keep the ball in hand on the cloth (and behind the head string when it must be)."""
+    m = s.match
+    r = float(m.radius[cue_index(s)])
+    L, W = m.table.length, m.table.width
+    right = L / 4 if m.ball_in_hand == "kitchen" else L - r
+    return min(right, max(r, x)), min(W - r, max(r, y))
+
+
+def key(s: State, key, action: str | None, t: float) -> State:
+    x, y = s.part.cursor
+    if key.name in ARROWS and key.kind != "release":
+        # 1 cm a tap; held, from 0.25 to 1 m/s over a second from the press; Shift: 2 mm.
+        step = PLACE_FINE if key.shift else s.controls.place.step(key.name, key.kind, t)
+        dx, dy = ARROWS[key.name]
+        return replace(s, part=Place(clamp(s, x + dx * step, y + dy * step)))
+    if action in ("confirm", "place", "shoot") and key.kind == "press":
+        why = s.match.placement_error(x, y)
+        if why:
+            return replace(s, message=((names(s, f"Can't place the cue ball there: {why}"),
+                                        "foul"),))
+        s.match.place_cue(x, y)
+        # Held, the key that put the ball down keeps coming (repeats; on terminals without
+        # releases, as presses): none of it may start a shot.
+        swallow = (key.name, t, False) if action == "shoot" else None
+        s = replace(s, message=(), part=Aim(), controls=replace(s.controls, swallow=swallow))
+        return replace(s, stroke=replace(s.stroke, angle=nearest_angle(s)))
+    return s
+
+
+def point(s: State, x: float, y: float) -> State:
+    """Put the ball in hand at the point (x, y) of the table (the mouse), or as near as it
+    may go."""
+    return replace(s, part=Place(clamp(s, x, y)))

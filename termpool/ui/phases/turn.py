@@ -1,0 +1,191 @@
+"""The steps every phase shares: a new match, the turn that starts once the table is at rest,
+a shot struck and finished, the way to the menu, and the match kept (--record, history).
+Each takes a state and gives the next one (see ui.state)."""
+
+from __future__ import annotations
+
+import secrets
+from dataclasses import replace
+
+from termpool.game import Match, Shot
+from termpool.physics.cue import clamp_tip
+from termpool.ui.controls import PowerCharge
+from termpool.ui.settings import player_names
+from termpool.ui.shots import DEFAULT_POWER, power_to_speed, simulate
+from termpool.ui.state import (
+    Aim,
+    Menu,
+    Option,
+    Over,
+    Place,
+    Run,
+    State,
+    Stroke,
+    Thinking,
+    cue_index,
+    names,
+    nearest_angle,
+    shooter_is_cpu,
+)
+from termpool.ui.term import signals_held
+
+
+def set_input_mode(s: State, mode: str) -> State:
+    """How the terminal tells a held key: "release" (kitty protocol), "repeat" (infer holds)
+    or "classic" (it cannot: press, press). The power setting picks the meter or digits over
+    holds."""
+    shoot_keys = s.keymap.keys_for("shoot")
+    charge = PowerCharge("classic" if s.opts.power == "meter" else mode,
+                         key_label=shoot_keys[0] if shoot_keys else "space")
+    if s.opts.power == "digits":
+        charge.preset(s.last_power)
+    return replace(s, input_mode=mode, controls=replace(s.controls, charge=charge))
+
+
+def apply_pending(s: State) -> State:
+    """The settings changes held for the next game take effect (a new match starts)."""
+    return replace(s, opts=replace(s.opts, **s.pending), pending={})
+
+
+def new_match(s: State, mode: str, opponent: str) -> State:
+    s = log_match(s)
+    played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
+    s = apply_pending(s)
+    # Power starts afresh: a soft safety's 20% of the last game is no break for this one.
+    s.controls.charge.preset(DEFAULT_POWER if s.opts.power == "digits" else None)
+    opts = replace(s.opts, mode=mode, opponent=opponent)
+    cpu = (False, opponent == "cpu" and mode != "practice")
+    # Without a seed every game deals a new rack; the seed is in the record either way.
+    seed = opts.seed if opts.seed is not None else secrets.randbits(63)
+    match = Match(mode, table=opts.table, frames=opts.frames,
+                  players=player_names(opts.player1, opts.player2, mode, opponent),
+                  seed=seed, theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
+                  eight_break=opts.eight_break,
+                  levels=tuple(opts.level if c else None for c in cpu))
+    s = replace(s, opts=opts, played=played, match=match, cpu=cpu, last_power=DEFAULT_POWER,
+                shot_power_set=False, message=(), your_verdict=None, stroke=Stroke())
+    return start_turn(s)
+
+
+def start_turn(s: State) -> State:
+    """The next phase, once the table is at rest: the next frame or the match's end, an
+    option to answer, the computer's turn, ball in hand or the aim."""
+    m = s.match
+    s.controls.charge.cancel()
+    s = replace(s, stroke=replace(s.stroke, side=0.0, top=0.0, push_out=False,
+                                  call_picked=False))
+    if m.frame_over and m.winner is None:
+        won = m.frame_winner
+        m.new_frame()
+        frame = (names(s, f"player {won} wins the frame ({m.scores[0]}-{m.scores[1]}); "
+                          f"player {m.shooter} breaks"), "good")
+        s = replace(s, your_verdict=None, message=(*s.message, frame))  # the news now
+    if m.winner is not None:
+        return log_match(replace(s, part=Over()))
+    if m.option is not None:
+        return replace(s, part=Thinking() if shooter_is_cpu(s) else Option())
+    if shooter_is_cpu(s):
+        return replace(s, part=Thinking())
+    if m.ball_in_hand:
+        c = cue_index(s)
+        x, y = m.pos[c] if m.on_table[c] else m.table.head_spot
+        if m.placement_error(x, y):
+            x, y = m.table.head_spot
+        return replace(s, part=Place((float(x), float(y))))
+    angle = 0.0 if m.state.is_break else nearest_angle(s)
+    return replace(s, part=Aim(), stroke=replace(s.stroke, angle=angle))
+
+
+def shoot(s: State, speed: float, angle: float, side: float, top: float, called=None,
+          push_out: bool = False, keep_message: bool = False) -> State:
+    """Strike: the whole shot is simulated now and shown frame by frame (ui.shots). A shot
+    the match refuses is said, and the shooter aims again (the computer's shots are checked
+    the same way; should one be refused, the shot is left to the keys rather than to a loop
+    of refusals). With `keep_message` (the computer's shots) its plan stays in view, and the
+    verdict on the player's last shot."""
+    side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
+    shot = Shot(speed=speed, angle=angle, side=side, top=top, called=called,
+                push_out=push_out)
+    try:
+        run = s.match.begin(shot)
+    except ValueError as e:
+        return replace(s, part=Aim(), message=((f"that shot cannot be played: {e}", "foul"),))
+    fast = s.opts.fast  # fast-forward is for one shot, unless the settings say
+    fast = fast == "always" or (fast == "computer" and shooter_is_cpu(s))
+    # The computer's plan stays in view while its shot runs, and then beside the verdict.
+    note = s.cpu_note if keep_message else ()
+    yours = (s.your_verdict,) if keep_message and s.your_verdict else ()
+    return replace(s, part=Run(run, simulate(run), s.now, fast), shot_note=note,
+                   message=yours + note)
+
+
+def shoot_human(s: State, level: float, called: tuple[str, str] | None) -> State:
+    """The player's strike at power `level` (0 to 1) on the stroke set up."""
+    s = replace(s, last_power=level, shot_power_set=True)
+    st = s.stroke
+    return shoot(s, power_to_speed(level), st.angle, st.side, st.top, called, st.push_out)
+
+
+def finish_shot(s: State) -> State:
+    """The shot's last frame is on show: it is judged and recorded, and the turn goes on."""
+    m = s.match
+    before = int(m.on_table.sum())
+    by_cpu = shooter_is_cpu(s)
+    with signals_held():  # judged and recorded whole, whatever interrupts
+        out = s.part.shot.finish()
+    reason = names(s, out.reason)
+    if out.foul:
+        verdict = (f"Foul: {reason}", "foul")
+    else:
+        verdict = (reason, "good" if out.continue_turn else "plain")
+    s = replace(s, message=(*s.shot_note, verdict))
+    if not by_cpu and any(s.cpu):
+        s = replace(s, your_verdict=verdict)
+    if s.opts.bell and (out.foul or int(m.on_table.sum()) < before):
+        s = replace(s, bells=s.bells + 1)  # a pocketed ball or a foul
+    return start_turn(s)
+
+
+def log_match(s: State) -> State:
+    """The match in play has ended or is being left: save it (--record) and add it to the
+    history of play (once; not one without shots). A file that cannot be written is one line
+    for the terminal when the game ends."""
+    if s.files.records is not None:
+        s.files.records.keep(s.match)
+    if s.files.history is not None and s.match is not None:
+        warning = s.files.history.add(s.match, s.cpu, s.opts.level)
+        if warning:
+            return replace(s, notes=(*s.notes, warning))
+    return s
+
+
+def record(s: State) -> tuple[State, Match | None]:
+    """The match to save (--record): this one if it has shots, else the last that had. A
+    shot still rolling (the game was left mid-shot) is played out first: simulated again
+    from its start, since an interrupt may have stopped its engine between two updates (the
+    same steps give the same shot). Should even that fail, the match is kept as it stood
+    before the shot, and the notes say so. The game is being left: its phase stays as it
+    was."""
+    m = s.match
+    if m is not None and m.running is not None:
+        shot = m.running.shot
+        m.abandon(m.running)
+        try:
+            m.begin(shot).finish()
+        except Exception as e:  # whatever went wrong, the shots before it are kept
+            if m.running is not None:
+                m.abandon(m.running)
+            s = replace(s, notes=(*s.notes, f"the last shot could not be played out ({e}); "
+                                            "the record ends with the shot before it"))
+    if m is not None and m.history:
+        return s, m
+    return s, s.played[-1] if s.played else m
+
+
+def to_menu(s: State) -> State:
+    """Leave the match for the menu (it is saved and added to the history first)."""
+    if isinstance(s.part, Run):
+        s, _ = record(s)  # a shot still rolling is played out, as on the way out
+    s = log_match(s)
+    played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
+    return replace(s, box=None, part=Menu(), match=None, played=played)

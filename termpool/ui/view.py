@@ -1,0 +1,379 @@
+"""What the app shows: a state drawn as screen cells (table, aim aids, panel, boxes, menu).
+
+`draw(state, cols, rows, geometry)` is the whole screen, and what it showed (`Seen`: the
+table's layout, for the mouse). It reads the state and changes nothing in it: the aid's
+prediction is brought up to date by the driver before it draws (ui.aid.refresh). The only
+thing a screen keeps is its `Geometry` (the table's background for its size), so screens of
+different sizes can draw one state.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from termpool.physics.state import POCKETED
+from termpool.rules.common import GROUPS, legal_targets
+from termpool.rules.themes import group_label
+from termpool.rules.words import KITCHEN, MODE_NAMES
+from termpool.ui import aid
+from termpool.ui import overlay as ov
+from termpool.ui.canvas import put_text
+from termpool.ui.help import pretty
+from termpool.ui.palette import DIM_TEXT_C, TEXT_C
+from termpool.ui.panel import (
+    TURN_C,
+    PanelInfo,
+    PlayerLine,
+    blank_cells,
+    draw_box,
+    draw_panel,
+    message_cells,
+    too_small_lines,
+    widget_fits,
+)
+from termpool.ui.screens import TITLES, box_lines
+from termpool.ui.state import (
+    MENU,
+    Aiming,
+    Answering,
+    Help,
+    Pause,
+    Phase,
+    Place,
+    Quit,
+    Run,
+    Seen,
+    Settings,
+    State,
+    Stats,
+    Thinking,
+    cue_index,
+    help_of,
+    names,
+)
+from termpool.ui.table_view import Geometry, Layout, TableView
+from termpool.ui.words import OPTION_TEXT
+
+SPIN_TEXT_COLS = 10  # the spin readout beside the face
+POWER_COLS = 14  # the power meter's width in the panel
+
+
+def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, Seen]:
+    """The whole screen for the state, (chars, fg, bg) with fg and bg None in mono, and what
+    it showed."""
+    mono = s.depth == "mono"
+    lay, table = None, None
+    if s.phase is Phase.MENU or s.match is None:
+        out = _menu_cells(s, cols, rows, mono)
+    else:
+        table = s.match.table
+        lay, view = geometry.get(cols, rows, table, s.opts.theme)
+        if lay is None:
+            out = message_cells(cols, rows, too_small_lines(cols, rows), mono)
+        else:
+            out = _table_cells(s, lay, view, mono)
+            draw_panel(out, lay, panel_info(s, lay), mono)
+            _question(s, out)
+    box = s.box
+    if isinstance(box, Help):
+        pages = help_of(s, cols, rows)
+        title, lines = pages[min(box.page, len(pages) - 1)]
+        draw_box(out, lines, title, wrap=False)
+    elif isinstance(box, Pause):
+        draw_box(out, ["paused", "", "S: settings · any other key to go on"], "pause")
+    elif isinstance(box, Settings | Stats):
+        draw_box(out, box_lines(s, box, cols, rows), TITLES[type(box)], wrap=False)
+    elif isinstance(box, Quit):  # drawn even over "make the window bigger": Q must show
+        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"], "quit")
+    return out, Seen(cols, rows, lay, table)
+
+
+def positions(s: State):
+    """The balls' positions and states on show: the shot's frame while it runs, the ball in
+    hand where it would go."""
+    m = s.match
+    state = np.where(m.on_table, 0, POCKETED).astype(np.int8)
+    part = s.part
+    if isinstance(part, Run) and part.shown > 0:  # the shot's frame now on show
+        p, st = part.frames[part.shown - 1]
+        rows = part.shot.rows  # the engine holds only the balls that were on the table
+        pos = m.pos.copy()
+        pos[rows] = p
+        state[rows] = st
+        return pos, state
+    if isinstance(part, Place):  # the ball in hand is drawn where the cursor is
+        pos = m.pos.copy()
+        c = cue_index(s)
+        pos[c] = part.cursor
+        state[c] = 0
+        return pos, state
+    return m.pos, state
+
+
+def _aiming(s: State) -> bool:
+    """A stick to draw: the player's, or the computer's once it has decided."""
+    return s.phase is Phase.AIM or isinstance(s.part, Aiming | Answering)
+
+
+def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
+    m = s.match
+    pos, state = positions(s)
+    c = cue_index(s)
+    aiming = _aiming(s)
+    pred = aid.prediction(s) if aiming and m.on_table[c] else None
+    level = aid.level(s)
+    called = called_pocket(s) if aiming else None
+    kitchen = s.phase is Phase.PLACE and m.ball_in_hand == "kitchen"
+    holes = m.table.hole_c.reshape(-1, 2)
+
+    def mark(chars) -> None:
+        if kitchen:
+            ov.mono_head_string(chars, lay, m.table.length / 4)
+        if pred is not None:
+            ov.mono_prediction(chars, lay, pred, level, float(m.radius[c]))
+        if called is not None:
+            ov.mono_called_pocket(chars, lay, holes[called])
+
+    def paint(cv) -> None:
+        if kitchen:
+            ov.draw_head_string(cv, lay, m.table.length / 4)
+        if called is not None:
+            ov.draw_called_pocket(cv, lay, holes[called], m.table.hole_r[called])
+        if aiming and m.on_table[c]:
+            if pred is not None:
+                ov.draw_prediction(cv, lay, pred, m.radius[c], level)
+            ch = s.controls.charge
+            pull = ch.level(s.now) if ch.active else 0.0
+            ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], s.stroke.angle, pull)
+        if isinstance(s.part, Place):
+            ok = m.placement_error(*s.part.cursor) is None
+            ov.draw_placement(cv, lay, s.part.cursor, m.radius[c], ok)
+
+    return view.cells(m.ids, pos, state, m.radius, mono, paint=paint, mark=mark)
+
+
+def called_pocket(s: State) -> int | None:
+    """The index of the pocket called for the 8 on this shot (the human's call, or the
+    computer's plan), None when no call is needed."""
+    names_ = list(s.match.table.hole_names)
+    if s.phase is Phase.AIM and s.match.needs_call():
+        return names_.index(aid.called(s)[1])
+    if isinstance(s.part, Aiming) and s.part.plan.called:
+        return names_.index(s.part.plan.called[1])
+    return None
+
+
+def _question(s: State, cells) -> None:
+    m = s.match
+    if s.phase is Phase.OPTION:
+        draw_box(cells, OPTION_TEXT.get(m.option, [m.option]), "your call")
+    elif s.phase is Phase.OVER:
+        why = s.message[-1][0] if s.message else ""
+        draw_box(cells, [names(s, f"player {m.winner} wins!"), why, "",
+                         "n: new game   m: menu   q: quit", "w: watch this match"],
+                 "game over", "good")
+
+
+def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
+    m = s.match
+    st = m.state
+    frames = s.opts.frames
+    players = []
+    for p in range(2):
+        group = "" if st.groups is None else st.groups[p]
+        balls, down = [], []
+        if group:
+            mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
+            balls = [k for k in mine if m.on_table[k]]
+            down = [k for k in mine if not m.on_table[k]]
+        label = group_label(group, s.opts.theme) if group and s.opts.theme != "standard" \
+            else group
+        fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
+        score = f"{m.scores[p]}/{frames}" if frames > 1 else None
+        players.append(PlayerLine(m.players[p], label, balls, down, score,
+                                  p == m.shooter and s.phase is not Phase.OVER, fouls))
+    if st.mode == "practice":
+        players = players[:1]
+    widgets, most = [], []
+    spin_words = True  # the tip offset goes in words unless the spin face shows it
+    ch = s.controls.charge
+    if s.depth != "mono":
+        most = [(_spin_block(0.0, 0.0), "spin"),
+                (ov.power_meter_cells(0.0, POWER_COLS, "power"), "power")]
+    if s.phase in (Phase.AIM, Phase.CPU) and s.depth != "mono":
+        block = _spin_block(s.stroke.side, s.stroke.top)
+        if lay is None or widget_fits(lay, block):
+            widgets.append((block, "spin"))
+            spin_words = False
+        if ch.active:
+            widgets.append((ov.power_meter_cells(ch.level(s.now), POWER_COLS, "power"),
+                            "power"))
+    now = _status(s, spin_words)
+    message = list(s.message)
+    if s.phase is Phase.AIM and not ch.active:
+        # A player's turn: what to do, the power and the first ball the aid sees (to act
+        # on), then the last verdict, then the plan of the shot it was about.
+        plans = [x for x in message if x in s.shot_note]
+        status = now + [x for x in message if x not in plans] + plans
+    else:
+        # What to do now first, the last verdicts next, then the power, the aid, the spin.
+        status = now[:1] + message + now[1:]
+    title = MODE_NAMES[st.mode]
+    if frames > 1:
+        title += f" · race to {frames}"
+    # Before groups are set no player line shows the balls: a free row names them.
+    legend = [k for k, b in enumerate(m.ids) if b != "cue" and m.on_table[k]] \
+        if st.groups is None and s.phase is not Phase.RUN else []
+    return PanelInfo(f"termpool · {title}", players, status, hint_lines(s), m.ids,
+                     widgets=widgets, most_widgets=most, theme=s.opts.theme, legend=legend)
+
+
+def _spin_block(side: float, top: float):
+    """The spin face with its readout to the left: "spin", the side and top offsets."""
+    face = ov.spin_face_cells(side, top)
+    rows = face[0].shape[0]
+    text = blank_cells(SPIN_TEXT_COLS, rows, False)
+    for r, (line, colour) in enumerate((("spin", DIM_TEXT_C.rgb),
+                                        (f"side {side:+.1f}", TEXT_C.rgb),
+                                        (f"top  {top:+.1f}", TEXT_C.rgb))):
+        if r < rows:
+            put_text(text, r, 0, line, colour, (0, 0, 0))
+    return tuple(np.concatenate([a, b], axis=1) for a, b in zip(text, face, strict=True))
+
+
+def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
+    m = s.match
+    name = m.players[m.shooter]
+    out = []
+    warn = m.warning() if s.phase in (Phase.AIM, Phase.PLACE) else None
+    if warn:
+        out.append((warn, "foul"))
+    ch = s.controls.charge
+    if s.phase is Phase.AIM:
+        what = "break" if m.state.is_break else "shoot"
+        line = f"{name} to {what}"
+        if m.needs_call():
+            ball, pocket = aid.called(s)
+            line += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
+        if m.state.mode == "9ball" and not m.state.is_break:
+            on = legal_targets(m.state, m.balls_on_table())
+            if on:
+                line += f" · the {on[0]} is on"
+        if s.stroke.push_out:
+            line += " · push-out"
+        elif m.state.push_out == "available":
+            line += " · O: push-out"
+        if ch.waiting:  # a tap or a hold: no power to show yet
+            out.insert(0, (ch.label, "turn"))
+            out.append((line, "dim"))
+        elif ch.active:  # while charging the power reading comes first
+            out.insert(0, (f"power {round(100 * ch.level(s.now))}% · {ch.label}", "turn"))
+            out.append((line, "dim"))
+        else:
+            tip = _tip_words(s) if spin_words else None
+            out.append((line + (f" · {tip}" if tip else ""), "turn"))
+            out.append((power_line(s), "dim"))
+    elif s.phase is Phase.PLACE:
+        where = KITCHEN if m.ball_in_hand == "kitchen" else "anywhere"
+        what = "break" if m.state.is_break else "shoot"
+        out.append((f"{name} to {what} · ball in hand {where}", "turn"))
+    elif isinstance(s.part, Run):
+        out.append(("fast ×4 (F)" if s.part.fast else "F: fast forward", "dim"))
+    elif s.phase is Phase.CPU:
+        part = s.part
+        on_aim = isinstance(part, Aiming) and s.stroke.angle == part.plan.angle
+        pred = aid.prediction(s) if on_aim else None  # not the balls its stick turns past
+        at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
+        out.append((f"{name} is thinking…" if isinstance(part, Thinking) else
+                    f"{name} is aiming{at}", "dim"))
+    return out
+
+
+def _tip_words(s: State) -> str | None:
+    """The cue tip's offset in words (None when it is centred)."""
+    st = s.stroke
+    if not (st.side or st.top):
+        return None
+    return f"tip {st.side:+.1f} side {st.top:+.1f} top"
+
+
+def power_hint(s: State) -> tuple[str, str]:
+    """How Space gives power now, in the hint line's long and short forms."""
+    ch = s.controls.charge
+    k = pretty(ch.key_label)
+    if ch.preset_level is not None:
+        pct = f"{round(100 * ch.preset_level)}%"
+        return f"{k}: strike at {pct}", f"{k}:{pct}"
+    return {"release": (f"{k}: hold, let go", f"{k}:hold"),
+            "repeat": (f"{k}: hold to charge", f"{k}:hold"),
+            "classic": (f"{k}: meter, {k} strikes", f"{k}:meter")}[ch.mode]
+
+
+def power_line(s: State) -> str:
+    """The power the next shot (and the aid) has, and the first ball the aid sees hit."""
+    ch = s.controls.charge
+    if ch.preset_level is not None:
+        line = f"power {round(100 * ch.preset_level)}%"
+    elif aid.level(s) != "off":
+        whose = "the last shot's" if s.shot_power_set else "until you give one"
+        line = f"aid at {round(100 * s.last_power)}% power ({whose})"
+    else:
+        line = "power: " + ch.label
+    pred = aid.prediction(s)
+    if pred is not None and pred.ball is not None:
+        line += f" · first ball: the {s.match.ids[pred.ball]}"
+        if pred.object is not None and pred.object.end == "pocket":
+            line += f", into the {pred.object.pocket.replace('_', ' ')} pocket"
+    return line
+
+
+def hint_lines(s: State) -> list[tuple]:
+    """The panel's line of key help for this phase, as `panel.fit_hint` parts (text or
+    (long, short), rank), with the keys the key map really binds."""
+    def k(action: str) -> str:
+        keys = s.keymap.keys_for(action)
+        return pretty(keys[0]) if keys else "?"
+
+    quit_, help_ = (f"{k('quit')} quit", 0), (f"{k('help')} help", 1)
+    ch = s.controls.charge
+    if s.phase is Phase.PLACE:
+        return [(f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move", 0),
+                ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), ("mouse: click", 4), help_,
+                quit_]
+    if s.phase is Phase.AIM and ch.active:
+        return [(ch.label, 0), (f"{k('cancel')} cancel", 0)]
+    if s.phase is Phase.AIM:
+        spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
+        cancel = [(f"{k('cancel')} hold", 1)] if ch.preset_level is not None else []
+        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 3),
+                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 3)] \
+            if s.match.state.mode == "practice" else []
+        return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
+                (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
+                (power_hint(s), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
+                (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
+                quit_]
+    if s.phase is Phase.OPTION:
+        return [("answer with a letter in the box", 0), help_, quit_]
+    if s.phase is Phase.OVER:
+        return [("N new game", 0), ("M menu", 0), ("W watch", 0), quit_]
+    if s.phase is Phase.CPU:
+        return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
+    return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
+
+
+def _menu_cells(s: State, cols: int, rows: int, mono: bool):
+    cells = blank_cells(cols, rows, mono)
+    lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
+    for k, (label, _what) in enumerate(MENU):
+        sel = k == s.menu_index
+        lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
+                      TURN_C if sel else TEXT_C.rgb))
+    lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
+    top = max(0, (rows - len(lines)) // 2)
+    width = max(len(text) for text, _ in lines)
+    left = max(0, (cols - width) // 2)
+    for k, (text, colour) in enumerate(lines):
+        if text:
+            put_text(cells, top + k, left, text, colour, (0, 0, 0))
+    return cells
