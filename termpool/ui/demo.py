@@ -12,6 +12,10 @@ import shutil
 import sys
 from pathlib import Path
 
+from termpool.physics.engine import Engine
+from termpool.scene import SceneError, load_scene
+from termpool.ui.frame import render_scene_text
+
 DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "examples" / "break.json"
 
 
@@ -22,9 +26,6 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--size", help="COLSxROWS instead of the terminal's size")
     ap.add_argument("--time", type=float, default=0.0, help="simulate the shot this long first")
     args = ap.parse_args(argv)
-
-    from termpool.scene import SceneError, load_scene
-    from termpool.ui.frame import render_scene_text
 
     try:
         scene = load_scene(args.scene)
@@ -44,8 +45,6 @@ def main(argv: list[str] | None = None) -> int:
         clear = "\x1b[H\x1b[2J"
     pos, state = scene.pos, None
     if args.time > 0:
-        from termpool.physics.engine import Engine
-
         eng = Engine(scene.table, scene.physics, scene.pos, scene.vel, scene.w, scene.radius,
                      scene.mass, record=False)
         eng.run(1 / 60, duration=args.time)

@@ -18,6 +18,9 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from termpool import files
+from termpool.ui.term import signals_held
+
 
 def slot_path(path: str, k: int) -> str:
     """Where the k-th match (from 1) of a session goes: FILE, then FILE-2, FILE-3 ..."""
@@ -60,9 +63,6 @@ class Records:
             self._write(self._kept.index(kept) + 1, kept)
 
     def _write(self, k: int, kept: _Kept) -> None:
-        from termpool import files
-        from termpool.ui.term import signals_held
-
         target = slot_path(self.path, k)
         try:
             text = files.to_json(kept.match.to_json(), indent=1) + "\n"
@@ -106,12 +106,10 @@ class Records:
         if not self._kept:
             return ["no match was played, so there is no record to save"], 0
         if self.path == "-":
-            from termpool.files import to_json
-
             lines = []
             for x in self._kept:
                 try:
-                    sys.stdout.write(to_json(x.match.to_json(), indent=1) + "\n")
+                    sys.stdout.write(files.to_json(x.match.to_json(), indent=1) + "\n")
                 except ValueError as e:
                     lines.append(f"cannot write the record: {e}: it is lost")
             sys.stdout.flush()

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from termpool.files import MAX_CONFIG_BYTES, FileError, read_text, write_atomic
+from termpool.ui.controls import config_path
 
 FILE_NAME = "settings.conf"
 MAX_NAME = 16  # characters in a player's name: it has to fit the panel's player line
@@ -145,8 +146,6 @@ def player_names(player1: str, player2: str, mode: str, opponent: str) -> tuple[
 
 def settings_path(env: Mapping[str, str] | None = None) -> Path:
     """settings.conf, in the directory of keys.conf."""
-    from termpool.ui.controls import config_path
-
     return config_path(env).parent / FILE_NAME
 
 

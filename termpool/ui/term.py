@@ -30,7 +30,7 @@ from collections.abc import Callable
 from contextlib import contextmanager
 from typing import Protocol
 
-from termpool.ui.keys import Mouse
+from termpool.ui.keys import Mouse, decode_input
 from termpool.ui.output import Screen
 
 CLEAR = "\x1b[H\x1b[2J"  # cursor home, clear the screen
@@ -178,8 +178,6 @@ class Input:
 
     def keys(self, timeout: float) -> list:
         """Keys and mouse reports that arrived within `timeout` seconds."""
-        from termpool.ui.keys import decode_input
-
         text = self.pending + ("" if self.pending else self._read(timeout))
         self.pending = ""
         while text and _CUT_OFF.search(text) and not self.closed:

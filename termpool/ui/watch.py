@@ -13,11 +13,14 @@ Keys: Space pauses and resumes, ← and → go back and forward one shot, F play
 
 from __future__ import annotations
 
+import os
+import sys
 from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
 
+from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
 from termpool.game.record import (
     ReplayError,
     check_records,
@@ -37,7 +40,10 @@ from termpool.rules.words import MODE_NAMES, in_names
 from termpool.scene import Scene
 from termpool.text import shown
 from termpool.ui import overlay as ov
+from termpool.ui import term
+from termpool.ui.headless import play, screen_size, stoppable
 from termpool.ui.help import help_pages, page_key
+from termpool.ui.keys import parse_script
 from termpool.ui.output import resolve_depth
 from termpool.ui.panel import (
     PanelInfo,
@@ -479,39 +485,27 @@ def run(args) -> int:
         raise WatchError(str(e)) from None
     if args.headless:
         return _headless(watch, args)
-    import os
-    import sys
-
     if not (os.isatty(sys.stdin.fileno()) and os.isatty(sys.stdout.fileno())):
         raise WatchError("watching needs a terminal (stdin and stdout are not a tty); "
                          "without one add --headless --keys FILE")
-    from termpool.ui import term
-
     return term.run(watch, watch.depth, kitty=False, mouse=False)
 
 
 def _headless(watch: Watch, args) -> int:
-    import sys
-
-    from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
-    from termpool.ui.headless import play
-    from termpool.ui.keys import parse_script
-    from termpool.ui.play import PlayError, _size, _stoppable
-    from termpool.ui.term import Stop
-
     try:
-        cols, rows = _size(args.size or "100x32")
-        events = parse_script(read_text(args.keys, MAX_SCRIPT_BYTES, "key script"))
-    except PlayError as e:
+        cols, rows = screen_size(args.size or "100x32")
+    except ValueError as e:
         raise WatchError(str(e)) from None
+    try:
+        events = parse_script(read_text(args.keys, MAX_SCRIPT_BYTES, "key script"))
     except (FileError, ValueError) as e:
         raise WatchError(f"--keys: {e}") from None
     try:
-        with _stoppable():
+        with stoppable():
             screen = play(watch, events, cols, rows)
     except KeyboardInterrupt:
         return 130
-    except Stop as e:
+    except term.Stop as e:
         return 128 + e.signum
     sys.stdout.write(screen + "\n")
     return 0
