@@ -31,13 +31,13 @@ from termpool.game.record import (
 from termpool.game.turn import advance
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_RADIUS
+from termpool.physics.results import DT
 from termpool.rules.common import GROUPS, MODE_BALLS, MODES
 from termpool.rules.themes import THEMES, group_label
 from termpool.rules.words import MODE_NAMES, in_names
 from termpool.scene import Scene, table_to_dict
 from termpool.text import shown
 from termpool.ui.app import (
-    DT,
     FAST,
     MAX_SHOT_FRAMES,
     MAX_SPEED,
