@@ -10,50 +10,15 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 import time
-from typing import Any, NoReturn
+from typing import Any
 
+from termpool.command import Exit, Parser, one_blas_thread
 from termpool.physics.results import DT, DT_RANGE, sim_result
 from termpool.text import PROG, say
 
 METHODS = ("fixed", "event")
-
-
-class _Exit(Exception):
-    def __init__(self, code: int) -> None:
-        self.code = code
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse, but errors are one `termpool: ...` line on stderr and exit status 2."""
-
-    def error(self, message: str) -> NoReturn:
-        say(" ".join(message.split()))
-        raise _Exit(2)
-
-    def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
-        if message:
-            sys.stderr.write(message)
-        raise _Exit(status)
-
-
-# The thread pools of the BLAS libraries numpy may be built with. termpool needs none: its
-# engine writes out its small solves and products (only 4x4 eigenvalue problems reach LAPACK,
-# on the calling thread), and a pool's idle workers spin for a while after it starts, which
-# burns a second core while the game only waits.
-BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
-                "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
-
-
-def one_blas_thread() -> None:
-    """Have numpy's BLAS start with one thread in termpool's own processes, unless the user
-    set a number. It must run before numpy is imported; a program that imports termpool as
-    a library keeps its own settings."""
-    if "numpy" not in sys.modules:
-        for name in BLAS_THREADS:
-            os.environ.setdefault(name, "1")
 
 
 def _fail(message: str) -> int:
@@ -90,8 +55,8 @@ def bundled_example(name: str = "break.json") -> str:
     return str(files("termpool").joinpath("examples", name))
 
 
-def _parser() -> _Parser:
-    p = _Parser(
+def _parser() -> Parser:
+    p = Parser(
         prog=PROG,
         description="Pool in the terminal: 8-ball, 9-ball and practice, against the computer "
                     "or a friend at the same keyboard.",
@@ -461,7 +426,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "selfplay":
             return _selfplay(args)
         return _fail("missing command (try termpool --help)")
-    except _Exit as e:
+    except Exit as e:
         return e.code
     except KeyboardInterrupt:
         return 130

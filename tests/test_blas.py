@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from termpool.cli import BLAS_THREADS
+from termpool.command import BLAS_THREADS
 from termpool.physics.params import BALL_RADIUS, Physics, nose_reach
 
 ROOT = Path(__file__).resolve().parents[1]
