@@ -25,7 +25,7 @@ sys.path.insert(0, str(ROOT))
 
 from termpool.command import BLAS_THREADS  # noqa: E402
 
-BREAK = ROOT / "termpool" / "bench_scenes" / "break.json"
+BREAK = ROOT / "bench" / "scenes" / "break.json"
 ONE_BALL = '{"balls": [{"id": "cue", "x": 0.6, "y": 0.6}]}'
 
 

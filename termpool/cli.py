@@ -360,14 +360,20 @@ def _stats(args: argparse.Namespace) -> int:
 
 
 def _bench(argv: list[str]) -> int:
+    """The benchmarks are the `bench` package beside `termpool` in a source checkout (the
+    README's editable install); the installed game does not carry them."""
     import importlib
+    import os
 
-    try:
-        bench = importlib.import_module("termpool.bench")
-    except ModuleNotFoundError as e:
-        if e.name in ("termpool.bench",):
-            return _fail("bench: the benchmark module is not available")
-        raise
+    import termpool
+
+    checkout = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
+    if not os.path.isfile(os.path.join(checkout, "bench", "__init__.py")):
+        return _fail("bench: the benchmarks are not installed with the game; run them from a "
+                     "source checkout (pip install -e .)")
+    if checkout not in sys.path:
+        sys.path.insert(0, checkout)
+    bench = importlib.import_module("bench")
     rc = bench.main(argv)
     return rc if isinstance(rc, int) else 0
 
