@@ -47,8 +47,21 @@ import time
 import numpy as np
 
 from bench import closed_cases
-from bench.common import PROG, BenchParser, machine_info, machine_lines, make_engine, seconds
-from bench.naive import EulerSim, NaiveSim
+from bench.closed import closed_figures, format_closed
+from bench.common import PROG, BenchParser, machine_info, machine_lines, seconds
+from bench.schemes import (
+    COMPARE_HZ,
+    CONTACTS,
+    MAX_TIME,
+    SCHEMES,
+    SUBSTEPS,
+    all_at_rest,
+    fmt_dt,
+    fmt_mm,
+    make_sim,
+    positions,
+    table_lines,
+)
 from termpool.files import json_safe, to_json
 from termpool.scene import SceneError, load_scene
 from termpool.text import say
@@ -56,18 +69,7 @@ from termpool.text import say
 DTS = (1 / 15, 1 / 30, 1 / 60, 1 / 120, 1 / 240, 1 / 1000, 1 / 4000)
 CHECKPOINTS = (0.25, 0.5, 1.0, 2.0)  # s
 AGREE_MM = 1.0
-COMPARE_HZ = 240  # positions are compared at least this often (per simulated second)
-MAX_TIME = 60.0  # s: a scheme still moving then is stopped and reported as not at rest
-SUBSTEPS = 10
 FLOOR_MM = 1e-9  # where a zero error sits on the log-scale charts
-CONTACTS = ("ball_ball", "cushion", "pocket")
-# name -> (chart letter, description)
-SCHEMES = {
-    "engine": ("E", "Engine.step(dt): exact inside each step"),
-    "naive": ("N", "seed game: explicit Euler, no spin, contacts at frame ends"),
-    "substep": ("S", f"naive with {SUBSTEPS} substeps per frame"),
-    "euler": ("U", "engine's model (spin, jaws) by explicit Euler, contacts at frame ends"),
-}
 PNG_DEFAULT = "accuracy.png"
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes")
 CHART_W, CHART_H = 64, 18
@@ -95,27 +97,6 @@ def _name(path: str) -> str:
 
 
 # ------------------------------------------------------------------------------ running
-
-
-def make_sim(scheme: str, scene, record: bool = True):
-    args = (scene.table, scene.physics, scene.pos, scene.vel, scene.w, scene.radius, scene.mass)
-    if scheme == "engine":
-        return make_engine(scene, record=record)
-    if scheme == "naive":
-        return NaiveSim(*args, record=record)
-    if scheme == "substep":
-        return NaiveSim(*args, substeps=SUBSTEPS, record=record)
-    if scheme == "euler":
-        return EulerSim(*args, record=record)
-    raise ValueError(f"unknown scheme '{scheme}'")
-
-
-def positions(sim, n: int) -> np.ndarray:
-    return np.asarray(sim.pos, float).reshape(-1, n, 2)[0]
-
-
-def all_at_rest(sim) -> bool:
-    return bool(np.all(sim.at_rest()))
 
 
 def _events(sim, ids: list[str]) -> list[tuple[float, str, tuple[str, ...], str]]:
@@ -319,8 +300,6 @@ def summarize(scenes: list[dict]) -> list[dict]:
 def accuracy_figures(paths: list[str], dts, schemes, closed: list[str] | None = None) -> dict:
     """Figures for the scene files and for the closed-form cases named in `closed` (all when
     None, none when empty)."""
-    from bench.closed import closed_figures  # it imports this module
-
     scenes = [run_scene(p, dts, schemes) for p in paths]
     return {
         "dts": list(dts),
@@ -336,31 +315,6 @@ def accuracy_figures(paths: list[str], dts, schemes, closed: list[str] | None = 
 
 
 # ------------------------------------------------------------------------------ output
-
-
-def fmt_dt(dt: float) -> str:
-    inv = 1.0 / dt
-    if abs(inv - round(inv)) < 1e-6 * inv:
-        return f"1/{round(inv)}"
-    return f"{dt:.3g}"
-
-
-def fmt_mm(x: float) -> str:
-    """An error in mm: exactly 0 prints as 0."""
-    if x == 0:
-        return "0"
-    return f"{x:.1e}" if x < 0.01 else f"{x:.3g}"
-
-
-def table_lines(header: list[str], rows: list[list[str]], left=(0,)) -> list[str]:
-    """Columns in `left` are left-aligned, the others (numbers) right-aligned."""
-    widths = [max(len(r[c]) for r in [header, *rows]) for c in range(len(header))]
-    out = []
-    for r in [header, *rows]:
-        cells = [c.ljust(w) if k in left else c.rjust(w) for k, (c, w) in
-                 enumerate(zip(r, widths, strict=True))]
-        out.append("  " + "  ".join(cells).rstrip())
-    return out
 
 
 def _agree(r: dict) -> str:
@@ -499,8 +453,6 @@ def format_accuracy(r: dict) -> str:
     png = r.get("png")
     lines.append(f"chart: {png}" if png else "chart: no PNG (" + r.get("png_note", "") + ")")
     if r["closed_form"]["cases"]:
-        from bench.closed import format_closed
-
         lines += [""] + format_closed(r["closed_form"]) + [""]
     m = r["machine"]
     lines += [

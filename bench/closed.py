@@ -26,7 +26,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from bench import closed_cases, closed_form
-from bench.accuracy import (
+from bench.schemes import (
     COMPARE_HZ,
     CONTACTS,
     MAX_TIME,
