@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from termpool.physics.cue import clamp_tip
+from termpool.physics.results import DT
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui.output import resolve_depth
@@ -28,7 +29,6 @@ from termpool.ui.settings import DEFAULTS, player_names
 from termpool.ui.table_view import TableView, layout
 from termpool.ui.term import signals_held
 
-DT = 1 / 60  # the game's physics step (docs/accuracy.md: the engine is exact at any dt)
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
 MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once
 MIN_SPEED, MAX_SPEED = 0.25, 9.0  # m/s at no and full power

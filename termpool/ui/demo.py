@@ -45,10 +45,11 @@ def main(argv: list[str] | None = None) -> int:
     pos, state = scene.pos, None
     if args.time > 0:
         from termpool.physics.engine import Engine
+        from termpool.physics.results import DT
 
         eng = Engine(scene.table, scene.physics, scene.pos, scene.vel, scene.w, scene.radius,
                      scene.mass, record=False)
-        eng.run(1 / 60, duration=args.time)
+        eng.run(DT, duration=args.time)
         pos, state = eng.pos[0], eng.state[0]
     title = "termpool  " + os.path.basename(args.scene)
     text = render_scene_text(scene.table, scene.ids, pos, state, cols, rows, args.colors,

@@ -18,6 +18,17 @@ FPS = 60
 SETTLE_S = 120.0  # after the last key, run at most this long for shots (and the CPU) to end
 
 
+def screen_size(text: str) -> tuple[int, int]:
+    """The columns and rows of a --size value such as "100x32" (ValueError naming --size)."""
+    try:
+        c, r = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise ValueError(f"--size: must look like 100x32, not '{text}'") from None
+    if c < 1 or r < 1 or c > 1000 or r > 1000:
+        raise ValueError(f"--size: {text} is out of range")
+    return c, r
+
+
 def screen_text(chars) -> str:
     return "\n".join("".join(row).rstrip() for row in chars)
 

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
-from contextlib import contextmanager
 
 MODES = ("8ball", "9ball", "practice")
 OPPONENTS = ("cpu", "human")
@@ -70,16 +68,6 @@ class PlayError(ValueError):
     pass
 
 
-def _size(text: str) -> tuple[int, int]:
-    try:
-        c, r = (int(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise PlayError(f"--size: must look like 100x32, not '{text}'") from None
-    if c < 1 or r < 1 or c > 1000 or r > 1000:
-        raise PlayError(f"--size: {text} is out of range")
-    return c, r
-
-
 def _settings(args: argparse.Namespace):
     """The settings file (its warnings said, one line each) and this run's values: the
     file's, with the flags on top."""
@@ -124,23 +112,6 @@ def _check_record(args: argparse.Namespace) -> None:
         why = write_problem(args.record, force=args.force)
         if why:
             raise PlayError(f"--record: cannot write '{args.record}': {why}")
-
-
-@contextmanager
-def _stoppable():
-    """SIGTERM, SIGHUP and SIGQUIT end a headless run the way Ctrl-C does (an exception), so
-    the record is still saved."""
-    from termpool.ui.term import STOP_SIGNALS, Stop
-
-    def stop(signum, frame):
-        raise Stop(signum)
-
-    old = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
-    try:
-        yield
-    finally:
-        for sig, handler in old.items():
-            signal.signal(sig, handler)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -215,10 +186,14 @@ def _headless(args: argparse.Namespace, opts, keymap):
     from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
     from termpool.ui.app import App
     from termpool.ui.headless import play as play_keys
+    from termpool.ui.headless import screen_size
     from termpool.ui.keys import legacy_events, parse_script
-    from termpool.ui.term import Stop
+    from termpool.ui.term import Stop, stoppable
 
-    cols, rows = _size(args.size or "100x32")
+    try:
+        cols, rows = screen_size(args.size or "100x32")
+    except ValueError as e:
+        raise PlayError(str(e)) from None
     if not args.keys:
         raise PlayError("--headless needs --keys FILE (a key script; '-' reads stdin)")
     try:
@@ -236,7 +211,7 @@ def _headless(args: argparse.Namespace, opts, keymap):
 
     def play() -> int:
         try:
-            with _stoppable():
+            with stoppable():
                 screen = play_keys(app, events, cols, rows)
         except KeyboardInterrupt:
             return 130

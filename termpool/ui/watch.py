@@ -31,13 +31,13 @@ from termpool.game.record import (
 from termpool.game.turn import advance
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_RADIUS
+from termpool.physics.results import DT
 from termpool.rules.common import GROUPS, MODE_BALLS, MODES
 from termpool.rules.themes import THEMES, group_label
 from termpool.rules.words import MODE_NAMES, in_names
 from termpool.scene import Scene, table_to_dict
 from termpool.text import shown
 from termpool.ui.app import (
-    DT,
     FAST,
     MAX_SHOT_FRAMES,
     MAX_SPEED,
@@ -523,20 +523,20 @@ def _headless(watch: Watch, args) -> int:
     import sys
 
     from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
-    from termpool.ui.headless import play
+    from termpool.ui.headless import play, screen_size
     from termpool.ui.keys import parse_script
-    from termpool.ui.play import PlayError, _size, _stoppable
-    from termpool.ui.term import Stop
+    from termpool.ui.term import Stop, stoppable
 
     try:
-        cols, rows = _size(args.size or "100x32")
-        events = parse_script(read_text(args.keys, MAX_SCRIPT_BYTES, "key script"))
-    except PlayError as e:
+        cols, rows = screen_size(args.size or "100x32")
+    except ValueError as e:
         raise WatchError(str(e)) from None
+    try:
+        events = parse_script(read_text(args.keys, MAX_SCRIPT_BYTES, "key script"))
     except (FileError, ValueError) as e:
         raise WatchError(f"--keys: {e}") from None
     try:
-        with _stoppable():
+        with stoppable():
             screen = play(watch, events, cols, rows)
     except KeyboardInterrupt:
         return 130
