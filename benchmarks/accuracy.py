@@ -12,6 +12,6 @@ import sys
 if __name__ == "__main__":
     # Run from a checkout without installing: make the repository's termpool importable.
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    from termpool.bench import main
+    from bench import main
 
     raise SystemExit(main(["accuracy", *sys.argv[1:]]))

@@ -23,9 +23,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from termpool.cli import BLAS_THREADS  # noqa: E402
+from termpool.command import BLAS_THREADS  # noqa: E402
 
-BREAK = ROOT / "termpool" / "bench_scenes" / "break.json"
+BREAK = ROOT / "bench" / "scenes" / "break.json"
 ONE_BALL = '{"balls": [{"id": "cue", "x": 0.6, "y": 0.6}]}'
 
 

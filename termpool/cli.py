@@ -10,49 +10,15 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 import time
-from typing import Any, NoReturn
+from typing import Any
 
+from termpool.command import Exit, Parser, one_blas_thread
+from termpool.physics.results import DT, DT_RANGE, sim_result
 from termpool.text import PROG, say
 
 METHODS = ("fixed", "event")
-
-
-class _Exit(Exception):
-    def __init__(self, code: int) -> None:
-        self.code = code
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse, but errors are one `termpool: ...` line on stderr and exit status 2."""
-
-    def error(self, message: str) -> NoReturn:
-        say(" ".join(message.split()))
-        raise _Exit(2)
-
-    def exit(self, status: int = 0, message: str | None = None) -> NoReturn:
-        if message:
-            sys.stderr.write(message)
-        raise _Exit(status)
-
-
-# The thread pools of the BLAS libraries numpy may be built with. termpool needs none: its
-# engine writes out its small solves and products (only 4x4 eigenvalue problems reach LAPACK,
-# on the calling thread), and a pool's idle workers spin for a while after it starts, which
-# burns a second core while the game only waits.
-BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
-                "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
-
-
-def one_blas_thread() -> None:
-    """Have numpy's BLAS start with one thread in termpool's own processes, unless the user
-    set a number. It must run before numpy is imported; a program that imports termpool as
-    a library keeps its own settings."""
-    if "numpy" not in sys.modules:
-        for name in BLAS_THREADS:
-            os.environ.setdefault(name, "1")
 
 
 def _fail(message: str) -> int:
@@ -60,9 +26,8 @@ def _fail(message: str) -> int:
     return 2
 
 
-# What `sim` may be asked for: a step a replay would take, an hour of play at most, sampled at
-# up to 1 kHz (beyond these a run only costs unbounded time or output).
-DT_RANGE = (1e-4, 1.0)  # s: a fixed step, here and in a replay (the game's is 1/60)
+# What `sim` may be asked for: a step a replay would take (DT_RANGE), an hour of play at most,
+# sampled at up to 1 kHz (beyond these a run only costs unbounded time or output).
 MAX_DURATION = 3600.0  # s
 MAX_SAMPLE_HZ = 1000.0
 
@@ -90,8 +55,8 @@ def bundled_example(name: str = "break.json") -> str:
     return str(files("termpool").joinpath("examples", name))
 
 
-def _parser() -> _Parser:
-    p = _Parser(
+def _parser() -> Parser:
+    p = Parser(
         prog=PROG,
         description="Pool in the terminal: 8-ball, 9-ball and practice, against the computer "
                     "or a friend at the same keyboard.",
@@ -121,7 +86,7 @@ def _parser() -> _Parser:
     s.add_argument(
         "--dt",
         type=_positive("--dt", *DT_RANGE),
-        default=1 / 60,
+        default=DT,
         help="fixed time step in seconds (default 1/60; ignored by --method event)",
     )
     s.add_argument(
@@ -218,104 +183,6 @@ def _parser() -> _Parser:
 # ---------------------------------------------------------------------------------- sim
 
 
-def _f(x: Any) -> float:
-    return float(x)
-
-
-def _ball_state(d: dict) -> dict:
-    out = {k: _f(d[k]) for k in ("x", "y", "vx", "vy") if k in d}
-    if "w" in d:
-        out["w"] = [_f(v) for v in d["w"]]
-    if "state" in d:
-        out["state"] = str(d["state"])
-    for k, v in d.items():  # anything else the engine reports, passed through
-        if k not in out and k != "id":
-            out[k] = v
-    return out
-
-
-def sim_result(
-    scene: Any, eng: Any, samples: list | None, method: str, dt: float | None, wall_time: float
-) -> dict:
-    """The JSON-able output of `termpool sim` for an engine that has finished running.
-
-    `samples` is what the run returned, or None to leave the "samples" key out.
-    """
-    import numpy as np
-
-    from termpool.physics.engine import STATE_NAMES
-
-    ids = scene.ids
-    n = len(ids)
-    pos = np.asarray(eng.pos, float).reshape(-1, n, 2)[0]
-    vel = np.asarray(eng.vel, float).reshape(-1, n, 2)[0]
-    w = np.asarray(eng.w, float).reshape(-1, n, 3)[0]
-    state = np.asarray(eng.state).reshape(-1, n)[0]
-    pocket = np.asarray(eng.pocket).reshape(-1, n)[0]
-    pocketed = STATE_NAMES.index("pocketed")
-    balls = []
-    for i, bid in enumerate(ids):
-        b = {
-            "id": bid,
-            "x": _f(pos[i, 0]),
-            "y": _f(pos[i, 1]),
-            "vx": _f(vel[i, 0]),
-            "vy": _f(vel[i, 1]),
-            "w": [_f(v) for v in w[i]],
-            "state": STATE_NAMES[int(state[i])],
-        }
-        if int(pocket[i]) >= 0:
-            b["pocket"] = scene.table.hole_names[int(pocket[i])]
-        balls.append(b)
-
-    log = eng.events[0] if eng.events and isinstance(eng.events[0], list) else eng.events
-    events = []
-    for ev in sorted(log, key=lambda e: e["t"]):
-        idx = [int(i) for i in ev["i"]]
-        out = {"t": _f(ev["t"]), "type": ev["type"], "ids": [ids[i] for i in idx]}
-        out["balls"] = [
-            {"id": ids[i], **_ball_state(b)} for i, b in zip(idx, ev.get("balls", []), strict=False)
-        ]
-        for k in ("pocket", "feature"):
-            if ev.get(k) is not None:
-                out[k] = ev[k]
-        events.append(out)
-
-    result: dict[str, Any] = {
-        "time": _f(eng.time),
-        "steps": int(eng.steps),
-        "wall_time": wall_time,
-        "method": method,
-        "dt": dt,
-        "balls": balls,
-        "events": events,
-    }
-    if samples is not None:
-        result["samples"] = _samples(samples, ids, pocketed)
-    return result
-
-
-def _samples(samples: list, ids: list[str], pocketed: int) -> list[dict]:
-    import numpy as np
-
-    n = len(ids)
-    out = []
-    for t, pos, state in samples:
-        p = np.asarray(pos, float).reshape(-1, n, 2)[0]
-        s = np.asarray(state).reshape(-1, n)[0]
-        out.append(
-            {
-                "t": _f(t),
-                "pos": {
-                    bid: [_f(p[i, 0]), _f(p[i, 1])]
-                    for i, bid in enumerate(ids)
-                    if int(s[i]) != pocketed
-                },
-            }
-        )
-    return out
-
-
 def dump_json(result: dict) -> str:
     """JSON with one line per top-level scalar and per item of a top-level list. Raises
     ValueError naming a NaN or an infinity (files.to_json)."""
@@ -375,7 +242,7 @@ def _sim(args: argparse.Namespace) -> int:
     wall = time.perf_counter() - t0
     dt = args.dt if args.method == "fixed" else None
     samples = (samples or []) if args.sample_hz is not None else None
-    result = sim_result(scene, eng, samples, args.method, dt, wall)
+    result = sim_result(scene.ids, scene.table.hole_names, eng, samples, args.method, dt, wall)
     if scene.game is not None:
         from termpool.rules.referee import referee
 
@@ -493,14 +360,20 @@ def _stats(args: argparse.Namespace) -> int:
 
 
 def _bench(argv: list[str]) -> int:
+    """The benchmarks are the `bench` package beside `termpool` in a source checkout (the
+    README's editable install); the installed game does not carry them."""
     import importlib
+    import os
 
-    try:
-        bench = importlib.import_module("termpool.bench")
-    except ModuleNotFoundError as e:
-        if e.name in ("termpool.bench",):
-            return _fail("bench: the benchmark module is not available")
-        raise
+    import termpool
+
+    checkout = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
+    if not os.path.isfile(os.path.join(checkout, "bench", "__init__.py")):
+        return _fail("bench: the benchmarks are not installed with the game; run them from a "
+                     "source checkout (pip install -e .)")
+    if checkout not in sys.path:
+        sys.path.insert(0, checkout)
+    bench = importlib.import_module("bench")
     rc = bench.main(argv)
     return rc if isinstance(rc, int) else 0
 
@@ -559,7 +432,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "selfplay":
             return _selfplay(args)
         return _fail("missing command (try termpool --help)")
-    except _Exit as e:
+    except Exit as e:
         return e.code
     except KeyboardInterrupt:
         return 130

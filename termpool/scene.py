@@ -148,7 +148,9 @@ def _parse_json(text: str, where: str) -> Any:
 # ------------------------------------------------------------------------------------ table
 
 
-def _table(spec: Any) -> Table:
+def load_table(spec: Any) -> Table:
+    """The table of a `table` value (a scene's or a saved match's): a preset name or an
+    object, checked (SceneError naming the key)."""
     if isinstance(spec, str):
         if spec not in PRESETS:
             raise SceneError(f"table: unknown preset '{spec}' (use {', '.join(PRESETS)})")
@@ -472,7 +474,7 @@ def load_scene(src: str | os.PathLike | dict) -> Scene:
     _check_keys(raw, TOP_KEYS, "scene")
     if "description" in raw and not isinstance(raw["description"], str):
         raise SceneError("description: must be a string")
-    table = _table(raw.get("table", "9ft"))
+    table = load_table(raw.get("table", "9ft"))
     phys_spec = raw.get("physics", {})
     if not isinstance(phys_spec, dict):
         raise SceneError("physics: must be an object")

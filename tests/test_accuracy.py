@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import filecmp
 import json
 import math
 from pathlib import Path
@@ -10,15 +9,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from termpool import bench, bench_accuracy
+import bench
+from bench import accuracy as bench_accuracy
+from bench.naive import EulerSim, NaiveSim
 from termpool.physics.engine import Engine
-from termpool.physics.naive import EulerSim, NaiveSim
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.table import Table
 from termpool.scene import load_scene
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGED = ROOT / "termpool" / "bench_scenes"
+SCENES = ROOT / "bench" / "scenes"
 ROW_KEYS = {
     "scheme", "dt", "wall_s", "steps", "sim_s", "at_rest", "ckpt_mm", "err_ckpt_mm",
     "err_rest_mm", "err_mm", "events", "events_ref", "events_matched", "same_events",
@@ -81,7 +81,7 @@ def test_rolling_stop_distance_naive_errs_engine_exact() -> None:
 
 
 def test_substeps_are_the_naive_scheme_at_the_smaller_step() -> None:
-    scene = load_scene(PACKAGED / "cut_thick.json")
+    scene = load_scene(SCENES / "cut_thick.json")
     args = (scene.table, scene.physics, scene.pos, scene.vel, scene.w, scene.radius, scene.mass)
     sub = NaiveSim(*args, substeps=10)
     fine = NaiveSim(*args)
@@ -97,23 +97,20 @@ def test_substeps_are_the_naive_scheme_at_the_smaller_step() -> None:
 # ------------------------------------------------------------------- the scenes
 
 
-def test_bundled_scenes_load_and_match_the_checkout_copy() -> None:
-    names = sorted(p.name for p in PACKAGED.glob("*.json"))
+def test_the_default_scenes_are_bench_scenes_and_load() -> None:
+    names = sorted(p.name for p in SCENES.glob("*.json"))
     assert len(names) >= 13
     assert [Path(p).name for p in bench_accuracy.scene_paths()] == names
-    copy = ROOT / "benchmarks" / "scenes"
-    match, mismatch, errors = filecmp.cmpfiles(PACKAGED, copy, names, shallow=False)
-    assert match == names, (mismatch, errors)
     for name in names:
-        load_scene(PACKAGED / name)
-    assert len(load_scene(PACKAGED / "break.json").ids) == 16
+        load_scene(SCENES / name)
+    assert len(load_scene(SCENES / "break.json").ids) == 16
     for name in names:
         if name.startswith("bank"):
-            assert load_scene(PACKAGED / name).table.pockets == "none"
+            assert load_scene(SCENES / name).table.pockets == "none"
 
 
 def test_jaw_scene_meets_a_jaw() -> None:
-    scene = load_scene(PACKAGED / "jaw.json")
+    scene = load_scene(SCENES / "jaw.json")
     eng = Engine(scene.table, scene.physics, scene.pos, scene.vel, scene.w)
     eng.run_events()
     features = [e.get("feature") for e in eng.events[0] if e["type"] == "cushion"]
@@ -128,7 +125,7 @@ def _finite(x) -> bool:
 
 
 def test_accuracy_json_one_scene(capsys: pytest.CaptureFixture[str]) -> None:
-    rc = bench.main(["accuracy", "--json", "--no-png", "--scenes", str(PACKAGED / "stun.json"),
+    rc = bench.main(["accuracy", "--json", "--no-png", "--scenes", str(SCENES / "stun.json"),
                      "--dts", "1/15", "1/150", "--closed", "none"])
     out = capsys.readouterr().out
     assert rc == 0
@@ -159,7 +156,7 @@ def test_accuracy_json_one_scene(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_accuracy_text_prints_zero_errors_and_a_chart(capsys) -> None:
-    rc = bench.main(["accuracy", "--no-png", "--scenes", str(PACKAGED / "jaw.json"),
+    rc = bench.main(["accuracy", "--no-png", "--scenes", str(SCENES / "jaw.json"),
                      "--dts", "1/30", "--schemes", "engine,naive", "--closed", "none"])
     out = capsys.readouterr().out
     assert rc == 0
@@ -197,7 +194,7 @@ def test_accuracy_bad_usage(argv: list[str], capsys: pytest.CaptureFixture[str])
 
 
 def test_closed_form_rows_in_json_and_text(capsys: pytest.CaptureFixture[str]) -> None:
-    argv = ["accuracy", "--no-png", "--scenes", str(PACKAGED / "jaw.json"), "--dts", "1/30",
+    argv = ["accuracy", "--no-png", "--scenes", str(SCENES / "jaw.json"), "--dts", "1/30",
             "1/300", "--schemes", "engine,naive,substep", "--closed", "slide_roll,stun"]
     assert bench.main([*argv, "--json"]) == 0
     result = json.loads(capsys.readouterr().out)

@@ -7,7 +7,8 @@ import math
 
 import pytest
 
-from termpool import bench
+import bench
+from bench import speed
 
 FIGURES = (
     "break_ms",
@@ -48,15 +49,15 @@ def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_batch_breaks_are_deterministic_and_distinct() -> None:
-    scene = bench._break_scene()
-    pos, vel, w = bench.batch_breaks(scene, 8)
-    pos2, vel2, w2 = bench.batch_breaks(scene, 8)
+    scene = speed.break_scene()
+    pos, vel, w = speed.batch_breaks(scene, 8)
+    pos2, vel2, w2 = speed.batch_breaks(scene, 8)
     assert (pos == pos2).all() and (vel == vel2).all() and (w == w2).all()
     cue = scene.index("cue")
     assert len({float(y) for y in pos[:, cue, 1]}) == 8
-    assert abs(pos[:, cue, 1] - scene.pos[cue, 1]).max() <= bench.SPREAD_Y
+    assert abs(pos[:, cue, 1] - scene.pos[cue, 1]).max() <= speed.SPREAD_Y
     speeds = (vel[:, cue] ** 2).sum(axis=1) ** 0.5
-    assert abs(speeds - bench.BREAK_SPEED).max() < 1e-9
+    assert abs(speeds - speed.BREAK_SPEED).max() < 1e-9
 
 
 @pytest.mark.parametrize("argv", [["nope"], [], ["speed", "--batch", "0"], ["speed", "--bogus"]])

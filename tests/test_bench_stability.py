@@ -11,10 +11,8 @@ import numpy as np
 import pytest
 from physics_laws import check_positions
 
-from termpool import bench
-from termpool.physics.engine import Engine
-from termpool.physics.params import Physics
-from termpool.stability_cases import (
+import bench
+from bench.stability_cases import (
     CASES,
     OVERLAP_TOL,
     PLAIN,
@@ -26,6 +24,8 @@ from termpool.stability_cases import (
     Watch,
     run_case,
 )
+from termpool.physics.engine import Engine
+from termpool.physics.params import Physics
 
 ROW_KEYS = {
     "case", "group", "ok", "figure", "checks", "laws", "wall_s", "wall_s_repeat", "engines",

@@ -21,11 +21,11 @@ from pathlib import Path
 
 import pytest
 
-from termpool.cli import BLAS_THREADS
+from termpool.command import BLAS_THREADS
 from termpool.physics.params import BALL_RADIUS, Physics, nose_reach
 
 ROOT = Path(__file__).resolve().parents[1]
-BREAK = ROOT / "termpool" / "bench_scenes" / "break.json"
+BREAK = ROOT / "bench" / "scenes" / "break.json"
 ARRIVE = 0.004  # m/s: the pack's speed at the rail, below v_inelastic (a slow contact)
 
 

@@ -271,11 +271,41 @@ def test_bad_scene_in_process(tmp_path: Path, capsys: pytest.CaptureFixture) -> 
 
 def test_bench_dispatch(monkeypatch: pytest.MonkeyPatch) -> None:
     seen = []
-    fake = types.ModuleType("termpool.bench")
+    fake = types.ModuleType("bench")
     fake.main = lambda args: seen.append(list(args)) or 3
-    monkeypatch.setitem(sys.modules, "termpool.bench", fake)
+    monkeypatch.setitem(sys.modules, "bench", fake)
     assert cli.main(["bench", "--quick", "-n", "5"]) == 3
     assert seen == [["--quick", "-n", "5"]]
+
+
+def test_bench_runs_from_a_checkout_outside_it(tmp_path: Path) -> None:
+    """The benchmarks sit beside the package in the checkout: `termpool bench` finds them
+    from any directory, as an editable install runs it."""
+    p = subprocess.run([sys.executable, "-m", "termpool", "bench", "--help"], cwd=tmp_path,
+                       capture_output=True, text=True,
+                       env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert p.returncode == 0, p.stderr
+    assert "speed" in p.stdout and "stability" in p.stdout
+
+
+def test_bench_without_the_benchmarks_is_one_line_and_status_2(tmp_path: Path) -> None:
+    """An installed game has the package and no `bench` beside it (as `pip install .` puts
+    it in site-packages): one line saying so, exit status 2, and the game itself still runs."""
+    import shutil
+
+    site = tmp_path / "site"
+    shutil.copytree(ROOT / "termpool", site / "termpool",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    env = {**os.environ, "PYTHONPATH": str(site)}
+    p = subprocess.run([sys.executable, "-m", "termpool", "bench", "speed"], cwd=tmp_path,
+                       capture_output=True, text=True, env=env)
+    assert p.returncode == 2
+    assert p.stdout == "" and p.stderr.count("\n") == 1
+    assert p.stderr.startswith("termpool: bench: the benchmarks are not installed")
+    p = subprocess.run([sys.executable, "-m", "termpool", "sim",
+                        str(site / "termpool" / "examples" / "cut.json")], cwd=tmp_path,
+                       capture_output=True, text=True, env=env)
+    assert p.returncode == 0 and json.loads(p.stdout)["balls"], p.stderr
 
 
 def test_cli_import_is_light() -> None:

@@ -10,9 +10,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from termpool import bench_closed
-from termpool import closed_cases as cc
-from termpool import closed_form as cf
+from bench import closed as bench_closed
+from bench import closed_cases as cc
+from bench import closed_form as cf
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.scene import load_scene
 

@@ -382,10 +382,10 @@ def test_heavier_cue_ball_follows_through_on_a_full_hit():
 def test_batch_of_breaks_is_step_independent_and_matches_single_tables():
     # Racked breaks are full of slow contacts and touching clusters; a table's result must
     # depend neither on the step nor on which other tables share its batch.
-    from termpool import bench
+    from bench.speed import batch_breaks, break_scene
 
-    scene = bench._break_scene()
-    pos, vel, w = bench.batch_breaks(scene, 64)
+    scene = break_scene()
+    pos, vel, w = batch_breaks(scene, 64)
     args = (scene.table, scene.physics)
     kw = {"radius": scene.radius, "mass": scene.mass}
     events = Engine(*args, pos, vel, w, **kw)

@@ -18,8 +18,8 @@ import pytest
 from termpool import ai
 from termpool.cli import main
 from termpool.game import Match, replay
-from termpool.game import selfplay as sp
 from termpool.rules.events import summarize
+from termpool.selfplay import games as sp
 
 ROOT = Path(__file__).resolve().parent.parent
 TINY = ("--mode", "9ball", "--candidates", "8", "--max-shots", "4", "--seed", "5")

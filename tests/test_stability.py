@@ -5,7 +5,7 @@ frictionless run.
 
 Every assertion states a law (conservation, a closed-form motion, a bound) and its message
 gives the deciding figure. The scenes, closed forms and laws are shared with
-`termpool bench stability` through termpool/stability_cases.py, which runs the same cases.
+`termpool bench stability` through bench/stability_cases.py, which runs the same cases.
 """
 
 from __future__ import annotations
@@ -22,9 +22,7 @@ from physics_laws import (
     seg_distance,
 )
 
-from termpool.physics.engine import POCKETED, Engine
-from termpool.physics.params import Physics
-from termpool.stability_cases import (  # the shared scenes and closed forms
+from bench.stability_cases import (  # the shared scenes and closed forms
     ELASTIC,
     FIFTY_ANGLES,
     FRICTIONLESS_CLOTH,
@@ -80,6 +78,8 @@ from termpool.stability_cases import (  # the shared scenes and closed forms
     unfolded_x,
     wedge,
 )
+from termpool.physics.engine import POCKETED, Engine
+from termpool.physics.params import Physics
 
 # ------------------------------------------------------------------------------ speeds
 

@@ -67,6 +67,7 @@ Choices made:
 
 from termpool.game.match import Match
 from termpool.game.record import ReplayError, read_replay, replay
-from termpool.game.turn import DT, Shot, ShotRun
+from termpool.game.turn import Shot, ShotRun
+from termpool.physics.results import DT
 
 __all__ = ["DT", "Match", "ReplayError", "Shot", "ShotRun", "read_replay", "replay"]

@@ -14,6 +14,7 @@ import numpy as np
 from termpool.ai import LEVELS
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.results import DT  # the fixed engine step of every shot (recorded with it)
 from termpool.physics.table import PRESETS, Table
 from termpool.rules.common import GROUPS, MODE_BALLS, MODES, Outcome, State
 from termpool.rules.events import summarize
@@ -23,7 +24,7 @@ from termpool.rules.words import FOUL_LIMIT, count_word, ordinal
 from termpool.scene import table_to_dict
 
 from . import layout, record
-from .turn import DT, Shot, ShotRun, game_block, state_to_json
+from .turn import Shot, ShotRun, game_block, state_to_json
 
 EIGHT_BREAKS = ("respot", "rerack")  # what the 8 pocketed on a legal break means
 OPTIONS = {"rerack_or_accept": ("rerack", "accept"), "shoot_or_pass": ("shoot", "pass")}

@@ -26,10 +26,10 @@ import os
 import struct
 from typing import Any
 
-from termpool.cli import DT_RANGE
 from termpool.files import MAX_REPLAY_BYTES, FileError, parse_json, read_text
 from termpool.physics.engine import Engine
 from termpool.physics.params import as_recorded
+from termpool.physics.results import DT_RANGE, sim_result
 from termpool.scene import Scene, SceneError, load_scene
 
 MAX_SHOT_TIME = 600.0  # simulated seconds: a shot that runs longer is a broken record
@@ -83,9 +83,7 @@ def still_moving(steps: int) -> str:
 
 def results(scene: Scene, engine: Engine, dt: float) -> dict:
     """time, steps, events and final balls of a finished shot, as `termpool sim` prints them."""
-    from termpool.cli import sim_result  # the one definition of the printed form
-
-    res = sim_result(scene, engine, None, "fixed", dt, 0.0)
+    res = sim_result(scene.ids, scene.table.hole_names, engine, None, "fixed", dt, 0.0)
     # Through JSON once: the record holds exactly what a saved file will hold.
     return json.loads(json.dumps({k: res[k] for k in ("time", "steps", "events")}
                                  | {"final": res["balls"]}))

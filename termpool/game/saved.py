@@ -8,7 +8,7 @@ import numpy as np
 
 from termpool.physics.params import Physics, as_recorded
 from termpool.rules.common import Outcome
-from termpool.scene import SceneError, _table
+from termpool.scene import SceneError, load_table
 
 from .match import FORMAT, OPTIONS
 from .turn import state_from_json
@@ -67,7 +67,7 @@ def load_match(cls: type, data: Any):
         raise ValueError(f"format: must be '{FORMAT}'")
     m = _get(data, "match", "match file", dict, "an object")
     try:
-        table = _table(_get(m, "table", "match", (dict, str), "an object"))
+        table = load_table(_get(m, "table", "match", (dict, str), "an object"))
     except SceneError as e:
         raise ValueError(f"match.{e}") from None
     physics = Physics.from_dict(as_recorded(_get(m, "physics", "match", dict, "an object")))

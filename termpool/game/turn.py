@@ -15,7 +15,6 @@ from . import record
 if TYPE_CHECKING:
     from .match import Match
 
-DT = 1 / 60  # the fixed engine step of every shot (recorded with it)
 
 @dataclass(frozen=True)
 class Shot:

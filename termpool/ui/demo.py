@@ -13,6 +13,7 @@ import sys
 from pathlib import Path
 
 from termpool.physics.engine import Engine
+from termpool.physics.results import DT
 from termpool.scene import SceneError, load_scene
 from termpool.ui.frame import render_scene_text
 
@@ -47,7 +48,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.time > 0:
         eng = Engine(scene.table, scene.physics, scene.pos, scene.vel, scene.w, scene.radius,
                      scene.mass, record=False)
-        eng.run(1 / 60, duration=args.time)
+        eng.run(DT, duration=args.time)
         pos, state = eng.pos[0], eng.state[0]
     title = "termpool  " + os.path.basename(args.scene)
     text = render_scene_text(scene.table, scene.ids, pos, state, cols, rows, args.colors,

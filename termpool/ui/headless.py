@@ -9,21 +9,17 @@ every time.
 
 from __future__ import annotations
 
-import signal
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 
 from termpool.ui.keys import Mouse
 from termpool.ui.output import Screen
-from termpool.ui.term import STOP_SIGNALS, Stop
 
 FPS = 60
 SETTLE_S = 120.0  # after the last key, run at most this long for shots (and the CPU) to end
 
 
 def screen_size(text: str) -> tuple[int, int]:
-    """A --size value ("100x32") as (cols, rows); ValueError (one line naming --size) for a
-    bad one."""
+    """The columns and rows of a --size value such as "100x32" (ValueError naming --size)."""
     try:
         c, r = (int(v) for v in text.lower().split("x"))
     except ValueError:
@@ -31,21 +27,6 @@ def screen_size(text: str) -> tuple[int, int]:
     if c < 1 or r < 1 or c > 1000 or r > 1000:
         raise ValueError(f"--size: {text} is out of range")
     return c, r
-
-
-@contextmanager
-def stoppable() -> Iterator[None]:
-    """SIGTERM, SIGHUP and SIGQUIT end a headless run the way Ctrl-C does (an exception), so
-    a record is still saved."""
-    def stop(signum, frame):
-        raise Stop(signum)
-
-    old = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
-    try:
-        yield
-    finally:
-        for sig, handler in old.items():
-            signal.signal(sig, handler)
 
 
 def screen_text(chars) -> str:

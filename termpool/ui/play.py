@@ -180,9 +180,9 @@ def _headless(args: argparse.Namespace, opts, keymap, files: dict):
     from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
     from termpool.ui.app import App
     from termpool.ui.headless import play as play_keys
-    from termpool.ui.headless import screen_size, stoppable
+    from termpool.ui.headless import screen_size
     from termpool.ui.keys import legacy_events, parse_script
-    from termpool.ui.term import Stop
+    from termpool.ui.term import Stop, stoppable
 
     try:
         cols, rows = screen_size(args.size or "100x32")

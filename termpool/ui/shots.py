@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from termpool.game.turn import DT
+from termpool.physics.results import DT
 
 MAX_STEPS_PER_TICK = 12  # a stalled terminal drops time instead of freezing on catch-up
 MAX_SHOT_FRAMES = 180 * 60  # frames computed ahead; a longer shot finishes at once

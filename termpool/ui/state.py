@@ -29,6 +29,7 @@ import numpy as np
 
 from termpool.ai import Plan
 from termpool.game import Match, ShotRun
+from termpool.physics.results import DT
 from termpool.rules.common import legal_targets
 from termpool.rules.words import in_names
 from termpool.ui.aim import Aim as Trace
@@ -36,7 +37,7 @@ from termpool.ui.aim import aim_trace
 from termpool.ui.controls import AimControl, HoldRamp, KeyMap, PowerCharge
 from termpool.ui.help import help_pages, keymap_rows
 from termpool.ui.settings import DEFAULTS
-from termpool.ui.shots import DEFAULT_POWER, DT, Clock
+from termpool.ui.shots import DEFAULT_POWER, Clock
 from termpool.ui.table_view import Layout
 
 Line = tuple[str, str]  # (text, tone) of the panel's words: "plain", "dim", "turn", ...

@@ -82,6 +82,22 @@ class Stop(Exception):
         self.signum = signum
 
 
+@contextmanager
+def stoppable():
+    """STOP_SIGNALS end the block the way Ctrl-C does, by an exception (Stop), so that the
+    `finally`s run (a record is still saved)."""
+
+    def stop(signum, frame):
+        raise Stop(signum)
+
+    old = {s: signal.signal(s, stop) for s in STOP_SIGNALS}
+    try:
+        yield
+    finally:
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
+
+
 def no_tty_message() -> str:
     return ("termpool: the game needs a terminal (stdin and stdout are not a tty); "
             "for headless runs use `termpool sim SCENE` or `termpool play --headless`")

@@ -34,6 +34,7 @@ from termpool.game.record import (
 from termpool.game.turn import advance
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_RADIUS
+from termpool.physics.results import DT
 from termpool.rules.common import GROUPS, MODE_BALLS, MODES
 from termpool.rules.themes import THEMES, group_label
 from termpool.rules.words import MODE_NAMES, in_names
@@ -41,7 +42,7 @@ from termpool.scene import Scene
 from termpool.text import shown
 from termpool.ui import overlay as ov
 from termpool.ui import term
-from termpool.ui.headless import play, screen_size, stoppable
+from termpool.ui.headless import play, screen_size
 from termpool.ui.help import help_pages, page_key
 from termpool.ui.keys import parse_script
 from termpool.ui.output import resolve_depth
@@ -53,7 +54,7 @@ from termpool.ui.panel import (
     message_cells,
     too_small_lines,
 )
-from termpool.ui.shots import DT, MAX_SHOT_FRAMES, Clock, speed_to_power
+from termpool.ui.shots import MAX_SHOT_FRAMES, Clock, speed_to_power
 from termpool.ui.table_view import Geometry
 from termpool.ui.words import OPTION_WORDS, chose
 
@@ -501,7 +502,7 @@ def _headless(watch: Watch, args) -> int:
     except (FileError, ValueError) as e:
         raise WatchError(f"--keys: {e}") from None
     try:
-        with stoppable():
+        with term.stoppable():
             screen = play(watch, events, cols, rows)
     except KeyboardInterrupt:
         return 130

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from termpool.closed_form import (
+from bench.closed_form import (
     Answer,
     Track,
     cradle,

@@ -1,8 +1,8 @@
 """`termpool selfplay`: games of the computer against itself, and how each level played.
 
-Plays N games between two levels (`termpool.game.selfplay.play_game`), the break alternating
+Plays N games between two levels (`games.play_game`), the break alternating
 (the first level breaks the even games), in parallel processes with --jobs, and prints the
-figures (`termpool.game.selfplay.figures`) as a table or JSON. Every game's seed comes from
+figures (`games.figures`) as a table or JSON. Every game's seed comes from
 the run's seed and the game's number, so the figures are the same for a seed whatever the
 number of processes (the wall times aside). A progress bar goes to stderr; Ctrl-C (or SIGTERM,
 SIGHUP, SIGQUIT) stops the run and prints the figures of the games finished so far (exit
@@ -99,7 +99,7 @@ def _record_paths(args: argparse.Namespace) -> list[Path] | None:
 
 def settings(args: argparse.Namespace) -> dict:
     """What every game of the run shares, checked (SelfplayError)."""
-    from termpool.game.selfplay import MAX_SHOTS
+    from termpool.selfplay.games import MAX_SHOTS
 
     return {"levels": _levels(args.levels), "mode": args.mode, "table": args.table,
             "seed": secrets.randbits(63) if args.seed is None else args.seed,
@@ -110,7 +110,7 @@ def settings(args: argparse.Namespace) -> dict:
 
 def play_index(st: dict, index: int, stop=lambda: False) -> dict:
     """Game `index` of the run: the first level breaks the even games, the second the odd."""
-    from termpool.game.selfplay import game_seed, play_game
+    from termpool.selfplay.games import game_seed, play_game
 
     a, b = st["levels"]
     return play_game((a, b) if index % 2 == 0 else (b, a), mode=st["mode"], table=st["table"],
@@ -269,7 +269,7 @@ def _parallel(st: dict, games: int, jobs: int, progress: Progress) -> tuple[dict
 
 def report(st: dict, done: dict, interrupted: bool, wall: float, jobs: int) -> dict:
     """The figures of the finished games, in game order, with the run's settings."""
-    from termpool.game.selfplay import figures, rounded
+    from termpool.selfplay.games import figures, rounded
 
     fig = figures([done[k] for k in sorted(done)], st["levels"])
     head = {k: fig.pop(k) for k in ("games", "levels")}
@@ -340,17 +340,14 @@ def run(args: argparse.Namespace) -> int:
     jobs = max(1, min(args.jobs or cores, args.games))
     progress = Progress(args.games)
     t0 = time.perf_counter()
-    from termpool.ui.term import STOP_SIGNALS, Stop
+    from termpool.ui.term import stoppable
 
-    def stop(signum, frame):
-        raise Stop(signum)
-
-    old = {s: signal.signal(s, stop) for s in STOP_SIGNALS}  # SIGTERM ends it as Ctrl-C does
     try:
-        if jobs == 1:
-            done, stopped = _serial(st, args.games, progress)
-        else:
-            done, stopped = _parallel(st, args.games, jobs, progress)
+        with stoppable():  # SIGTERM, SIGHUP and SIGQUIT end it as Ctrl-C does
+            if jobs == 1:
+                done, stopped = _serial(st, args.games, progress)
+            else:
+                done, stopped = _parallel(st, args.games, jobs, progress)
     except _Failed as e:
         progress.close()
         from termpool.text import say
@@ -359,9 +356,6 @@ def run(args: argparse.Namespace) -> int:
         sys.stderr.write(rest)
         say(f"selfplay: {first}")
         return 1
-    finally:
-        for sig, handler in old.items():
-            signal.signal(sig, handler)
     progress.close()
     from termpool.files import json_safe, to_json
 

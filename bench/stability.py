@@ -1,11 +1,11 @@
-"""`termpool bench stability`: the stiff and extreme cases of issue 3, pass or fail.
+"""`termpool bench stability`: the stiff and extreme cases, pass or fail.
 
     termpool bench stability [--json] [--quick] [--case TEXT ...]
 
-Runs every case of `termpool/stability_cases.py` (the same scenes and limits as
+Runs every case of `bench/stability_cases.py` (the same scenes and limits as
 tests/test_stability.py) twice and prints one row per case: its group, name, PASS or FAIL, how
 many checks held, the figure that decided it and the wall time of one run. Every case checks
-the laws of issue 3 on top of its own figures: finite numbers, no overlap beyond a micrometre,
+the physics laws on top of its own figures: finite numbers, no overlap beyond a micrometre,
 no ball into or through a cushion (pocketed balls excepted), no rise of kinetic energy, bounded
 event passes, at rest within a bound (or the stated run length), and the two runs bit-identical.
 --quick runs the frictionless long run for QUICK_LONG_RUN_S instead of LONG_RUN_S simulated
@@ -17,9 +17,8 @@ from __future__ import annotations
 import sys
 import time
 
-from termpool.bench import PROG, _Parser, _say, machine_info, machine_lines
-from termpool.files import json_safe, to_json
-from termpool.stability_cases import (
+from bench.common import PROG, BenchParser, machine_info, machine_lines
+from bench.stability_cases import (
     CASES,
     ENERGY_TOL,
     LONG_RUN_S,
@@ -29,6 +28,8 @@ from termpool.stability_cases import (
     Case,
     run_case,
 )
+from termpool.files import json_safe, to_json
+from termpool.text import say
 
 LAWS = (
     "finite numbers",
@@ -120,7 +121,7 @@ def format_stability(r: dict) -> str:
 
 
 def main(argv: list[str]) -> int:
-    p = _Parser(
+    p = BenchParser(
         prog=f"{PROG} stability",
         description=(
             "Run the stiff and extreme cases of the physics core (tiny and huge speeds, steps "
@@ -140,7 +141,7 @@ def main(argv: list[str]) -> int:
     cases = select(args.case)
     if not cases:
         groups = ", ".join(dict.fromkeys(c.group for c in CASES))
-        _say(f"bench stability: no case matches {', '.join(args.case)} (groups: {groups})")
+        say(f"bench stability: no case matches {', '.join(args.case)} (groups: {groups})")
         return 2
     result = stability_figures(cases, args.quick)
     if args.json:

@@ -3,12 +3,12 @@
     termpool bench accuracy [--json] [--scenes DIR|FILE] [--closed NAMES] [--dts S ...]
                             [--schemes A,B] [--png PATH | --no-png]
 
-For every scene (default: the files shipped in `termpool/bench_scenes/`, the same as
-`benchmarks/scenes/`) the reference is `Engine.run_events()`. Each scheme is then run at each dt
-from the scene's start until every ball is at rest (or MAX_TIME simulated seconds):
+For every scene (default: the files in `bench/scenes/`) the reference is `Engine.run_events()`.
+Each scheme is then run at each dt from the scene's start until every ball is at rest (or
+MAX_TIME simulated seconds):
 
 - `engine`: `Engine.step(dt)`, the game's fixed-step engine;
-- `naive`: the seed game's scheme (`physics/naive.py: NaiveSim`), the baseline;
+- `naive`: the seed game's scheme (`bench/naive.py: NaiveSim`), the baseline;
 - `substep`: the naive scheme with SUBSTEPS frames of dt / SUBSTEPS inside every dt; it is run
   only where dt / SUBSTEPS is not below the finest dt asked for (finer rows would only repeat
   the naive scheme at a smaller step, for ten times its largest cost);
@@ -30,7 +30,7 @@ type and ball ids; for the engine every event counts, for the frame schemes only
 also hit the same feature (rail, jaw, tip) and a pocket event the same pocket. When the
 sequences differ the event-time error covers the matched part before the first difference.
 
-The engine cannot err against its own event driver, so a second section (bench_closed.py)
+The engine cannot err against its own event driver, so a second section (closed.py)
 measures every scheme against references that do not come from the engine: scenes whose
 answer is derived on paper from the model's equations (closed_form.py, closed_cases.py).
 """
@@ -46,28 +46,32 @@ import time
 
 import numpy as np
 
-from termpool import closed_cases
-from termpool.bench import PROG, _engine, _Parser, _say, _seconds, machine_info, machine_lines
+from bench import closed_cases
+from bench.closed import closed_figures, format_closed
+from bench.common import PROG, BenchParser, machine_info, machine_lines, seconds
+from bench.schemes import (
+    COMPARE_HZ,
+    CONTACTS,
+    MAX_TIME,
+    SCHEMES,
+    SUBSTEPS,
+    all_at_rest,
+    fmt_dt,
+    fmt_mm,
+    make_sim,
+    positions,
+    table_lines,
+)
 from termpool.files import json_safe, to_json
-from termpool.physics.naive import EulerSim, NaiveSim
 from termpool.scene import SceneError, load_scene
+from termpool.text import say
 
 DTS = (1 / 15, 1 / 30, 1 / 60, 1 / 120, 1 / 240, 1 / 1000, 1 / 4000)
 CHECKPOINTS = (0.25, 0.5, 1.0, 2.0)  # s
 AGREE_MM = 1.0
-COMPARE_HZ = 240  # positions are compared at least this often (per simulated second)
-MAX_TIME = 60.0  # s: a scheme still moving then is stopped and reported as not at rest
-SUBSTEPS = 10
 FLOOR_MM = 1e-9  # where a zero error sits on the log-scale charts
-CONTACTS = ("ball_ball", "cushion", "pocket")
-# name -> (chart letter, description)
-SCHEMES = {
-    "engine": ("E", "Engine.step(dt): exact inside each step"),
-    "naive": ("N", "seed game: explicit Euler, no spin, contacts at frame ends"),
-    "substep": ("S", f"naive with {SUBSTEPS} substeps per frame"),
-    "euler": ("U", "engine's model (spin, jaws) by explicit Euler, contacts at frame ends"),
-}
 PNG_DEFAULT = "accuracy.png"
+SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes")
 CHART_W, CHART_H = 64, 18
 
 
@@ -75,11 +79,9 @@ CHART_W, CHART_H = 64, 18
 
 
 def scene_paths(where: str | None = None) -> list[str]:
-    """The scene files in `where` (a directory or one .json file); default: the bundled set."""
+    """The scene files in `where` (a directory or one .json file); default: bench/scenes."""
     if where is None:
-        from importlib.resources import files
-
-        where = str(files("termpool").joinpath("bench_scenes"))
+        where = SCENES
     if os.path.isfile(where):
         return [where]
     if not os.path.isdir(where):
@@ -95,27 +97,6 @@ def _name(path: str) -> str:
 
 
 # ------------------------------------------------------------------------------ running
-
-
-def make_sim(scheme: str, scene, record: bool = True):
-    args = (scene.table, scene.physics, scene.pos, scene.vel, scene.w, scene.radius, scene.mass)
-    if scheme == "engine":
-        return _engine(scene, record=record)
-    if scheme == "naive":
-        return NaiveSim(*args, record=record)
-    if scheme == "substep":
-        return NaiveSim(*args, substeps=SUBSTEPS, record=record)
-    if scheme == "euler":
-        return EulerSim(*args, record=record)
-    raise ValueError(f"unknown scheme '{scheme}'")
-
-
-def _positions(sim, n: int) -> np.ndarray:
-    return np.asarray(sim.pos, float).reshape(-1, n, 2)[0]
-
-
-def _at_rest(sim) -> bool:
-    return bool(np.all(sim.at_rest()))
 
 
 def _events(sim, ids: list[str]) -> list[tuple[float, str, tuple[str, ...], str]]:
@@ -152,7 +133,7 @@ def reference(scene) -> dict:
         "wall_s": wall,
         "passes": int(eng.passes),
         "events": events,
-        "final": _positions(eng, len(scene.ids)).copy(),
+        "final": positions(eng, len(scene.ids)).copy(),
     }
 
 
@@ -181,7 +162,7 @@ def reference_at_steps(scene, dt: float, ref_time: float, stride: int,
         if k % stride == 0 or k in ckpt_steps:
             if t <= ref_time:
                 eng.run_events(duration=t)
-                out[k] = _positions(eng, n).copy()
+                out[k] = positions(eng, n).copy()
     return out
 
 
@@ -218,15 +199,15 @@ def run_scheme(scheme: str, scene, dt: float, ref: dict, ref_steps: dict, stride
         if diverge_t is None and err > AGREE_MM:
             diverge_t = t
 
-    while not _at_rest(sim) and sim.time < MAX_TIME:
+    while not all_at_rest(sim) and sim.time < MAX_TIME:
         t1 = time.perf_counter()
         sim.step(dt)
         wall += time.perf_counter() - t1
         k += 1
         if k % stride == 0 or k in ckpt:
-            compare(k, sim.time, _positions(sim, n))
-    at_rest = _at_rest(sim)
-    pos = _positions(sim, n).copy()
+            compare(k, sim.time, positions(sim, n))
+    at_rest = all_at_rest(sim)
+    pos = positions(sim, n).copy()
     # The scheme has stopped; the reference may still be moving and checkpoints may lie ahead:
     # the scheme's balls stay where they are.
     t, step = sim.time, k
@@ -319,8 +300,6 @@ def summarize(scenes: list[dict]) -> list[dict]:
 def accuracy_figures(paths: list[str], dts, schemes, closed: list[str] | None = None) -> dict:
     """Figures for the scene files and for the closed-form cases named in `closed` (all when
     None, none when empty)."""
-    from termpool.bench_closed import closed_figures  # it imports this module
-
     scenes = [run_scene(p, dts, schemes) for p in paths]
     return {
         "dts": list(dts),
@@ -336,31 +315,6 @@ def accuracy_figures(paths: list[str], dts, schemes, closed: list[str] | None = 
 
 
 # ------------------------------------------------------------------------------ output
-
-
-def fmt_dt(dt: float) -> str:
-    inv = 1.0 / dt
-    if abs(inv - round(inv)) < 1e-6 * inv:
-        return f"1/{round(inv)}"
-    return f"{dt:.3g}"
-
-
-def fmt_mm(x: float) -> str:
-    """An error in mm: exactly 0 prints as 0."""
-    if x == 0:
-        return "0"
-    return f"{x:.1e}" if x < 0.01 else f"{x:.3g}"
-
-
-def _table(header: list[str], rows: list[list[str]], left=(0,)) -> list[str]:
-    """Columns in `left` are left-aligned, the others (numbers) right-aligned."""
-    widths = [max(len(r[c]) for r in [header, *rows]) for c in range(len(header))]
-    out = []
-    for r in [header, *rows]:
-        cells = [c.ljust(w) if k in left else c.rjust(w) for k, (c, w) in
-                 enumerate(zip(r, widths, strict=True))]
-        out.append("  " + "  ".join(cells).rstrip())
-    return out
 
 
 def _agree(r: dict) -> str:
@@ -387,7 +341,7 @@ def format_scene(sc: dict) -> list[str]:
                      fmt_mm(r["err_ckpt_mm"]), rest, ev,
                      f"{'yes' if r['same_events'] else 'no'} {r['events_matched']}/"
                      f"{r['events_ref']}", _agree(r)])
-    return lines + _table(header, rows, left=(0, 7, 8))
+    return lines + table_lines(header, rows, left=(0, 7, 8))
 
 
 def format_summary(summary: list[dict], n_scenes: int) -> list[str]:
@@ -396,7 +350,7 @@ def format_summary(summary: list[dict], n_scenes: int) -> list[str]:
              fmt_mm(s["err_median_mm"]), fmt_mm(s["err_max_mm"]),
              f"{s['same_events']}/{s['scenes']}"] for s in summary]
     return [f"summary over {n_scenes} scenes (error: the larger of checkpoint and rest error, "
-            "per scene)", *_table(header, rows)]
+            "per scene)", *table_lines(header, rows)]
 
 
 def _log10(x: float) -> float:
@@ -499,8 +453,6 @@ def format_accuracy(r: dict) -> str:
     png = r.get("png")
     lines.append(f"chart: {png}" if png else "chart: no PNG (" + r.get("png_note", "") + ")")
     if r["closed_form"]["cases"]:
-        from termpool.bench_closed import format_closed
-
         lines += [""] + format_closed(r["closed_form"]) + [""]
     m = r["machine"]
     lines += [
@@ -537,7 +489,7 @@ def _closed(text: str) -> list[str] | None:
 
 
 def main(argv: list[str]) -> int:
-    p = _Parser(
+    p = BenchParser(
         prog=f"{PROG} accuracy",
         description=(
             "Run each scene with the event-to-event reference and with every stepping scheme "
@@ -548,12 +500,11 @@ def main(argv: list[str]) -> int:
     )
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--scenes", metavar="DIR", default=None,
-                   help="a directory of scene files, or one scene file (default: the bundled "
-                        "termpool/bench_scenes)")
+                   help="a directory of scene files, or one scene file (default: bench/scenes)")
     p.add_argument("--closed", metavar="NAMES", type=_closed, default=None,
                    help="closed-form scenes: all (default), none, or a comma-separated subset "
                         f"of {','.join(closed_cases.NAMES)}")
-    p.add_argument("--dts", metavar="S", nargs="+", type=_seconds, default=list(DTS),
+    p.add_argument("--dts", metavar="S", nargs="+", type=seconds, default=list(DTS),
                    help="time steps in seconds, fractions like 1/60 work (default: "
                         + " ".join(fmt_dt(d) for d in DTS) + ")")
     p.add_argument("--schemes", type=_schemes, default=list(SCHEMES),
@@ -569,7 +520,7 @@ def main(argv: list[str]) -> int:
         paths = scene_paths(args.scenes)
         result = accuracy_figures(paths, dts, args.schemes, args.closed)
     except (SceneError, ValueError, RuntimeError) as e:
-        _say(f"bench accuracy: {e}")
+        say(f"bench accuracy: {e}")
         return 1
     result["png"] = None
     if args.no_png:

@@ -4,7 +4,7 @@
 tally per player, counted from what the shots did (the plan's kind and target, the engine's
 pocket events, the referee's outcome), never from words. `figures` pools the tallies of many
 games by level (a level that plays both sides is one level). No terminal code here: the
-command (`termpool selfplay`) is in `termpool.selfplay`.
+command (`termpool selfplay`) is in `termpool.selfplay.command`.
 
 What is counted, per player and game:
 
@@ -36,10 +36,9 @@ import numpy as np
 
 from termpool import ai
 from termpool.files import to_json, write_atomic
+from termpool.game.match import Match
+from termpool.game.turn import Shot
 from termpool.rules.events import summarize
-
-from .match import Match
-from .turn import Shot
 
 CHANCE_SIGMA = ai.LEAVE_SIGMA  # degrees: the aim error a safety's effect is measured with
 MAX_SHOTS = 300  # a game still going after this many shots is stopped without a winner

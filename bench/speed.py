@@ -1,49 +1,35 @@
-"""`termpool bench`: benchmarks of the physics core.
+"""`termpool bench speed`: the standard 8-ball break on a 9-ft table, timed.
 
     termpool bench speed [--json] [--repeat N] [--batch B] [--dt S]
-    termpool bench accuracy [--json] [--scenes DIR] [--closed NAMES] [--dts S ...]
-                            [--schemes A,B] [--png PATH]
-    termpool bench stability [--json] [--quick] [--case TEXT ...]
 
-`speed` times the standard 8-ball break on a 9-ft table: one table from Engine construction to
-rest, B slightly different breaks batched in one Engine, and the import of the core in a fresh
-interpreter; it prints a small table with targets and PASS/MISS, or one JSON object with --json.
-The break and the batch have CPU time (every thread of the process) beside wall time.
-
-`accuracy` (in bench_accuracy.py) runs a set of scenes with every stepping scheme at every dt
-against the event-to-event reference and prints errors, wall times and a work-precision chart;
-then every scheme against closed-form answers derived from the model's equations
-(bench_closed.py).
-
-`stability` (in bench_stability.py, cases in stability_cases.py) runs the stiff and extreme
-cases of issue 3 twice each and prints PASS/FAIL per case with the figure that decided it.
-
-Subcommands are registered in SUBCOMMANDS (name -> handler taking the remaining arguments and
-returning an exit status). Like the CLI, numpy and the engine are imported only inside the
-handlers.
+One table from Engine construction to rest, B slightly different breaks batched in one Engine,
+and the import of the core in a fresh interpreter; it prints a small table with targets and
+PASS/MISS, or one JSON object with --json. The break and the batch have CPU time (every thread
+of the process) beside wall time.
 """
 
 from __future__ import annotations
 
-import argparse
 import math
 import os
-import platform
 import statistics
 import subprocess
 import sys
 import time
-from collections.abc import Callable
-from datetime import datetime
-from fractions import Fraction
-from typing import Any, NoReturn
+from typing import Any
 
-from termpool import cli
-from termpool.cli import _Exit
+from bench.common import (
+    PROG,
+    BenchParser,
+    machine_info,
+    machine_lines,
+    make_engine,
+    positive_int,
+    seconds,
+)
 from termpool.files import json_safe, to_json
-from termpool.text import say as _say
-
-PROG = "termpool bench"
+from termpool.physics.results import DT
+from termpool.text import say
 
 # The standard break: 8-ball rack on a 9-ft table, cue ball on the head spot, 8 m/s straight on.
 BREAK_SCENE = {"table": "9ft", "balls": "8ball", "shot": {"speed": 8.0, "angle": 0}}
@@ -66,61 +52,13 @@ TARGETS = {
 }
 
 
-# ------------------------------------------------------------------------- argument parsing
-
-
-class _Parser(cli._Parser):
-    """The CLI's parser (one `termpool: ...` line and exit status 2 on errors), naming the
-    bench subcommand in its messages."""
-
-    def error(self, message: str) -> NoReturn:
-        _say(f"bench {self.prog.split()[-1]}: {message}")
-        raise _Exit(2)
-
-
-def _positive_int(text: str) -> int:
-    try:
-        val = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: '{text}'") from None
-    if val <= 0:
-        raise argparse.ArgumentTypeError(f"must be a positive integer, not '{text}'")
-    return val
-
-
-def _seconds(text: str) -> float:
-    """A positive finite number of seconds; fractions such as 1/60 are accepted."""
-    try:
-        val = float(Fraction(text.strip())) if "/" in text else float(text)
-    except (ValueError, ZeroDivisionError):
-        raise argparse.ArgumentTypeError(f"not a number: '{text}'") from None
-    if not math.isfinite(val) or val <= 0:
-        raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text}'")
-    return val
-
-
 # ------------------------------------------------------------------------------------ speed
 
 
-def _break_scene():
+def break_scene():
     from termpool.scene import load_scene
 
     return load_scene(BREAK_SCENE)
-
-
-def _engine(scene, pos=None, vel=None, w=None, record: bool = False):
-    from termpool.physics.engine import Engine
-
-    return Engine(
-        scene.table,
-        scene.physics,
-        scene.pos if pos is None else pos,
-        scene.vel if vel is None else vel,
-        scene.w if w is None else w,
-        scene.radius,
-        scene.mass,
-        record=record,
-    )
 
 
 def time_break(scene, dt: float, repeat: int) -> dict:
@@ -131,7 +69,7 @@ def time_break(scene, dt: float, repeat: int) -> dict:
     eng = None
     for k in range(repeat + 1):
         t0, c0 = time.perf_counter(), time.process_time()
-        eng = _engine(scene)
+        eng = make_engine(scene)
         eng.run(dt)
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
         if k:
@@ -184,12 +122,12 @@ def time_batch(scene, dt: float, batch: int) -> dict:
     """
     pos, vel, w = batch_breaks(scene, batch)
     t0, c0 = time.perf_counter(), time.process_time()
-    eng = _engine(scene, pos, vel, w)
+    eng = make_engine(scene, pos, vel, w)
     t1 = time.perf_counter()
     eng.run_events()
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     t2, c2 = time.perf_counter(), time.process_time()
-    stepped = _engine(scene, pos, vel, w)
+    stepped = make_engine(scene, pos, vel, w)
     stepped.run(dt)
     wall_stepped, cpu_stepped = time.perf_counter() - t2, time.process_time() - c2
     return {
@@ -212,7 +150,9 @@ def time_batch(scene, dt: float, batch: int) -> dict:
 
 def time_import(runs: int = IMPORT_RUNS) -> dict:
     """Median time to import the core in a fresh interpreter (as measured inside it)."""
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    import termpool
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
     env = dict(os.environ)
     env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
     times = []
@@ -235,11 +175,11 @@ def break_events(scene, dt: float) -> dict:
     """Event counts of the single break (recorded run), and run_events() wall time for it."""
     from collections import Counter
 
-    eng = _engine(scene, record=True)
+    eng = make_engine(scene, record=True)
     eng.run(dt)
     counts = Counter(ev["type"] for ev in eng.events[0])
     t0 = time.perf_counter()
-    ref = _engine(scene)
+    ref = make_engine(scene)
     ref.run_events()
     wall = time.perf_counter() - t0
     return {
@@ -250,46 +190,12 @@ def break_events(scene, dt: float) -> dict:
     }
 
 
-def machine_info() -> dict:
-    import numpy as np
-
-    info = {
-        "platform": platform.platform(),
-        "machine": platform.machine(),
-        "cpu": _cpu_model(),
-        "cpu_count": os.cpu_count(),
-        "python": f"{platform.python_implementation()} {platform.python_version()}",
-        "numpy": np.__version__,
-        "date": datetime.now().astimezone().isoformat(timespec="seconds"),
-    }
-    return info
-
-
-def _cpu_model() -> str:
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.lower().startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
-
-
-def machine_lines(m: dict) -> list[str]:
-    """The machine and date lines every benchmark prints under its figures."""
-    return [
-        f"machine: {m['platform']}; {m['cpu']} ({m['cpu_count']} cpus)",
-        f"python {m['python']}, numpy {m['numpy']}; {m['date']}",
-    ]
-
-
 def _check(value: float, op: str, bound: float) -> bool:
     return {"<=": value <= bound, ">=": value >= bound, "<": value < bound}[op]
 
 
 def speed_figures(dt: float, repeat: int, batch: int) -> dict:
-    scene = _break_scene()
+    scene = break_scene()
     out: dict[str, Any] = {"dt": dt, "repeat": repeat}
     out.update(time_break(scene, dt, repeat))
     out.update(time_batch(scene, dt, batch))
@@ -368,8 +274,8 @@ def format_speed(r: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def speed(argv: list[str]) -> int:
-    p = _Parser(
+def main(argv: list[str]) -> int:
+    p = BenchParser(
         prog=f"{PROG} speed",
         description=(
             "Time the standard 8-ball break on a 9-ft table: one table to rest, a batch of "
@@ -379,27 +285,27 @@ def speed(argv: list[str]) -> int:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument(
         "--repeat",
-        type=_positive_int,
+        type=positive_int,
         default=15,
         help="timed single-break runs after one warm-up (default 15)",
     )
     p.add_argument(
         "--batch",
-        type=_positive_int,
+        type=positive_int,
         default=256,
         help="breaks batched in one Engine (default 256)",
     )
     p.add_argument(
         "--dt",
-        type=_seconds,
-        default=1 / 60,
+        type=seconds,
+        default=DT,
         help="fixed time step in seconds (default 1/60; fractions like 1/120 work)",
     )
     args = p.parse_args(argv)
     try:
         result = speed_figures(args.dt, args.repeat, args.batch)
     except (RuntimeError, ValueError, subprocess.TimeoutExpired) as e:
-        _say(f"bench speed: {e}")
+        say(f"bench speed: {e}")
         return 1
     if args.json:
         sys.stdout.write(to_json(json_safe(result)) + "\n")
@@ -407,66 +313,3 @@ def speed(argv: list[str]) -> int:
         sys.stdout.write(format_speed(result))
     sys.stdout.flush()
     return 0
-
-
-# --------------------------------------------------------------------------------- accuracy
-
-
-def accuracy(argv: list[str]) -> int:
-    """`termpool bench accuracy`: see termpool/bench_accuracy.py."""
-    from termpool.bench_accuracy import main as accuracy_main
-
-    return accuracy_main(argv)
-
-
-# -------------------------------------------------------------------------------- stability
-
-
-def stability(argv: list[str]) -> int:
-    """`termpool bench stability`: see termpool/bench_stability.py."""
-    from termpool.bench_stability import main as stability_main
-
-    return stability_main(argv)
-
-
-# ------------------------------------------------------------------------------------- main
-
-SUBCOMMANDS: dict[str, tuple[Callable[[list[str]], int], str]] = {
-    "speed": (speed, "time the standard break, a batch of breaks and the core import"),
-    "accuracy": (accuracy, "every stepping scheme against the event-to-event reference"),
-    "stability": (stability, "stiff and extreme cases: PASS/FAIL with the deciding figure"),
-}
-
-USAGE = f"usage: {PROG} {{{','.join(SUBCOMMANDS)}}} [options]   (try {PROG} SUBCOMMAND --help)\n"
-
-
-def _help() -> str:
-    lines = [USAGE.rstrip(), "", "benchmarks of the physics core:", ""]
-    width = max(len(name) for name in SUBCOMMANDS)
-    for name, (_, text) in SUBCOMMANDS.items():
-        lines.append(f"  {name.ljust(width)}  {text}")
-    return "\n".join(lines) + "\n"
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Entry point of `termpool bench`; argv is what follows `bench`. Returns the exit status."""
-    argv = sys.argv[1:] if argv is None else list(argv)
-    cli.one_blas_thread()
-    if not argv:
-        _say(f"bench: missing subcommand (use {', '.join(SUBCOMMANDS)})")
-        return 2
-    name, rest = argv[0], argv[1:]
-    if name in ("-h", "--help"):
-        sys.stdout.write(_help())
-        return 0
-    if name not in SUBCOMMANDS:
-        _say(f"bench: unknown subcommand '{name}' (use {', '.join(SUBCOMMANDS)})")
-        return 2
-    try:
-        return SUBCOMMANDS[name][0](rest)
-    except _Exit as e:
-        return e.code
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

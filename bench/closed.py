@@ -25,18 +25,18 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from termpool import closed_cases, closed_form
-from termpool.bench_accuracy import (
+from bench import closed_cases, closed_form
+from bench.schemes import (
     COMPARE_HZ,
     CONTACTS,
     MAX_TIME,
     SUBSTEPS,
-    _at_rest,
-    _positions,
-    _table,
+    all_at_rest,
     fmt_dt,
     fmt_mm,
     make_sim,
+    positions,
+    table_lines,
 )
 from termpool.scene import Scene, load_scene
 
@@ -109,7 +109,7 @@ def reference(case: closed_cases.Case, scene: Scene, timed: bool = True) -> dict
     eng = make_sim("engine", scene)
     samples = eng.run_events(sample_hz=COMPARE_HZ)
     events = _log(eng)
-    final = _positions(eng, n).copy()
+    final = positions(eng, n).copy()
     wall = None
     if timed:
         t0 = time.perf_counter()
@@ -137,15 +137,15 @@ def run_scheme(case: closed_cases.Case, scene: Scene, scheme: str, dt: float) ->
     wall = time.perf_counter() - t0
     times, pos = [], []
     k = 0
-    while not _at_rest(sim) and sim.time < MAX_TIME:
+    while not all_at_rest(sim) and sim.time < MAX_TIME:
         t1 = time.perf_counter()
         sim.step(dt)
         wall += time.perf_counter() - t1
         k += 1
         if k % stride == 0:
             times.append(sim.time)
-            pos.append(_positions(sim, n).copy())
-    final = _positions(sim, n).copy()
+            pos.append(positions(sim, n).copy())
+    final = positions(sim, n).copy()
     if not times or times[-1] != sim.time:
         times.append(sim.time)
         pos.append(final)
@@ -156,7 +156,7 @@ def run_scheme(case: closed_cases.Case, scene: Scene, scheme: str, dt: float) ->
         model_types &= set(CONTACTS)
     row = {
         "scheme": scheme, "dt": dt, "wall_s": wall, "steps": int(sim.steps),
-        "sim_s": float(sim.time), "at_rest": _at_rest(sim),
+        "sim_s": float(sim.time), "at_rest": all_at_rest(sim),
         "model": errors(case.model, times_a, pos_a, final, events, model_types),
         "own": None,
     }
@@ -245,7 +245,7 @@ def format_case(c: dict) -> list[str]:
     ]
     facts = [[f"{f['label']}" + (f" ({f['unit']})" if f["unit"] else ""), _num(f["closed_form"]),
               _num(f["engine"]), f"{f['error']:.1e}"] for f in ref["facts"]]
-    lines += _table(["fact", "closed form", "engine", "error"], facts)
+    lines += table_lines(["fact", "closed form", "engine", "error"], facts)
     header = ["scheme", "dt", "wall ms", "steps", "path mm", "rest mm", "event ms", "events",
               "| own: path mm", "rest mm", "event ms", "events"]
     rows = []
@@ -259,7 +259,7 @@ def format_case(c: dict) -> list[str]:
         else:
             row += [fmt_mm(o["path_mm"]), fmt_mm(o["rest_mm"]), _ms(o["event_ms"]), _events(o)]
         rows.append(row)
-    return lines + _table(header, rows, left=(0, 7, 11))
+    return lines + table_lines(header, rows, left=(0, 7, 11))
 
 
 def format_summary(summary: list[dict], n: int) -> list[str]:
@@ -274,7 +274,7 @@ def format_summary(summary: list[dict], n: int) -> list[str]:
                      fmt_mm(s["own_max_mm"]) if own else "",
                      f"{s['within']}/{s['cases']}" if s["within"] is not None else ""])
     return [f"closed-form summary over {n} scenes (error: the larger of path and rest error, "
-            "per scene)", *_table(header, rows)]
+            "per scene)", *table_lines(header, rows)]
 
 
 def format_closed(r: dict) -> list[str]:

@@ -1,6 +1,6 @@
-"""Stiff and extreme cases of the physics core (issue 3), and the laws every run must keep.
+"""Stiff and extreme cases of the physics core, and the laws every run must keep.
 
-One place for three things that `termpool bench stability` (bench_stability.py) and the tests
+One place for three things that `termpool bench stability` (bench/stability.py) and the tests
 (tests/test_stability.py, tests/test_properties.py through tests/physics_laws.py) share:
 
 - the laws, computed from the engine's public state only: finite numbers, no two balls
