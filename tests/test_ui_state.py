@@ -143,3 +143,19 @@ def test_the_help_pages_turn_by_the_screen_that_shows_them() -> None:
 
 def test_every_phase_has_its_keys() -> None:
     assert set(phases.KEYS) == set(Phase)
+
+
+@pytest.mark.parametrize("cols, rows", [(80, 24), (120, 40), (45, 14)])
+def test_the_layout_maps_a_cell_back_to_the_table_point_it_draws_there(cols, rows) -> None:
+    app = App(Options(mode="practice", seed=4, colors="mono"))
+    _, seen = draw(app.state, cols, rows, Geometry())
+    lay = seen.layout
+    table = app.state.match.table
+    for x, y in ((0.3, 0.2), (table.length / 2, table.width / 2), (table.length - 0.1, 1.1)):
+        px, py = lay.to_pixels(x, y)
+        back = lay.to_table(int(px), int(py) // 2)
+        # The centre of the cell: half a pixel across, a pixel up or down at most.
+        assert abs(back[0] - x) <= 0.5 / lay.sx + 1e-12
+        assert abs(back[1] - y) <= 1.0 / lay.sy + 1e-12
+    col, row, _, _ = lay.panel_rect
+    assert lay.to_table(col + 1, row) is None  # the panel is not the table

@@ -109,6 +109,14 @@ class Layout:
         y = np.asarray(y, dtype=float)
         return self.px + x * self.sx, self.py + (self.width - y) * self.sy
 
+    def to_table(self, col: int, row: int) -> tuple[float, float] | None:
+        """The table point (m) at the centre of the cell (col, row); None for a cell off the
+        table and its rails (the panel, or beside the table)."""
+        ox, oy, ow, oh = self.outer
+        if not (ox <= col < ox + ow and oy <= 2 * row + 1 < oy + oh):
+            return None
+        return (col + 0.5 - self.px) / self.sx, self.width - (2 * row + 1 - self.py) / self.sy
+
 
 def min_size() -> tuple[int, int]:
     return (MIN_COLS, MIN_ROWS)

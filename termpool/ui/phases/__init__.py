@@ -62,13 +62,8 @@ def mouse(s: State, ev, t: float, seen: Seen | None) -> State:
             or seen.layout is None or seen.table is not s.match.table
             or s.phase not in POINTS or ev.button != 0 or ev.kind not in ("press", "drag")):
         return s
-    lay = seen.layout
-    ox, oy, ow, oh = lay.outer
-    if not (ox <= ev.col < ox + ow and oy <= 2 * ev.row + 1 < oy + oh):
-        return s  # the panel, or beside the table
-    x = (ev.col + 0.5 - lay.px) / lay.sx  # the cell's centre, in table metres
-    y = lay.width - (2 * ev.row + 1 - lay.py) / lay.sy
-    return POINTS[s.phase](s, x, y)
+    point = seen.layout.to_table(ev.col, ev.row)
+    return s if point is None else POINTS[s.phase](s, *point)
 
 
 def tick(s: State, t: float) -> State:
