@@ -26,19 +26,23 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numpy as np
 
 from termpool import ai_geometry as geo
+from termpool.game.layout import head_string, in_area
 from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
+from termpool.rules import words
+from termpool.rules.codes import Choice, Option
 from termpool.rules.common import AREAS, State, legal_targets
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
+from termpool.rules.words import voice
 
 
 class Plan(NamedTuple):
@@ -50,10 +54,12 @@ class Plan(NamedTuple):
     top: float
     called: tuple[str, str] | None  # (ball, pocket name) when the rules need a call (the 8)
     score: float
-    note: str  # why, in words ("3 in the foot_left pocket")
+    note: str  # why, in words for people ("3 in the foot left pocket")
     kind: str = ""  # "break", "pot", "combo", "safety", "kick" ("": none of them)
     ball: str | None = None  # pots and combinations: the ball meant to drop ...
     pocket: str | None = None  # ... and the pocket it is sent to
+    sees: str = ""  # what the batch saw the shot do: "win", "loss", "foul" (its note is then
+    # the referee's verdict), "pot" (a pot that keeps the table) or "pass" ("": no batch)
 
 
 class Level(NamedTuple):
@@ -113,7 +119,8 @@ BREAK_SAMPLES = 12  # each break is judged over this many strikes with the level
 KICK_FAN = (0.5, 1.0, 1.5, 2.0, 3.0)  # degrees either side of a one-rail kick's aim
 BREAK_SPINS = ((0.0, 0.0),)
 MIN_CANDIDATES = 8
-OPTION_ANSWERS = {"rerack_or_accept": "accept", "shoot_or_pass": "shoot"}
+OPTION_ANSWERS = {Option.RERACK_OR_ACCEPT: Choice.ACCEPT, Option.SHOOT_OR_PASS: Choice.SHOOT}
+SAID = voice(("player 0", "player 1"))  # the notes' words: pockets as people say them
 
 
 # ------------------------------------------------------------------------------ inputs
@@ -494,14 +501,16 @@ def _call(state: State, targets: list[str], t: _Table, cands: _Cands, b: int, su
 
 def _score(state, targets, t, cands, eng, table, pockets, lv,
            sampled: bool = False) -> tuple[np.ndarray, list, list]:
-    """Score every simulated table; returns (scores, calls, notes). With `sampled`, the tables
-    are samples of aim error and every pot counts in full."""
+    """Score every simulated table; returns (scores, calls, notes: (note, sees) pairs, see
+    `Plan`). With `sampled`, the tables are samples of aim error and every pot counts in
+    full."""
     B, n = eng.B, eng.N
     alive = eng.state != POCKETED
     final = eng.pos
     scores = np.zeros(B)
     calls: list = []
     notes: list = []
+    sees: list = []
     leave_for: list[tuple[int, float, State]] = []  # (table, pot chance or -1, next state)
     practice = state.mode == "practice"
     # A pot that misses in play: the opponent gets the table (in practice, nobody does).
@@ -521,32 +530,38 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
         intended = sunk is not None and aimed is not None and summary.pocketed.get(sunk) == aimed
         p = 1.0 if cands.kind[b] == "break" or sampled else cands.chance[b] if intended \
             else FLUKE
+        pocket = None if aimed is None else SAID.pocket(aimed)
         if out.winner is not None:
             scores[b] = p * WIN + (1 - p) * miss if out.winner == state.shooter else LOSS
-            notes.append(out.reason)
+            notes.append(words.reason(out.said, SAID))
+            sees.append("win" if out.winner == state.shooter else "loss")
         elif out.foul is not None or (practice and out.ball_in_hand):
             scores[b] = foul
-            notes.append(f"foul: {out.reason}" if out.foul else out.reason)
+            why = words.reason(out.said, SAID)
+            notes.append(f"foul: {why}" if out.foul else why)
+            sees.append("foul")
         elif out.continue_turn and potted:
             scores[b] = p * CONTINUE + (1 - p) * miss
             leave_for.append((b, p, nxt))
             if intended and cands.kind[b] == "combo":
-                notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {aimed} "
+                notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {pocket} "
                              "pocket")
             elif intended:
-                notes.append(f"{tgt} in the {aimed} pocket")
+                notes.append(f"{tgt} in the {pocket} pocket")
             else:
                 how = "the break" if cands.kind[b] == "break" else "a kiss or combination"
                 notes.append(f"{', '.join(potted)} in by {how}")
+            sees.append("pot")
         else:
             scores[b] = PASS
             if not practice:  # in practice the same player shoots again: nothing to deny
                 leave_for.append((b, -1.0, nxt))
             word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
             if word is None:
-                word = f"try {sunk} in the {aimed} pocket"
+                word = f"try {sunk} in the {pocket} pocket"
             notes.append(f"{word} on the {tgt}" if cands.kind[b] in ("safety", "kick")
                          else word)
+            sees.append("pass")
     if leave_for:
         rows = [b for b, _, _ in leave_for]
         tmask = np.zeros((len(rows), n), bool)
@@ -572,7 +587,7 @@ def _score(state, targets, t, cands, eng, table, pockets, lv,
                 scores[b] -= lv.leave
             else:
                 scores[b] -= lv.leave * value[r]
-    return scores, calls, notes
+    return scores, calls, list(zip(notes, sees, strict=True))
 
 
 def _opponent_now(state: State, t: _Table, pockets: geo.Pockets, table: Table) -> float:
@@ -637,7 +652,8 @@ def _plan(ev: _Eval, b: int, score: float) -> Plan:
         ball = ev.t.ids[c.via[b] if c.via[b] >= 0 else c.target[b]]
         pocket = ev.pockets.names[c.pocket[b]]
     return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
-                ev.calls[b], float(score), ev.notes[b], c.kind[b], ball, pocket)
+                ev.calls[b], float(score), ev.notes[b][0], c.kind[b], ball, pocket,
+                ev.notes[b][1])
 
 
 def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,
@@ -721,12 +737,12 @@ def as_struck(plan: Plan, level: str, seed: int = 0) -> Plan:
     return with_error(plan, lv.aim_sd, lv.speed_sd, seed, lv.tip_sd)
 
 
-def choose_option(option: str) -> str:
+def choose_option(option: str) -> Choice:
     """The computer's answer to an option: it accepts the table after an illegal 8-ball break
     and shoots after a push-out."""
-    if option not in OPTION_ANSWERS:
-        raise ValueError(f"option: must be one of {', '.join(OPTION_ANSWERS)}, not {option!r}")
-    return OPTION_ANSWERS[option]
+    if option not in tuple(Option):
+        raise ValueError(f"option: must be one of {', '.join(Option)}, not {option!r}")
+    return OPTION_ANSWERS[Option(option)]
 
 
 def with_error(plan: Plan, aim_sd: float, speed_sd: float, seed: int = 0,
@@ -750,8 +766,7 @@ def _spot_ok(xy: np.ndarray, t: _Table, table: Table, area: str) -> np.ndarray:
     margin = 1e-3
     ok = (x >= r + margin) & (x <= table.length - r - margin)
     ok &= (y >= r + margin) & (y <= table.width - r - margin)
-    if area == "kitchen":  # on or behind the head string
-        ok &= x <= table.head_spot[0]
+    ok &= in_area(table, x, area)  # on or behind the head string, for the kitchen
     others = [k for k in range(len(t.ids)) if k != t.cue]
     if others:
         d = np.linalg.norm(xy[:, None] - t.pos[others][None], axis=-1)
@@ -779,7 +794,7 @@ def _cue_in_hand(ids, pos, on_table, table: Table):
 
 def _string_spot(t: _Table, table: Table, area: str, share: float) -> np.ndarray | None:
     """The free point of the head string nearest the one `share` of the width across."""
-    hx, hy = table.head_spot[0], share * table.width
+    hx, hy = head_string(table), share * table.width
     xy = np.array([[hx, hy + s * k * 0.01] for k in range(130) for s in (1, -1)])
     ok = np.nonzero(_spot_ok(xy, t, table, area))[0]
     return xy[ok[0]] if len(ok) else None
@@ -836,7 +851,7 @@ def _spot_chances(t: _Table, table: Table, state: State, area: str, distances: i
                               u[0] * math.sin(c) + u[1] * math.cos(c)])
                 for s in dists:
                     spots.append(ghost - s * d)
-    hi = table.head_spot[0] if area == "kitchen" else table.length
+    hi = head_string(table) if area == "kitchen" else table.length
     gx = np.linspace(0.05, hi - 0.02, 12)
     gy = np.linspace(0.05, table.width - 0.05, 8)
     spots += [np.array([x, y]) for x in gx for y in gy]
@@ -909,3 +924,48 @@ def best_chance(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     chance, _ = geo.pot_chances(t.pos[t.cue][None], t.pos[None], np.ones((1, len(t.ids)), bool),
                                 tmask, t.radius, t.cue, pockets, table, sigma)
     return float(chance.max(initial=0.0))
+
+
+# ----------------------------------------------------------------------------- the player
+
+
+@dataclass(frozen=True)
+class Computer:
+    """The computer as a player of a match (`game.players.Computer`): it answers options,
+    places the cue ball in hand and plays its shots as its level does, seeded by the match's
+    seed and the shot's number (the same match gives the same decisions)."""
+
+    level: str = "normal"
+    name: str = "Computer"
+    candidates: int = 256  # the batch's budget (`choose_shot`'s max_candidates)
+
+    def __post_init__(self) -> None:
+        if self.level not in LEVELS:
+            raise ValueError(f"level: must be one of {', '.join(LEVELS)}, not {self.level!r}")
+
+    @staticmethod
+    def seed(match) -> int:
+        """The seed of the next decision in `match`."""
+        return match.seed * 1000 + len(match.history)
+
+    @staticmethod
+    def _balls(match) -> tuple:
+        return (match.table, match.physics, match.ids, match.pos, match.radius, match.mass,
+                match.on_table, match.state)
+
+    def answer(self, match) -> Choice:
+        return choose_option(match.option)
+
+    def place(self, match) -> tuple[float, float]:
+        """Where it puts the cue ball in hand (`choose_placement`); should that ever be
+        refused, where a scratched cue ball waits."""
+        x, y = choose_placement(*self._balls(match), match.ball_in_hand, level=self.level,
+                                seed=self.seed(match))
+        return match.waiting_spot() if match.placement_error(x, y) else (x, y)
+
+    def shot(self, match) -> Plan:
+        """The shot it plays: `choose_shot`'s plan as it strikes it (`as_struck`)."""
+        seed = self.seed(match)
+        plan = choose_shot(*self._balls(match), level=self.level, seed=seed,
+                           max_candidates=self.candidates)
+        return as_struck(plan, self.level, seed)

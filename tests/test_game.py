@@ -11,6 +11,8 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import replace
+from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pytest
@@ -22,8 +24,22 @@ from termpool.game import layout as lay
 from termpool.physics.params import BALL_RADIUS as R
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
+from termpool.rules import words
 from termpool.rules.common import MODE_BALLS, SOLIDS, STRIPES
 from termpool.scene import load_scene
+
+RECORDS = Path(__file__).parent / "records"
+
+
+class Seat(NamedTuple):
+    """A player as the match takes one: a name and a level (None: a person)."""
+
+    name: str
+    level: str | None
+
+
+def seats(levels) -> tuple[Seat, Seat]:
+    return tuple(Seat(f"Player {k + 1}", lv) for k, lv in enumerate(levels))
 
 T = Table.preset("9ft")
 L, W = T.length, T.width
@@ -521,8 +537,8 @@ def test_take_back_and_rerack_only_in_practice() -> None:
         ({"table": Table(pockets="none")}, "table"),
         ({"dt": 1e-300}, "dt: must be from 0.0001 to 1 seconds"),  # no replay would take it
         ({"dt": 2.0}, "dt: must be from 0.0001 to 1 seconds"),
-        ({"levels": (None, "expert")}, "^levels: must be two of None"),
-        ({"levels": ("hard",)}, "^levels: must be two of None"),
+        ({"players": ("A", Seat("B", "expert"))}, "^levels: must be two of None"),
+        ({"players": (Seat("A", 3), "B")}, "^levels: must be two of None"),
     ],
 )
 def test_bad_settings(kw, words) -> None:
@@ -535,7 +551,7 @@ def test_bad_settings(kw, words) -> None:
                                     ["pro", "easy"]])
 def test_records_load_and_replay_with_every_level_and_from_before_levels(levels) -> None:
     # None: a record from before the match kept the computer's level (no "levels" key).
-    m = Match("9ball", seed=3, levels=tuple(levels) if levels else (None, None))
+    m = Match("9ball", seed=3, players=seats(levels or [None, None]))
     m.begin(Shot(7.5, 0.5)).finish()
     data = json.loads(json.dumps(m.to_json()))
     if levels is None:
@@ -601,7 +617,9 @@ def test_warning_before_a_third_foul() -> None:
     setup(m, {**SCRATCH, "1": (1.0, 0.6), "9": (0.5, 1.0)}, fouls=(1, 2))
     assert m.warning() is None  # Ann shoots, on one foul
     m.state = replace(m.state, shooter=1)
-    assert "Bob is on two fouls" in m.warning()
+    assert m.warning() == 1
+    assert "Bob is on two fouls" in words.foul_warning(words.voice(m.players), m.warning())
+    assert words.foul_warning(words.voice(("Ann", "You")), 1).startswith("You are on two fouls")
     m = Match("9ball", players=("Ann", "Bob"))  # no rule, no warning
     m.state = replace(m.state, fouls=(2, 2))
     assert m.warning() is None
@@ -643,8 +661,9 @@ def test_eight_on_the_break_re_racks_for_the_same_breaker_in_that_variant() -> N
     m = Match("8ball", eight_break="rerack")
     setup(m, {"cue": BEHIND, "8": NEAR_POCKET, "4": FOOT, "1": (0.4, 1.0)}, is_break=True)
     out = m.begin(POT).finish()
-    assert m.history[0]["outcome"]["respot"] == ["8"]  # the referee's verdict is recorded
-    assert out.respot == () and "re-racked" in out.reason and out.next_shooter == 0
+    assert m.history[0]["outcome"] == out.to_json()  # the verdict played is recorded
+    assert out.rerack and out.respot == () and out.next_shooter == 0
+    assert out.reason.endswith("the 8 on the break: re-racked, player 0 breaks again")
     assert m.on_table.all() and m.state.is_break and m.shooter == 0
     assert m.ball_in_hand == "kitchen"
     assert at(m, "8") != NEAR_POCKET
@@ -653,3 +672,15 @@ def test_eight_on_the_break_re_racks_for_the_same_breaker_in_that_variant() -> N
     assert replay(m.to_json())[0]["ok"]
     with pytest.raises(ValueError, match="eight_break"):
         Match("8ball", eight_break="maybe")
+
+
+def test_a_record_from_before_the_re_rack_rule_loads_and_replays() -> None:
+    # Played when the match re-racked after the referee: its record holds the re-spot
+    # verdict, and its game blocks name no variant (which reads as the re-spot).
+    data = json.loads((RECORDS / "eight_break_rerack_before_the_rule.json").read_text())
+    assert data["shots"][0]["outcome"]["respot"] == ["8"]
+    assert "eight_break" not in data["shots"][0]["scene"]["game"]
+    assert all(r["ok"] for r in replay(data))
+    m = Match.from_json(data)
+    assert m.eight_break == "rerack" and m.state.is_break and m.state.eight_break == "rerack"
+    assert m.last_outcome.respot == ("8",) and not m.last_outcome.rerack

@@ -17,11 +17,12 @@ import pytest
 
 from termpool.physics.engine import Engine
 from termpool.rules import eight, nine, practice
+from termpool.rules.codec import state_from_game
 from termpool.rules.common import SOLIDS, STRIPES, Outcome, State
 from termpool.rules.events import ShotSummary, summarize
-from termpool.rules.referee import judge, referee, state_from_game
+from termpool.rules.referee import judge, load_game_scene, referee
 from termpool.rules.themes import THEMES, ball_look, group_label
-from termpool.scene import SceneError, load_scene
+from termpool.scene import SceneError
 
 ROOT = Path(__file__).resolve().parent.parent
 IDS = ["cue", *(str(n) for n in range(1, 16))]
@@ -472,7 +473,7 @@ def straight_pot(top: float = 0.0, **game) -> dict:
 
 
 def run_scene(d: dict):
-    s = load_scene(d)
+    s = load_game_scene(d)
     eng = Engine(s.table, s.physics, s.pos, s.vel, s.w, s.radius, s.mass)
     eng.run(1 / 60)
     return s, eng.events[0]
@@ -499,21 +500,21 @@ def test_real_follow_in_is_a_scratch() -> None:
 
 
 def test_game_block_normalized() -> None:
-    s = load_scene(straight_pot(groups={"1": "solids"}, shooter=1, fouls={"1": 2}))
+    s = load_game_scene(straight_pot(groups={"1": "solids"}, shooter=1, fouls={"1": 2}))
     assert s.game == {"mode": "8ball", "shooter": 1, "break": False,
                       "groups": {"0": "stripes", "1": "solids"}, "fouls": {"0": 0, "1": 2}}
-    assert load_scene(straight_pot()).game["fouls"] == {"0": 0, "1": 0}
-    assert load_scene({"balls": "9ball", "game": {"mode": "9ball", "break": True}}).game == {
+    assert load_game_scene(straight_pot()).game["fouls"] == {"0": 0, "1": 0}
+    assert load_game_scene({"balls": "9ball", "game": {"mode": "9ball", "break": True}}).game == {
         "mode": "9ball", "shooter": 0, "break": True, "fouls": {"0": 0, "1": 0},
         "push_out": False, "three_foul": False}
-    assert load_scene(straight_pot()).game is not None
-    assert load_scene({"balls": "8ball"}).game is None
+    assert load_game_scene(straight_pot()).game is not None
+    assert load_game_scene({"balls": "8ball"}).game is None
     # The block survives scene_to_dict.
     from termpool.scene import scene_to_dict
 
-    d = scene_to_dict(load_scene(straight_pot(called={"ball": "8", "pocket": "head_left"})))
+    d = scene_to_dict(load_game_scene(straight_pot(called={"ball": "8", "pocket": "head_left"})))
     assert d["game"]["called"] == {"ball": "8", "pocket": "head_left"}
-    assert load_scene(d).game == d["game"]
+    assert load_game_scene(d).game == d["game"]
 
 
 def with_balls(balls, **game) -> dict:
@@ -563,7 +564,7 @@ BAD_GAMES = [
 @pytest.mark.parametrize("scene, message", BAD_GAMES, ids=[m for _, m in BAD_GAMES])
 def test_bad_game_blocks(scene: dict, message: str) -> None:
     with pytest.raises(SceneError) as e:
-        load_scene(scene)
+        load_game_scene(scene)
     text = str(e.value)
     assert message in text and "\n" not in text
 
