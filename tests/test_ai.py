@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from termpool import ai
-from termpool import ai_geometry as geo
+from termpool.ai import geometry as geo
 from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
@@ -770,5 +770,27 @@ def test_no_safety_when_there_is_nothing_left_to_hide(monkeypatch):
     assert ai.best_chance(*lay.args(), replace(state, shooter=1)) < 0.1
     plan = ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64)
     assert plan.kind == "pot"
-    monkeypatch.setattr(ai, "_opponent_now", lambda *_: math.inf)  # the rule off
+    monkeypatch.setattr(ai.scoring, "_opponent_now", lambda *_: math.inf)  # the rule off
     assert ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64).kind == "safety"
+
+
+def test_the_computer_is_a_player_with_the_game_s_level_names():
+    from termpool.game import Match
+    from termpool.game import players as gp
+
+    assert tuple(ai.LEVELS) == gp.LEVELS  # the names the record and the history keep
+    cpu = ai.Computer("hard", "Bot")
+    assert isinstance(cpu, gp.Computer) and gp.is_computer(cpu)
+    assert not isinstance(gp.Person("Ann"), gp.Computer) and not gp.is_computer(gp.Person("A"))
+    with pytest.raises(ValueError, match="^level: must be one of easy, normal, hard, pro"):
+        ai.Computer("expert")
+    m = Match("9ball", seed=5, players=("Ann", cpu))
+    assert m.players == ("Ann", "Bot") and m.levels == (None, "hard") and m.seats[1] is cpu
+    # Its decisions are the functions' own, seeded by the match and the shot number.
+    seed = ai.Computer.seed(m)
+    args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
+    want = ai.as_struck(ai.choose_shot(*args, level="hard", seed=seed), "hard", seed)
+    assert cpu.shot(m) == want
+    assert cpu.place(m) == ai.choose_placement(*args, "kitchen", level="hard", seed=seed)
+    m.option = "shoot_or_pass"
+    assert cpu.answer(m) == "shoot"

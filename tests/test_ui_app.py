@@ -751,7 +751,7 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
                        "the 9 went into the head right pocket on a legal shot: player 1 wins",
                        "pot", "9", "head_right", "win")
 
-    monkeypatch.setattr(ai, "choose_shot", plan)
+    monkeypatch.setattr(ai.Computer, "shot", plan)
     app = app_for(mode="9ball", opponent="cpu")
     app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1)
     app.match.ball_in_hand = None
@@ -864,8 +864,7 @@ def cpu_to_shoot(monkeypatch, note="3 in the foot left pocket"):
     from termpool import ai
 
     plan = ai.Plan(1.5, 20.0, 0.0, 0.2, None, 1.0, note)
-    monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
-    monkeypatch.setattr(ai, "as_struck", lambda p, *a, **k: p)
+    monkeypatch.setattr(ai.Computer, "shot", lambda *a, **k: plan)
     app = app_for(mode="8ball", opponent="cpu")
     app.match.state = __import__("dataclasses").replace(app.match.state, shooter=1,
                                                         is_break=False)
@@ -911,7 +910,7 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
     for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
-    monkeypatch.setattr(__import__("termpool").ai, "choose_shot",
+    monkeypatch.setattr(__import__("termpool").ai.Computer, "shot",
                         lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
     app._turn_start()
     app.angle = 90.0  # its stick starts away from its aim, on the 8
