@@ -643,6 +643,39 @@ def test_an_accepted_placement_makes_a_valid_scene(x: float, y: float, area: str
             assert float(np.dot(scene.pos[0] - p, n)) >= R - 1e-9, name
 
 
+def test_the_placement_rule_at_its_edges() -> None:
+    # Exactly on the head string is in the kitchen; touching a ball or a cushion nose is fine;
+    # the margin the AI keeps refuses those.
+    others, radii = np.array([[0.5, 0.6]]), np.array([R])
+    spots = [[lay.head_string(T), 0.6],  # on the head string
+             [0.5 - 2 * R, 0.6],  # touching the ball (straight along x)
+             [0.3, R],  # touching the cushion nose
+             [lay.head_string(T) + 1e-12, 0.3]]  # just past the head string
+    assert lay.head_string(T) == L / 4 == HEAD[0]
+    assert lay.spots_ok(T, spots, R, "kitchen", others, radii).tolist() == \
+        [True, True, True, False]
+    assert lay.spots_ok(T, spots, R, "anywhere", others, radii).tolist() == [True] * 4
+    assert not lay.spots_ok(T, spots[1:3], R, "anywhere", others, radii, 1e-3).any()
+    for (x, y), ok in zip(spots, [True, True, True, False], strict=True):
+        err = lay.placement_error(T, x, y, R, "kitchen", {"1": (0.5, 0.6, R)})
+        assert (err is None) == ok, err
+
+
+@given(x=coord_x, y=coord_y, area=st.sampled_from(["anywhere", "kitchen"]),
+       margin=st.sampled_from([0.0, 1e-3]))
+def test_one_placement_rule_for_one_spot_and_for_many(x: float, y: float, area: str,
+                                                      margin: float) -> None:
+    # The game's check of a spot (with its reason) and the AI's of many spots are one rule;
+    # the AI's margin only ever refuses more.
+    m = Match("8ball", seed=1)
+    m.ball_in_hand = area
+    on = m.on_table.copy()
+    on[m.index("cue")] = False
+    ok = lay.spots_ok(T, [[x, y]], R, area, m.pos[on], m.radius[on], margin)[0]
+    legal = m.placement_error(x, y) is None
+    assert ok == legal if margin == 0 else (not ok or legal)
+
+
 @given(st.lists(st.tuples(st.floats(FOOT[0] - 0.3, L - R), st.floats(W / 2 - 0.1, W / 2 + 0.1)),
                 max_size=8))
 def test_a_respot_never_overlaps(others: list) -> None:

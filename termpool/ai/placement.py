@@ -8,7 +8,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from termpool.game.layout import head_string, in_area
+from termpool.game.layout import head_string, spots_ok
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
 from termpool.rules.common import AREAS, State, legal_targets
@@ -21,18 +21,11 @@ from .scoring import LEAVE_SIGMA, score_tables
 
 
 def _spot_ok(xy: np.ndarray, t: OnTable, table: Table, area: str) -> np.ndarray:
-    """Legal cue ball spots among xy (M, 2): on the table, no overlap, in the kitchen if asked."""
-    r = float(t.radius[t.cue])
-    x, y = xy[:, 0], xy[:, 1]
-    margin = 1e-3
-    ok = (x >= r + margin) & (x <= table.length - r - margin)
-    ok &= (y >= r + margin) & (y <= table.width - r - margin)
-    ok &= in_area(table, x, area)  # on or behind the head string, for the kitchen
+    """Spots among xy (M, 2) where the game lets the cue ball be placed (`layout.spots_ok`),
+    with a millimetre to spare."""
     others = [k for k in range(len(t.ids)) if k != t.cue]
-    if others:
-        d = np.linalg.norm(xy[:, None] - t.pos[others][None], axis=-1)
-        ok &= (d >= r + t.radius[others][None] + 2 * margin).all(axis=1)
-    return ok
+    return spots_ok(table, xy, float(t.radius[t.cue]), area, t.pos[others], t.radius[others],
+                    margin=1e-3)
 
 
 def _cue_in_hand(ids, pos, on_table, table: Table):

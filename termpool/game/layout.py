@@ -169,3 +169,23 @@ def placement_error(table: Table, x: float, y: float, r: float, area: str,
         if math.hypot(x - bx, y - by) < r + br - TOUCH_TOL:
             return f"overlaps the {bid}" if bid != "cue" else "overlaps the cue ball"
     return None
+
+
+def spots_ok(table: Table, xy: np.ndarray, r: float, area: str, others: np.ndarray,
+             others_r: np.ndarray, margin: float = 0.0) -> np.ndarray:
+    """`placement_error`'s rule for many spots at once: which of xy (M, 2) a cue ball of radius
+    r may be placed on with ball in hand in `area`, among balls at `others` (K, 2) of radii
+    `others_r` (K,). With `margin` the spot must also stay that far inside the cushion noses
+    and the pocket mouths, and twice that clear of every ball (0: the rule itself)."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    x, y = xy[:, 0], xy[:, 1]
+    ok = (x >= r + margin) & (x <= table.length - r - margin)
+    ok &= (y >= r + margin) & (y <= table.width - r - margin)
+    ok &= in_area(table, x, area)
+    for _, p, n in mouth_lines(table):
+        ok &= (xy - p) @ n >= r - TOUCH_TOL + margin
+    others = np.asarray(others, float).reshape(-1, 2)
+    if len(others):
+        d = np.linalg.norm(xy[:, None] - others[None], axis=-1)
+        ok &= (d >= r + np.ravel(others_r)[None] + 2 * margin - TOUCH_TOL).all(axis=1)
+    return ok
