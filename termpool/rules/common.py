@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
-from termpool.rules import words
 from termpool.rules.codes import Foul, Option, Said
+from termpool.rules.words import reason as in_words
 
 SOLIDS = tuple(str(n) for n in range(1, 8))
 STRIPES = tuple(str(n) for n in range(9, 16))
@@ -123,7 +123,7 @@ class Outcome:
     @property
     def reason(self) -> str:
         """The verdict in the record's words ("... player 0 continues")."""
-        return words.reason(self.said)
+        return in_words(self.said)
 
     def to_json(self) -> dict:
         """A JSON-able dict (player keys of `groups` become "0" and "1"; codes their
