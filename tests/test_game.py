@@ -362,7 +362,7 @@ def test_illegal_break_accept() -> None:
     m = Match("8ball", seed=2)
     soft_break(m)
     assert m.option == "rerack_or_accept" and m.shooter == 1 and m.ball_in_hand is None
-    with pytest.raises(ValueError, match="must first choose"):
+    with pytest.raises(ValueError, match=r"^begin: Player 2 must first choose \(rerack or "):
         m.begin(POT)
     with pytest.raises(ValueError, match="'rerack' or 'accept'"):
         m.choose("pass")

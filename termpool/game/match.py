@@ -226,7 +226,7 @@ class Match:
         if self.frame_over:
             raise ValueError("begin: the frame is over (call new_frame)")
         if self.option is not None:
-            raise ValueError(f"begin: player {self.shooter} must first choose "
+            raise ValueError(f"begin: {self.players[self.shooter]} must first choose "
                              f"({' or '.join(Option(self.option).choices)})")
         if not isinstance(shot, Shot):
             raise ValueError("shot: must be a Shot")
