@@ -14,16 +14,18 @@ Phases: "menu", "aim" (a human to shoot), "place" (ball in hand), "run" (balls m
 from __future__ import annotations
 
 import math
-import re
 import secrets
 from dataclasses import dataclass
 
 import numpy as np
 
+from termpool.game.layout import head_string
 from termpool.physics.cue import clamp_tip
 from termpool.physics.results import DT
 from termpool.physics.state import POCKETED
 from termpool.physics.table import POCKET_NAMES
+from termpool.rules import words
+from termpool.rules.codes import Option
 from termpool.ui.output import resolve_depth
 from termpool.ui.settings import DEFAULTS, player_names
 from termpool.ui.table_view import TableView, layout
@@ -168,11 +170,14 @@ class App:
         self.cpu = (False, opponent == "cpu" and mode != "practice")
         # Without a seed every game deals a new rack; the seed is in the record either way.
         seed = self.opts.seed if self.opts.seed is not None else secrets.randbits(63)
-        self.match = Match(mode, table=self.opts.table, frames=self.opts.frames, players=names,
-                           seed=seed, theme=self.opts.theme,
+        from termpool.ai import Computer
+
+        players = tuple(Computer(self.opts.level, n) if c else n
+                        for n, c in zip(names, self.cpu, strict=True))
+        self.match = Match(mode, table=self.opts.table, frames=self.opts.frames,
+                           players=players, seed=seed, theme=self.opts.theme,
                            three_foul=self.opts.three_foul and mode == "9ball",
-                           eight_break=self.opts.eight_break,
-                           levels=tuple(self.opts.level if c else None for c in self.cpu))
+                           eight_break=self.opts.eight_break)
         self._geom = None
         self.run = None
         self.message = []
@@ -225,11 +230,9 @@ class App:
                 return
         self.angle = angles[0]
 
-    def names(self, text: str) -> str:
-        """The referee's words with the players' names (see rules.words)."""
-        from termpool.rules.words import in_names
-
-        return in_names(text, self.match.players, self.opts.theme)
+    def voice(self) -> words.Voice:
+        """How words name this match's players, pockets and groups (rules.words)."""
+        return words.voice(self.match.players, self.opts.theme)
 
     def shooter_is_cpu(self) -> bool:
         return self.cpu[self.match.shooter]
@@ -248,8 +251,7 @@ class App:
             self._your_verdict = None  # the frame's end is the news now
             won = m.frame_winner
             m.new_frame()
-            self.message.append((self.names(f"player {won} wins the frame ({m.scores[0]}-"
-                                            f"{m.scores[1]}); player {m.shooter} breaks"),
+            self.message.append((words.frame_won(self.voice(), won, m.scores, m.shooter),
                                  "good"))
         if m.winner is not None:
             self.phase = "over"
@@ -346,11 +348,7 @@ class App:
         by_cpu = self.shooter_is_cpu()
         with signals_held():  # judged and recorded whole, whatever interrupts
             out = self.run.finish()
-        reason = self.names(out.reason)
-        if out.foul:
-            verdict = (f"Foul: {reason}", "foul")
-        else:
-            verdict = (reason, "good" if out.continue_turn else "plain")
+        verdict = words.verdict(out, self.voice())
         self.message = [*self._shot_note, verdict]
         if not by_cpu and any(self.cpu):
             self._your_verdict = verdict
@@ -448,7 +446,7 @@ class App:
             who = m.players[m.shooter]
             m.choose(plan)
             self._cpu_plan = "done"
-            self.message = [(f"{who} chose to {OPTION_WORDS[plan]}", "turn")]
+            self.message = [(words.chose(who, plan), "turn")]
             self._turn_start()
             return
         if self._cpu_t0 is None:
@@ -466,22 +464,15 @@ class App:
 
     def _plan(self):
         """The computer's decision: an option's answer, a placement, then a shot."""
-        from termpool import ai
-
         m = self.match
+        player = m.seats[m.shooter]
         if m.option is not None:
-            return ai.choose_option(m.option)
-        args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
-        seed = m.seed * 1000 + len(m.history)
+            return player.answer(m)
         if m.ball_in_hand:
-            x, y = ai.choose_placement(*args, m.ball_in_hand, level=self.opts.level, seed=seed)
-            if m.placement_error(x, y):  # never expected; where a scratched cue ball waits
-                x, y = m.waiting_spot()
-            m.place_cue(x, y)
-        plan = ai.choose_shot(*args[:6], m.on_table, m.state, level=self.opts.level, seed=seed)
-        plan = ai.as_struck(plan, self.opts.level, seed)
-        foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", plan.note or "")
-        note = [(self.names(f"Computer: {plan.note}"), "turn")] if plan.note and not foresees \
+            m.place_cue(*player.place(m))
+        plan = player.shot(m)
+        foresees = plan.sees in ("win", "loss", "foul")
+        note = [(f"Computer: {plan.note}", "turn")] if plan.note and not foresees \
             else []  # a plan ("3 in the foot left pocket"), not the result it simulated
         # The verdict on the player's own last shot stays in view through the computer's
         # turn, however many shots it takes; else the last verdict (without the plan of the
@@ -734,9 +725,9 @@ class App:
             self.cursor = self._clamp_cursor(self.cursor[0] + dx * step,
                                              self.cursor[1] + dy * step)
         elif action in ("confirm", "place", "shoot") and key.kind == "press":
-            why = self.match.placement_error(*self.cursor)
+            why = self.match.placement_error(*self.cursor, self.voice())
             if why:
-                self.message = [(self.names(f"Can't place the cue ball there: {why}"), "foul")]
+                self.message = [(f"Can't place the cue ball there: {why}", "foul")]
             else:
                 self.match.place_cue(*self.cursor)
                 self.message = []
@@ -757,7 +748,7 @@ class App:
         """Keep the ball in hand on the cloth (and behind the head string when it must be)."""
         r = float(self.match.radius[self.cue_index()])
         L, W = self.table.length, self.table.width
-        right = L / 4 if self.match.ball_in_hand == "kitchen" else L - r
+        right = head_string(self.table) if self.match.ball_in_hand == "kitchen" else L - r
         return [min(right, max(r, x)), min(W - r, max(r, y))]
 
     def _key_run(self, key, action, t) -> None:
@@ -774,12 +765,13 @@ class App:
     def _answer(self, key) -> bool:
         """A letter answering the option box or the game-over box; False if it is not one."""
         if self.phase == "option":
-            pick = OPTION_KEYS.get(self.match.option, {}).get(key.name)
+            keys = {words.CHOICE_KEYS[c]: c for c in Option(self.match.option).choices}
+            pick = keys.get(key.name)
             if pick is None:
                 return False
             who = self.match.players[self.match.shooter]
             self.match.choose(pick)
-            self.message = [(f"{who} chose to {OPTION_WORDS[pick]}", "dim")]
+            self.message = [(words.chose(who, pick), "dim")]
             self._turn_start()
             return True
         if key.name == "n":
@@ -928,12 +920,3 @@ def _power_digit(key) -> float | None:
             or key.name not in "0123456789":
         return None
     return (int(key.name) or 10) / 10
-
-
-OPTION_WORDS = {"rerack": "re-rack and break", "accept": "accept the table",
-                "shoot": "shoot", "pass": "pass the shot back"}
-OPTION_KEYS = {
-    "rerack_or_accept": {"r": "rerack", "a": "accept"},
-    "shoot_or_pass": {"s": "shoot", "p": "pass"},
-}
-

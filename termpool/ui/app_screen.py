@@ -6,6 +6,8 @@ and changes nothing but the app's `dirty` flag and its layout cache.
 
 from __future__ import annotations
 
+from termpool.game.layout import head_string
+from termpool.rules import words
 from termpool.rules.common import legal_targets
 from termpool.rules.words import KITCHEN, MODE_NAMES
 from termpool.ui.canvas import put_text, to_cells
@@ -20,13 +22,6 @@ from termpool.ui.panel import (
     draw_panel,
     widget_fits,
 )
-
-OPTION_TEXT = {
-    "rerack_or_accept": ["The break was illegal.", "", "r: re-rack and break yourself",
-                         "a: accept the table and shoot"],
-    "shoot_or_pass": ["Your opponent pushed out.", "", "s: shoot from here",
-                      "p: pass the shot back"],
-}
 
 
 def cells(app, cols: int, rows: int):
@@ -97,7 +92,7 @@ def _table_cells(app, lay, view, mono: bool):
     if mono:
         chars = view.mono(m.ids, pos, state, m.radius)
         if kitchen:
-            ov.mono_head_string(chars, lay, m.table.length / 4)
+            ov.mono_head_string(chars, lay, head_string(m.table))
         if pred is not None:
             ov.mono_prediction(chars, lay, pred, level, float(m.radius[c]))
         if called is not None:
@@ -105,7 +100,7 @@ def _table_cells(app, lay, view, mono: bool):
         return chars, None, None
     cv = view.draw(m.ids, pos, state, m.radius)
     if kitchen:
-        ov.draw_head_string(cv, lay, m.table.length / 4)
+        ov.draw_head_string(cv, lay, head_string(m.table))
     if called is not None:
         ov.draw_called_pocket(cv, lay, m.table.hole_c.reshape(-1, 2)[called],
                               m.table.hole_r[called])
@@ -136,11 +131,11 @@ def _called_pocket(app) -> int | None:
 
 def _question(app, cells) -> None:
     if app.phase == "option":
-        draw_box(cells, OPTION_TEXT.get(app.match.option, [app.match.option]), "your call")
+        draw_box(cells, words.option_lines(app.match.option), "your call")
     elif app.phase == "over":
         m = app.match
         why = app.message[-1][0] if app.message else ""
-        draw_box(cells, [app.names(f"player {m.winner} wins!"), why, "",
+        draw_box(cells, [words.game_won(app.voice(), m.winner), why, "",
                          "n: new game   m: menu   q: quit", "w: watch this match"],
                  "game over", "good")
 
@@ -160,9 +155,7 @@ def panel_info(app, lay=None) -> PanelInfo:
             down = [k for k in mine if not m.on_table[k]]
         label = group
         if group and app.opts.theme != "standard":
-            from termpool.rules.themes import group_label
-
-            label = group_label(group, app.opts.theme)
+            label = words.group_label(group, app.opts.theme)
         fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
         score = f"{m.scores[p]}/{app.opts.frames}" if app.opts.frames > 1 else None
         players.append(PlayerLine(m.players[p], label, balls, down, score,
@@ -234,15 +227,15 @@ def _status(app, spin_words: bool = True) -> list[tuple[str, str]]:
     m = app.match
     name = m.players[m.shooter]
     out = []
-    warn = m.warning() if app.phase in ("aim", "place") else None
-    if warn:
-        out.append((warn, "foul"))
+    warned = m.warning() if app.phase in ("aim", "place") else None
+    if warned is not None:
+        out.append((words.foul_warning(app.voice(), warned), "foul"))
     if app.phase == "aim":
         what = "break" if m.state.is_break else "shoot"
         s = f"{name} to {what}"
         if m.needs_call():
             ball, pocket = app._called()
-            s += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
+            s += f" · calling the {ball} in {app.voice().pocket(pocket)} (C to change)"
         if m.state.mode == "9ball" and not m.state.is_break:
             on = legal_targets(m.state, m.balls_on_table())
             if on:

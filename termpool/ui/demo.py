@@ -23,11 +23,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--time", type=float, default=0.0, help="simulate the shot this long first")
     args = ap.parse_args(argv)
 
-    from termpool.scene import SceneError, load_scene
+    from termpool.rules.referee import load_game_scene
+    from termpool.scene import SceneError
     from termpool.ui.frame import render_scene_text
 
     try:
-        scene = load_scene(args.scene)
+        scene = load_game_scene(args.scene)  # a game block is checked as termpool sim does
     except SceneError as e:
         print(f"demo: {e}", file=sys.stderr)
         return 2
