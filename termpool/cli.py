@@ -202,10 +202,11 @@ def dump_json(result: dict) -> str:
 
 
 def _sim(args: argparse.Namespace) -> int:
-    from termpool.scene import SceneError, load_scene
+    from termpool.rules.referee import load_game_scene
+    from termpool.scene import SceneError
 
     try:
-        scene = load_scene(args.scene)
+        scene = load_game_scene(args.scene)
     except SceneError as e:
         return _fail(str(e))
     from termpool.physics.engine import Engine
@@ -278,15 +279,19 @@ def _replay(args: argparse.Namespace) -> int:
     if given:
         return _fail(f"{given[0]}: only with --watch")
 
+    from termpool.rules import words
+
     try:
         data = read_replay(args.file)
-        shots = replay(data)
+        players = data.get("match", {}).get("players")  # checked by read_replay
+        # The verdicts in the players' names on screen, as the record says them in JSON.
+        v = words.voice(players) if players and not args.json else words.RECORD
+        shots = replay(data, v)
     except ReplayError as e:
         return _fail(str(e))
     from termpool.text import shown
 
     bad = [s for s in shots if not s["ok"]]
-    players = data.get("match", {}).get("players")  # checked by read_replay
     if args.json:
         from termpool.files import to_json
 
@@ -301,12 +306,7 @@ def _replay(args: argparse.Namespace) -> int:
                    else f"player {s['player']}")
             head = f"shot {s['n']} (frame {s['frame']}, {who}): "
             if s["ok"]:
-                reason = s["reason"]
-                if players:  # the referee's "player 0" in the players' names
-                    from termpool.rules.words import in_names
-
-                    reason = in_names(reason, players)
-                sys.stdout.write(shown(f"{head}identical, {s['events']} events; {reason}")
+                sys.stdout.write(shown(f"{head}identical, {s['events']} events; {s['reason']}")
                                  + "\n")
             else:
                 sys.stdout.write(shown(f"{head}DIFFERS: {'; '.join(s['differences'])}") + "\n")

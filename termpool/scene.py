@@ -31,14 +31,6 @@ SHOT_KEYS = ("ball", "speed", "angle", "side", "top")
 TABLE_FIELDS = tuple(f.name for f in fields(Table) if f.init)
 TABLE_KEYS = ("preset", *TABLE_FIELDS)
 RACKS = ("8ball", "9ball")
-GAME_KEYS = ("mode", "shooter", "groups", "break", "called", "fouls", "push_out", "three_foul")
-GAME_MODES = ("8ball", "9ball", "practice")
-GAME_BALLS = {
-    "8ball": tuple(str(n) for n in range(1, 16)),
-    "9ball": tuple(str(n) for n in range(1, 10)),
-    "practice": tuple(str(n) for n in range(1, 16)),
-}
-GROUP_NAMES = ("solids", "stripes")
 OVERLAP_TOL = 1e-6
 
 # Limits on what a scene may hold (docs/scenes.md lists them): values beyond them mean nothing
@@ -82,7 +74,8 @@ class Scene:
     radius: np.ndarray  # (N,) m
     mass: np.ndarray  # (N,) kg
     raw: dict = field(default_factory=dict, repr=False)
-    game: dict | None = None  # the validated `game` block (normalized), if any
+    game: dict | None = None  # the `game` block, if any: rules.referee.load_game_scene
+    # validates and normalizes it (the rules' business; this module only carries it)
 
     def index(self, ball_id: str) -> int:
         return self.ids.index(ball_id)
@@ -210,6 +203,12 @@ def table_to_dict(t: Table) -> dict:
 
 
 # ------------------------------------------------------------------------------------ balls
+
+
+def ball_id(val: Any, path: str) -> str:
+    """A ball id as scenes write it ("cue", "3"; a whole number stands for its digits);
+    SceneError naming `path` when it is not one."""
+    return _ball_id(val, path)
 
 
 def _ball_id(val: Any, path: str) -> str:
@@ -354,105 +353,6 @@ def _apply_shot(spec: Any, balls: list[dict]) -> None:
     b["vx"], b["vy"], b["w"] = vx, vy, list(w)
 
 
-# ------------------------------------------------------------------------------------- game
-
-
-def _flag(spec: dict, key: str) -> bool:
-    val = spec.get(key, False)
-    if not isinstance(val, bool):
-        raise SceneError(f"game.{key}: must be true or false, not {_fmt(val)}")
-    return val
-
-
-def _players(spec: Any, path: str) -> dict:
-    _check_keys(spec, ("0", "1"), path)
-    return spec
-
-
-def _game(spec: Any, balls: list[dict], table: Table, shot: Any) -> dict:
-    """Validate a scene's `game` block and return it normalized (see docs/scenes.md)."""
-    _check_keys(spec, GAME_KEYS, "game")
-    if "mode" not in spec:
-        raise SceneError("game: missing key 'mode'")
-    mode = spec["mode"]
-    if mode not in GAME_MODES:
-        raise SceneError(f"game.mode: must be '8ball', '9ball' or 'practice', not {_fmt(mode)}")
-    shooter = spec.get("shooter", 0)
-    if type(shooter) is not int or shooter not in (0, 1):
-        raise SceneError(f"game.shooter: must be 0 or 1, not {_fmt(shooter)}")
-    is_break = _flag(spec, "break")
-    game: dict[str, Any] = {"mode": mode, "shooter": shooter, "break": is_break}
-
-    allowed = GAME_BALLS[mode]
-    span = f"'1'..'{allowed[-1]}'"
-    for i, b in enumerate(balls):
-        if b["id"] != "cue" and b["id"] not in allowed:
-            raise SceneError(
-                f"balls[{i}] (id '{b['id']}'): not a ball of game mode '{mode}' "
-                f"(use 'cue' and {span})"
-            )
-    ids = {b["id"] for b in balls}
-    if "cue" not in ids:
-        raise SceneError("game: the scene needs the cue ball, id 'cue'")
-    key_ball = {"8ball": "8", "9ball": "9"}.get(mode)
-    if key_ball and key_ball not in ids:
-        raise SceneError(f"game: mode '{mode}' needs the {key_ball} on the table")
-    if shot is not None and _ball_id(shot.get("ball", "cue"), "shot.ball") != "cue":
-        raise SceneError("shot.ball: must be the cue ball 'cue' in a scene with a game block")
-
-    if "groups" in spec:
-        if mode != "8ball":
-            raise SceneError("game.groups: only for mode '8ball'")
-        if is_break:
-            raise SceneError("game.groups: the table is open on a break; leave groups out")
-        groups = _players(spec["groups"], "game.groups")
-        if not groups:
-            raise SceneError("game.groups: must give the group of player 0 or 1")
-        for p, g in groups.items():
-            if g not in GROUP_NAMES:
-                raise SceneError(f"game.groups.{p}: must be 'solids' or 'stripes', not {_fmt(g)}")
-        if len(groups) == 2 and groups["0"] == groups["1"]:
-            raise SceneError(f"game.groups: players 0 and 1 cannot both have the {groups['0']}")
-        p, g = next(iter(groups.items()))  # the other player has the other group
-        full = {p: g, str(1 - int(p)): "stripes" if g == "solids" else "solids"}
-        game["groups"] = {"0": full["0"], "1": full["1"]}
-
-    if "called" in spec:
-        called = spec["called"]
-        _check_keys(called, ("ball", "pocket"), "game.called")
-        for key in ("ball", "pocket"):
-            if key not in called:
-                raise SceneError(f"game.called: missing key '{key}'")
-        ball = _ball_id(called["ball"], "game.called.ball")
-        if ball == "cue" or ball not in ids:
-            raise SceneError(f"game.called.ball: no object ball with id '{ball}' on the table")
-        pocket = called["pocket"]
-        if not table.hole_names:
-            raise SceneError("game.called.pocket: the table has no pockets")
-        if pocket not in table.hole_names:
-            raise SceneError(
-                f"game.called.pocket: unknown pocket {_fmt(pocket)} "
-                f"(use {', '.join(table.hole_names)})"
-            )
-        game["called"] = {"ball": ball, "pocket": pocket}
-
-    fouls = _players(spec.get("fouls", {}), "game.fouls")
-    for p, n in fouls.items():
-        if type(n) is not int or n < 0:
-            raise SceneError(f"game.fouls.{p}: must be a whole number >= 0, not {_fmt(n)}")
-    game["fouls"] = {p: fouls.get(p, 0) for p in ("0", "1")}
-
-    for key in ("push_out", "three_foul"):
-        if key in spec and mode != "9ball":
-            raise SceneError(f"game.{key}: only for mode '9ball'")
-    if mode == "9ball":
-        game["push_out"] = _flag(spec, "push_out")
-        game["three_foul"] = _flag(spec, "three_foul")
-        if game["push_out"] and is_break:
-            raise SceneError("game.push_out: a break shot cannot be a push-out")
-    return game
-
-
 # -------------------------------------------------------------------------------------- API
 
 
@@ -486,7 +386,9 @@ def load_scene(src: str | os.PathLike | dict) -> Scene:
     _check_layout(balls, table, physics)
     if "shot" in raw:
         _apply_shot(raw["shot"], balls)
-    game = _game(raw["game"], balls, table, raw.get("shot")) if "game" in raw else None
+    game = raw.get("game")
+    if "game" in raw and not isinstance(game, dict):
+        raise SceneError("game: must be an object")
     return Scene(
         table=table,
         physics=physics,

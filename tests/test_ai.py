@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from termpool import ai
-from termpool import ai_geometry as geo
+from termpool.ai import geometry as geo
 from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
@@ -85,8 +85,8 @@ def test_straight_in_on_an_empty_table_goes_in():
     assert summary.pocketed.get("1") == "foot_left"
     assert not summary.scratch
     assert out.continue_turn
-    assert "foot_left" in plan.note
-    assert (plan.kind, plan.ball, plan.pocket) == ("pot", "1", "foot_left")
+    assert (plan.kind, plan.ball, plan.pocket, plan.sees) == ("pot", "1", "foot_left", "pot")
+    assert plan.note == "1 in the foot left pocket"  # for people: the pocket in words
 
 
 def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -> float:
@@ -142,7 +142,7 @@ def test_cut_shots_are_aimed_through_the_throw():
     naive = math.degrees(math.atan2(d[1], d[0]))
     assert max(abs(_heading(lay, v, naive, 0.0, 0.0) - 45.0) for v in (1.5, 3.0)) > 1.0
     plans = [p for p in ai.score_shots(*lay.args(), State(mode="practice"))
-             if "5 in the foot_left" in p.note]
+             if (p.kind, p.ball, p.pocket, p.sees) == ("pot", "5", "foot_left", "pot")]
     assert len(plans) >= 3
     for p in plans:
         assert abs(_heading(lay, p.speed, p.angle, p.side, p.top) - 45.0) < 0.4, p
@@ -250,11 +250,14 @@ def test_risky_pots_rank_below_safe_ones():
     lay = Layout({"cue": (0.95 * k, 0.95 * k), "1": (0.35 * k, 0.35 * k), "2": (1.9, 0.35)})
     state = State(mode="practice")
     plans = ai.score_shots(*lay.args(), state)
-    one = [p.score for p in plans if p.note == "1 in the head_right pocket"]
-    two = [p.score for p in plans if p.note.startswith("2 in the")]
+    # The pots the batch saw drop where they were sent.
+    one = [p.score for p in plans if (p.kind, p.ball, p.pocket, p.sees, p.note) ==
+           ("pot", "1", "head_right", "pot", "1 in the head right pocket")]
+    two = [p.score for p in plans if (p.kind, p.ball, p.sees) == ("pot", "2", "pot")]
     assert one and two
     assert min(one) > max(two)
-    assert ai.choose_shot(*lay.args(), state).note == "1 in the head_right pocket"
+    plan = ai.choose_shot(*lay.args(), state)
+    assert (plan.kind, plan.ball, plan.pocket) == ("pot", "1", "head_right")
 
 
 def test_kicks_out_of_a_snooker_on_the_eight():
@@ -767,5 +770,27 @@ def test_no_safety_when_there_is_nothing_left_to_hide(monkeypatch):
     assert ai.best_chance(*lay.args(), replace(state, shooter=1)) < 0.1
     plan = ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64)
     assert plan.kind == "pot"
-    monkeypatch.setattr(ai, "_opponent_now", lambda *_: math.inf)  # the rule off
+    monkeypatch.setattr(ai.scoring, "_opponent_now", lambda *_: math.inf)  # the rule off
     assert ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64).kind == "safety"
+
+
+def test_the_computer_is_a_player_with_the_game_s_level_names():
+    from termpool.game import Match
+    from termpool.game import players as gp
+
+    assert tuple(ai.LEVELS) == gp.LEVELS  # the names the record and the history keep
+    cpu = ai.Computer("hard", "Bot")
+    assert isinstance(cpu, gp.Computer) and gp.is_computer(cpu)
+    assert not isinstance(gp.Person("Ann"), gp.Computer) and not gp.is_computer(gp.Person("A"))
+    with pytest.raises(ValueError, match="^level: must be one of easy, normal, hard, pro"):
+        ai.Computer("expert")
+    m = Match("9ball", seed=5, players=("Ann", cpu))
+    assert m.players == ("Ann", "Bot") and m.levels == (None, "hard") and m.seats[1] is cpu
+    # Its decisions are the functions' own, seeded by the match and the shot number.
+    seed = ai.Computer.seed(m)
+    args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
+    want = ai.as_struck(ai.choose_shot(*args, level="hard", seed=seed), "hard", seed)
+    assert cpu.shot(m) == want
+    assert cpu.place(m) == ai.choose_placement(*args, "kitchen", level="hard", seed=seed)
+    m.option = "shoot_or_pass"
+    assert cpu.answer(m) == "shoot"

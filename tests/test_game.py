@@ -11,6 +11,8 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import replace
+from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pytest
@@ -22,8 +24,22 @@ from termpool.game import layout as lay
 from termpool.physics.params import BALL_RADIUS as R
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
+from termpool.rules import words
 from termpool.rules.common import MODE_BALLS, SOLIDS, STRIPES
 from termpool.scene import load_scene
+
+RECORDS = Path(__file__).parent / "records"
+
+
+class Seat(NamedTuple):
+    """A player as the match takes one: a name and a level (None: a person)."""
+
+    name: str
+    level: str | None
+
+
+def seats(levels) -> tuple[Seat, Seat]:
+    return tuple(Seat(f"Player {k + 1}", lv) for k, lv in enumerate(levels))
 
 T = Table.preset("9ft")
 L, W = T.length, T.width
@@ -346,7 +362,7 @@ def test_illegal_break_accept() -> None:
     m = Match("8ball", seed=2)
     soft_break(m)
     assert m.option == "rerack_or_accept" and m.shooter == 1 and m.ball_in_hand is None
-    with pytest.raises(ValueError, match="must first choose"):
+    with pytest.raises(ValueError, match=r"^begin: Player 2 must first choose \(rerack or "):
         m.begin(POT)
     with pytest.raises(ValueError, match="'rerack' or 'accept'"):
         m.choose("pass")
@@ -521,8 +537,8 @@ def test_take_back_and_rerack_only_in_practice() -> None:
         ({"table": Table(pockets="none")}, "table"),
         ({"dt": 1e-300}, "dt: must be from 0.0001 to 1 seconds"),  # no replay would take it
         ({"dt": 2.0}, "dt: must be from 0.0001 to 1 seconds"),
-        ({"levels": (None, "expert")}, "^levels: must be two of None"),
-        ({"levels": ("hard",)}, "^levels: must be two of None"),
+        ({"players": ("A", Seat("B", "expert"))}, "^levels: must be two of None"),
+        ({"players": (Seat("A", 3), "B")}, "^levels: must be two of None"),
     ],
 )
 def test_bad_settings(kw, words) -> None:
@@ -535,7 +551,7 @@ def test_bad_settings(kw, words) -> None:
                                     ["pro", "easy"]])
 def test_records_load_and_replay_with_every_level_and_from_before_levels(levels) -> None:
     # None: a record from before the match kept the computer's level (no "levels" key).
-    m = Match("9ball", seed=3, levels=tuple(levels) if levels else (None, None))
+    m = Match("9ball", seed=3, players=seats(levels or [None, None]))
     m.begin(Shot(7.5, 0.5)).finish()
     data = json.loads(json.dumps(m.to_json()))
     if levels is None:
@@ -601,7 +617,9 @@ def test_warning_before_a_third_foul() -> None:
     setup(m, {**SCRATCH, "1": (1.0, 0.6), "9": (0.5, 1.0)}, fouls=(1, 2))
     assert m.warning() is None  # Ann shoots, on one foul
     m.state = replace(m.state, shooter=1)
-    assert "Bob is on two fouls" in m.warning()
+    assert m.warning() == 1
+    assert "Bob is on two fouls" in words.foul_warning(words.voice(m.players), m.warning())
+    assert words.foul_warning(words.voice(("Ann", "You")), 1).startswith("You are on two fouls")
     m = Match("9ball", players=("Ann", "Bob"))  # no rule, no warning
     m.state = replace(m.state, fouls=(2, 2))
     assert m.warning() is None
@@ -625,6 +643,39 @@ def test_an_accepted_placement_makes_a_valid_scene(x: float, y: float, area: str
             assert float(np.dot(scene.pos[0] - p, n)) >= R - 1e-9, name
 
 
+def test_the_placement_rule_at_its_edges() -> None:
+    # Exactly on the head string is in the kitchen; touching a ball or a cushion nose is fine;
+    # the margin the AI keeps refuses those.
+    others, radii = np.array([[0.5, 0.6]]), np.array([R])
+    spots = [[lay.head_string(T), 0.6],  # on the head string
+             [0.5 - 2 * R, 0.6],  # touching the ball (straight along x)
+             [0.3, R],  # touching the cushion nose
+             [lay.head_string(T) + 1e-12, 0.3]]  # just past the head string
+    assert lay.head_string(T) == L / 4 == HEAD[0]
+    assert lay.spots_ok(T, spots, R, "kitchen", others, radii).tolist() == \
+        [True, True, True, False]
+    assert lay.spots_ok(T, spots, R, "anywhere", others, radii).tolist() == [True] * 4
+    assert not lay.spots_ok(T, spots[1:3], R, "anywhere", others, radii, 1e-3).any()
+    for (x, y), ok in zip(spots, [True, True, True, False], strict=True):
+        err = lay.placement_error(T, x, y, R, "kitchen", {"1": (0.5, 0.6, R)})
+        assert (err is None) == ok, err
+
+
+@given(x=coord_x, y=coord_y, area=st.sampled_from(["anywhere", "kitchen"]),
+       margin=st.sampled_from([0.0, 1e-3]))
+def test_one_placement_rule_for_one_spot_and_for_many(x: float, y: float, area: str,
+                                                      margin: float) -> None:
+    # The game's check of a spot (with its reason) and the AI's of many spots are one rule;
+    # the AI's margin only ever refuses more.
+    m = Match("8ball", seed=1)
+    m.ball_in_hand = area
+    on = m.on_table.copy()
+    on[m.index("cue")] = False
+    ok = lay.spots_ok(T, [[x, y]], R, area, m.pos[on], m.radius[on], margin)[0]
+    legal = m.placement_error(x, y) is None
+    assert ok == legal if margin == 0 else (not ok or legal)
+
+
 @given(st.lists(st.tuples(st.floats(FOOT[0] - 0.3, L - R), st.floats(W / 2 - 0.1, W / 2 + 0.1)),
                 max_size=8))
 def test_a_respot_never_overlaps(others: list) -> None:
@@ -643,8 +694,9 @@ def test_eight_on_the_break_re_racks_for_the_same_breaker_in_that_variant() -> N
     m = Match("8ball", eight_break="rerack")
     setup(m, {"cue": BEHIND, "8": NEAR_POCKET, "4": FOOT, "1": (0.4, 1.0)}, is_break=True)
     out = m.begin(POT).finish()
-    assert m.history[0]["outcome"]["respot"] == ["8"]  # the referee's verdict is recorded
-    assert out.respot == () and "re-racked" in out.reason and out.next_shooter == 0
+    assert m.history[0]["outcome"] == out.to_json()  # the verdict played is recorded
+    assert out.rerack and out.respot == () and out.next_shooter == 0
+    assert out.reason.endswith("the 8 on the break: re-racked, player 0 breaks again")
     assert m.on_table.all() and m.state.is_break and m.shooter == 0
     assert m.ball_in_hand == "kitchen"
     assert at(m, "8") != NEAR_POCKET
@@ -653,3 +705,15 @@ def test_eight_on_the_break_re_racks_for_the_same_breaker_in_that_variant() -> N
     assert replay(m.to_json())[0]["ok"]
     with pytest.raises(ValueError, match="eight_break"):
         Match("8ball", eight_break="maybe")
+
+
+def test_a_record_from_before_the_re_rack_rule_loads_and_replays() -> None:
+    # Played when the match re-racked after the referee: its record holds the re-spot
+    # verdict, and its game blocks name no variant (which reads as the re-spot).
+    data = json.loads((RECORDS / "eight_break_rerack_before_the_rule.json").read_text())
+    assert data["shots"][0]["outcome"]["respot"] == ["8"]
+    assert "eight_break" not in data["shots"][0]["scene"]["game"]
+    assert all(r["ok"] for r in replay(data))
+    m = Match.from_json(data)
+    assert m.eight_break == "rerack" and m.state.is_break and m.state.eight_break == "rerack"
+    assert m.last_outcome.respot == ("8",) and not m.last_outcome.rerack

@@ -20,9 +20,11 @@ from termpool.rules.words import (
     NO_RAIL,
     PUSH_OUT_CHOICE,
     count_word,
+    foul_warning,
     ordinal,
     rules_page,
     rules_text,
+    voice,
 )
 from termpool.ui.app import App, Options
 from termpool.ui.headless import screen_text
@@ -171,7 +173,8 @@ def test_three_fouls_lose_at_the_count_the_page_states() -> None:
 
     m = Match("9ball", three_foul=True)
     m.state = State(mode="9ball", three_foul=True, fouls=(FOUL_LIMIT - 1, 0))
-    assert f"a {ordinal(FOUL_LIMIT)} foul in a row loses the frame" in m.warning()
+    warning = foul_warning(voice(m.players), m.warning())
+    assert f"a {ordinal(FOUL_LIMIT)} foul in a row loses the frame" in warning
 
 
 def test_fouls_ball_in_hand_and_push_out_are_said_alike() -> None:

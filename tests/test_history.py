@@ -371,3 +371,12 @@ def test_the_end_of_a_match_adds_it_and_the_menu_shows_it() -> None:
     assert "1 match: won 1" in text and "a second player" in text
     app.key(Key("x"), 102.0)
     assert app.state.box is None
+
+
+def test_every_level_of_the_computer_is_a_history_line_and_a_stats_row() -> None:
+    from termpool.game.players import LEVELS
+
+    lines = [h.check_line(line(level=lv)) for lv in LEVELS]
+    text = "\n".join(stats_lines(h.summary(lines)))
+    for lv in LEVELS:
+        assert f"computer, {lv}" in text

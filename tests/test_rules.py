@@ -1,4 +1,4 @@
-"""Rules: shot summaries, 8-ball, 9-ball, practice, themes, the scene `game` block and the
+"""Rules: shot summaries, 8-ball, 9-ball, practice, the scene `game` block and the
 referee in `termpool sim`.
 
 Most cases are synthetic event lists written as short scripts (see `shot`); a few are real
@@ -9,19 +9,22 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 from termpool.physics.engine import Engine
-from termpool.rules import eight, nine, practice
+from termpool.rules import codec, eight, nine, practice, words
+from termpool.rules.codec import state_from_game
+from termpool.rules.codes import Choice, Option, Why
 from termpool.rules.common import SOLIDS, STRIPES, Outcome, State
 from termpool.rules.events import ShotSummary, summarize
-from termpool.rules.referee import judge, referee, state_from_game
-from termpool.rules.themes import THEMES, ball_look, group_label
-from termpool.scene import SceneError, load_scene
+from termpool.rules.referee import judge, load_game_scene, referee
+from termpool.scene import SceneError
 
 ROOT = Path(__file__).resolve().parent.parent
 IDS = ["cue", *(str(n) for n in range(1, 16))]
@@ -436,25 +439,6 @@ def test_referee_dispatch_and_state_from_game() -> None:
 # ----------------------------------------------------------------------------- themes
 
 
-def test_themes() -> None:
-    for theme in ("standard", "classic"):
-        assert set(THEMES[theme]) == set(IDS)
-        assert ball_look("cue", theme).name == "white" and ball_look("8", theme).name == "black"
-        for look in THEMES[theme].values():
-            assert len(look.rgb) == 3 and all(0 <= c <= 255 for c in look.rgb)
-    std = THEMES["standard"]
-    assert not any(std[b].striped for b in SOLIDS) and all(std[b].striped for b in STRIPES)
-    assert all(std[s].rgb == std[str(int(s) + 8)].rgb for s in SOLIDS)
-    assert len({std[b].rgb for b in SOLIDS}) == 7
-    classic = THEMES["classic"]
-    assert {classic[b].name for b in SOLIDS} == {"red"}
-    assert {classic[b].name for b in STRIPES} == {"yellow"}
-    assert not any(look.striped for look in classic.values())
-    assert group_label("solids", "classic") == "reds"
-    assert group_label("stripes", "classic") == "yellows"
-    assert group_label("stripes") == "stripes"
-
-
 # ----------------------------------------------------------------------------- game block
 
 L, W = 2.54, 1.27
@@ -472,7 +456,7 @@ def straight_pot(top: float = 0.0, **game) -> dict:
 
 
 def run_scene(d: dict):
-    s = load_scene(d)
+    s = load_game_scene(d)
     eng = Engine(s.table, s.physics, s.pos, s.vel, s.w, s.radius, s.mass)
     eng.run(1 / 60)
     return s, eng.events[0]
@@ -499,21 +483,21 @@ def test_real_follow_in_is_a_scratch() -> None:
 
 
 def test_game_block_normalized() -> None:
-    s = load_scene(straight_pot(groups={"1": "solids"}, shooter=1, fouls={"1": 2}))
+    s = load_game_scene(straight_pot(groups={"1": "solids"}, shooter=1, fouls={"1": 2}))
     assert s.game == {"mode": "8ball", "shooter": 1, "break": False,
                       "groups": {"0": "stripes", "1": "solids"}, "fouls": {"0": 0, "1": 2}}
-    assert load_scene(straight_pot()).game["fouls"] == {"0": 0, "1": 0}
-    assert load_scene({"balls": "9ball", "game": {"mode": "9ball", "break": True}}).game == {
+    assert load_game_scene(straight_pot()).game["fouls"] == {"0": 0, "1": 0}
+    assert load_game_scene({"balls": "9ball", "game": {"mode": "9ball", "break": True}}).game == {
         "mode": "9ball", "shooter": 0, "break": True, "fouls": {"0": 0, "1": 0},
         "push_out": False, "three_foul": False}
-    assert load_scene(straight_pot()).game is not None
-    assert load_scene({"balls": "8ball"}).game is None
+    assert load_game_scene(straight_pot()).game is not None
+    assert load_game_scene({"balls": "8ball"}).game is None
     # The block survives scene_to_dict.
     from termpool.scene import scene_to_dict
 
-    d = scene_to_dict(load_scene(straight_pot(called={"ball": "8", "pocket": "head_left"})))
+    d = scene_to_dict(load_game_scene(straight_pot(called={"ball": "8", "pocket": "head_left"})))
     assert d["game"]["called"] == {"ball": "8", "pocket": "head_left"}
-    assert load_scene(d).game == d["game"]
+    assert load_game_scene(d).game == d["game"]
 
 
 def with_balls(balls, **game) -> dict:
@@ -563,7 +547,7 @@ BAD_GAMES = [
 @pytest.mark.parametrize("scene, message", BAD_GAMES, ids=[m for _, m in BAD_GAMES])
 def test_bad_game_blocks(scene: dict, message: str) -> None:
     with pytest.raises(SceneError) as e:
-        load_scene(scene)
+        load_game_scene(scene)
     text = str(e.value)
     assert message in text and "\n" not in text
 
@@ -648,10 +632,12 @@ def any_state(draw) -> State:
     called = None
     if draw(st.booleans()):
         called = (draw(st.sampled_from(sorted(keep))), draw(st.sampled_from(POCKETS)))
+    rerack = mode == "8ball" and draw(st.booleans())
     return State(mode=mode, shooter=draw(st.integers(0, 1)), groups=groups,
                  fouls=(draw(st.integers(0, 3)), draw(st.integers(0, 3))),
                  pocketed=tuple(b for b in balls if b not in keep), is_break=is_break,
-                 push_out=push, called=called, three_foul=draw(st.booleans()))
+                 push_out=push, called=called, three_foul=draw(st.booleans()),
+                 eight_break="rerack" if rerack else "respot")
 
 
 @settings(max_examples=400, deadline=None)
@@ -668,6 +654,13 @@ def test_outcome_invariants(data) -> None:
     assert out.ball_in_hand == (out.ball_in_hand_area in ("anywhere", "kitchen"))
     assert out.foul is None or out.foul == out.fouls[0]
     assert out.reason and "\n" not in out.reason
+    if out.rerack:  # the 8 on the break with the re-rack variant: the same player breaks
+        assert state.eight_break == "rerack" and state.is_break and out.winner is None
+        assert new == State(mode="8ball", shooter=state.shooter, is_break=True,
+                            three_foul=state.three_foul, eight_break="rerack")
+        assert out.next_shooter == state.shooter and out.respot == ()
+        assert out.ball_in_hand_area == "kitchen" and out.option is None
+        return
     assert out.groups == new.groups and not new.is_break and new.called is None
     if out.winner is None:
         assert new.shooter == out.next_shooter
@@ -682,3 +675,78 @@ def test_outcome_invariants(data) -> None:
     assert set(new.pocketed) == down - set(out.respot)
     assert len(set(new.pocketed)) == len(new.pocketed)
     json.dumps(out.to_json())
+
+
+# ------------------------------------------------------------------------------- the words
+
+THIRD_PERSON = re.compile(r"\byou (has|is|continues|loses|wins|takes|chooses|breaks)\b",
+                          re.IGNORECASE)
+
+
+@settings(max_examples=300, deadline=None)
+@given(data=st.data())
+def test_every_verdict_reads_right_in_every_voice(data) -> None:
+    state = data.draw(any_state())
+    evs, _ = data.draw(any_shot(state.on_table()))
+    out, _ = judge(state, summarize(evs, IDS, is_break=state.is_break))
+    record = words.reason(out.said)
+    assert record == out.reason and "you" not in record.lower().split()
+    assert "player 0" in record or "player 1" in record or state.mode == "practice"
+    for who in (("You", "Bob"), ("Ann", "You")):
+        said = words.reason(out.said, words.voice(who, "classic"))
+        assert "player 0" not in said and "player 1" not in said
+        assert not THIRD_PERSON.search(said), said
+        assert "_" not in said  # pockets in words
+        assert "solids" not in said and "stripes" not in said  # the classic theme's groups
+    # The people's words are the record's with the names, pockets and groups changed.
+    ann = words.reason(out.said, words.voice(("Ann", "Bob")))
+    plain = record.replace("player 0", "Ann").replace("player 1", "Bob")
+    assert ann == re.sub(r"(head|side|foot)_(left|right)", r"\1 \2", plain)
+
+
+def test_every_reason_code_has_its_words() -> None:
+    assert set(words.CLAUSES) == set(Why)
+    assert [words.group_label(g, "classic") for g in ("solids", "stripes")] == \
+        ["reds", "yellows"]
+
+
+def test_option_words_and_keys() -> None:
+    assert words.option_lines("rerack_or_accept") == [
+        "The break was illegal.", "", "r: re-rack and break yourself",
+        "a: accept the table and shoot"]
+    assert words.option_lines(Option.SHOOT_OR_PASS)[2:] == ["s: shoot from here",
+                                                            "p: pass the shot back"]
+    assert words.chose("You", Choice.ACCEPT) == "You chose to accept the table"
+    assert len({words.CHOICE_KEYS[c] for c in Choice}) == len(Choice)
+
+
+# ------------------------------------------------------------------------------- the codec
+
+
+@settings(max_examples=300, deadline=None)
+@given(data=st.data())
+def test_the_state_s_two_json_forms_read_back(data) -> None:
+    state = data.draw(any_state())
+    assert codec.state_from_json(json.loads(json.dumps(codec.state_to_json(state)))) == state
+    # The game block: the balls not in the scene are the pocketed ones (in the set's order);
+    # only a declared push-out is the referee's business, and three fouls only 9-ball's.
+    ids = ["cue", *state.on_table()]
+    block = codec.read_game(json.loads(json.dumps(codec.game_block(state))), ids, POCKETS,
+                            "cue")
+    assert block == codec.game_block(state)  # already normal
+    back = codec.state_from_game(block, ids)
+    assert back == replace(state, pocketed=tuple(sorted(state.pocketed, key=int)),
+                           push_out="declared" if state.push_out == "declared" else "none",
+                           three_foul=state.three_foul and state.mode == "9ball")
+
+
+def test_old_saves_and_blocks_read_as_the_re_spot() -> None:
+    s = State(mode="8ball", eight_break="rerack")
+    assert "eight_break" in codec.state_to_json(s) and "eight_break" in codec.game_block(s)
+    old = {k: v for k, v in codec.state_to_json(s).items() if k != "eight_break"}
+    assert codec.state_from_json(old).eight_break == "respot"
+    assert "eight_break" not in codec.state_to_json(State()) | codec.game_block(State())
+    with pytest.raises(SceneError, match="^game.eight_break: only for mode '8ball'"):
+        codec.read_game({"mode": "9ball", "eight_break": "rerack"}, ["cue", "9"], POCKETS)
+    with pytest.raises(SceneError, match="^game.eight_break: must be one of respot, rerack"):
+        codec.read_game({"mode": "8ball", "eight_break": "x"}, ["cue", "8"], POCKETS)

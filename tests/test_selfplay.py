@@ -173,7 +173,7 @@ def test_a_game_s_tallies_match_its_record(monkeypatch):
         plans.append(choose(*a, **k))
         return plans[-1]
 
-    monkeypatch.setattr(ai, "choose_shot", spy)
+    monkeypatch.setattr(ai.shots, "choose_shot", spy)
     g = sp.play_game(("easy", "normal"), mode="9ball", seed=11, candidates=8, max_shots=12)
     assert g["shots"] == len(plans) <= 12
     assert sum(t["shots"] for t in g["tallies"]) == g["shots"]
@@ -191,7 +191,7 @@ def test_pots_fouls_and_breaks_are_counted_from_the_record(monkeypatch, tmp_path
         plans.append(choose(*a, **k))
         return plans[-1]
 
-    monkeypatch.setattr(ai, "choose_shot", spy)
+    monkeypatch.setattr(ai.shots, "choose_shot", spy)
     path = tmp_path / "g.json"
     g = sp.play_game(("easy", "easy"), mode="9ball", seed=4, candidates=8, max_shots=10,
                      record=path)

@@ -54,7 +54,7 @@ def write_conf(text: str) -> Path:
 def test_the_table_offers_what_the_game_has() -> None:
     from termpool import ai
     from termpool.physics.table import PRESETS
-    from termpool.rules.themes import THEMES
+    from termpool.rules.words import THEMES
     from termpool.ui.output import DEPTHS
     from termpool.ui.predict import LEVELS as AID_LEVELS
 
@@ -401,17 +401,17 @@ def test_level_from_settings_reaches_the_computer() -> None:
     calls = []
     import termpool.ai as ai
 
-    real = ai.choose_shot
+    real = ai.shots.choose_shot
 
     def spy(*a, **k):
         calls.append(k["level"])
         return real(*a, **k)
 
-    ai.choose_shot = spy
+    ai.shots.choose_shot = spy
     try:
         run(app, "enter wait 0.2 space-hold 0.2 wait 30")
     finally:
-        ai.choose_shot = real
+        ai.shots.choose_shot = real
     assert calls and set(calls) == {"easy"}
 
 

@@ -32,8 +32,8 @@ from termpool.ui.state import (
     Quit,
     Run,
     Thinking,
-    names,
     shot_clock,
+    voice,
 )
 from termpool.ui.table_view import layout
 from termpool.ui.view import positions
@@ -503,17 +503,25 @@ def test_waiting_spot_is_legal_even_with_the_head_spot_taken() -> None:
 
 
 def test_referee_words_get_the_players_names() -> None:
+    from termpool.rules.codes import Said, Why
+    from termpool.rules.words import foul_warning, reason
+
     app = app_for(mode="8ball", opponent="human")
-    assert names(app.state, "the table is open and player 0 continues") == \
+    assert reason([Said(Why.OPEN_CONTINUES, player=0)], voice(app.state)) == \
         "the table is open and Player 1 continues"
-    assert names(app.state, "Player 1 is on two fouls") == "Player 1 is on two fouls"
+    assert foul_warning(voice(app.state), 0).startswith("Player 1 is on two fouls")
     app = app_for(mode="8ball", opponent="cpu")
-    assert names(app.state, "it is player 0's turn; player 1 loses") == \
-        "it is your turn; Computer loses"
-    assert names(app.state, "the table is open and player 0 continues") == \
+    assert reason([Said(Why.OPEN_TURN, player=0), Said(Why.EIGHT_ON_FOUL, player=1)],
+                  voice(app.state)) == \
+        "the table is open and it is your turn; the 8 went down on a foul: Computer loses"
+    assert reason([Said(Why.OPEN_CONTINUES, player=0)], voice(app.state)) == \
         "the table is open and you continue"
-    assert names(app.state, "player 0 continues; the 3 went into the foot_left pocket") == \
-        "You continue; the 3 went into the foot left pocket"
+    assert reason([Said(Why.POTTED_CONTINUES, balls=("3",), player=0),
+                   Said(Why.SCRATCH, pocket="foot_left")], voice(app.state)) == \
+        "the 3 pocketed: you continue; scratch: the cue ball went into the foot left pocket"
+    assert reason([Said(Why.IN_HAND, player=0)], voice(app.state)) == \
+        "You have ball in hand"
+    assert foul_warning(voice(app.state), 0).startswith("You are on two fouls")
 
 
 # --------------------------------------------------------------------------------- mouse
@@ -794,9 +802,10 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
     def plan(*a, **k):
         return ai.Plan(2.0, 10.0, 0.0, 0.0, None, 1.0,
-                       "the 9 went into the head_right pocket on a legal shot: player 1 wins")
+                       "the 9 went into the head right pocket on a legal shot: player 1 wins",
+                       "pot", "9", "head_right", "win")
 
-    monkeypatch.setattr(ai, "choose_shot", plan)
+    monkeypatch.setattr(ai.Computer, "shot", plan)
     app = app_for(mode="9ball", opponent="cpu")
     app.state.match.state = replace(app.state.match.state, shooter=1)
     app.state.match.ball_in_hand = None
@@ -807,13 +816,18 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
 
 def test_referee_words_take_the_theme_s_group_names():
-    from termpool.rules.words import in_names
+    from termpool.rules import words
+    from termpool.rules.codes import Said, Why
+    from termpool.rules.words import reason
 
-    assert in_names("player 0 takes the stripes", ["Ann", "Bob"], "classic") == \
-        "Ann takes the yellows"
-    assert in_names("player 1 takes the solids", ["Ann", "Bob"]) == "Bob takes the solids"
+    said = [Said(Why.TAKES_GROUP, balls=("11",), player=0, group="stripes")]
+    assert reason(said, words.voice(["Ann", "Bob"], "classic")) == \
+        "the 11 pocketed: Ann takes the yellows and continues"
+    assert reason(said, words.voice(["You", "Bob"])) == \
+        "the 11 pocketed: you take the stripes and continue"
     app = app_for(mode="8ball", opponent="human", theme="classic")
-    assert names(app.state, "not one of the solids") == "not one of the reds"
+    assert reason([Said(Why.HIT_NOT_GROUP, ball="9", group="solids")], voice(app.state)) == \
+        "the cue ball hit the 9 first, not one of the reds"
 
 
 def test_the_record_keeps_the_computer_s_level():
@@ -900,13 +914,12 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
 
 # -------------------------------------------------------------------- the computer's turn
 
-def cpu_to_shoot(monkeypatch, note="3 in the foot_left pocket"):
+def cpu_to_shoot(monkeypatch, note="3 in the foot left pocket"):
     """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
     from termpool import ai
 
     plan = ai.Plan(1.5, 20.0, 0.0, 0.2, None, 1.0, note)
-    monkeypatch.setattr(ai, "choose_shot", lambda *a, **k: plan)
-    monkeypatch.setattr(ai, "as_struck", lambda p, *a, **k: p)
+    monkeypatch.setattr(ai.Computer, "shot", lambda *a, **k: plan)
     app = app_for(mode="8ball", opponent="cpu")
     app.state.match.state = replace(app.state.match.state, shooter=1, is_break=False)
     app.state.match.ball_in_hand = None
@@ -952,7 +965,7 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
     for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
-    monkeypatch.setattr(__import__("termpool").ai, "choose_shot",
+    monkeypatch.setattr(__import__("termpool").ai.Computer, "shot",
                         lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
     app.state = start_turn(app.state)
     stroke(app, angle=90.0)  # its stick starts away from its aim, on the 8

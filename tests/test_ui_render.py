@@ -215,6 +215,37 @@ def test_balls_have_their_colours_at_their_positions(cols, rows):
             assert px[j, i] == expect[bid], bid
 
 
+def test_each_ball_theme_has_its_colours_here() -> None:
+    # The themes are named by the rules (their words for the groups); their colours are the
+    # UI's, written once in the palette.
+    from termpool.rules.common import SOLIDS, STRIPES
+    from termpool.rules.words import THEMES
+    from termpool.ui.palette import (
+        CLASSIC_RED_C,
+        CLASSIC_YELLOW_C,
+        CUE,
+        EIGHT,
+        SOLID,
+        STRIPE,
+        ball_style,
+    )
+
+    looks = {t: {b: ball_style(b, 0, t) for b in ("cue", *SOLIDS, "8", *STRIPES)}
+             for t in THEMES}
+    assert looks["standard"] != looks["classic"]
+    for look in looks.values():
+        assert (look["cue"].tag, look["8"].tag) == (CUE, EIGHT)
+        assert len({(s.tag, s.colour) for s in look.values()}) >= 3
+    std = looks["standard"]
+    assert all(std[b].tag == SOLID for b in SOLIDS) and all(std[b].tag == STRIPE for b in STRIPES)
+    assert all(std[s].colour == std[str(int(s) + 8)].colour for s in SOLIDS)
+    assert len({std[b].colour for b in SOLIDS}) == 7
+    classic = looks["classic"]
+    assert {classic[b].colour for b in SOLIDS} == {CLASSIC_RED_C}
+    assert {classic[b].colour for b in STRIPES} == {CLASSIC_YELLOW_C}
+    assert not any(s.tag == STRIPE for s in classic.values())
+
+
 @pytest.mark.parametrize("cols,rows", SIZES)
 def test_stripes_differ_from_solids(cols, rows):
     ids, pos = placed()

@@ -18,9 +18,11 @@ No terminal code. The game loop of a UI::
     json.dump(m.to_json(), f)                   # a replay file: `termpool replay FILE`
 
 `Match(mode="8ball" | "9ball" | "practice", *, table="9ft", frames=1, players=(..), seed=0,
-physics=None, three_foul=False, theme="standard", dt=1/60, eight_break="respot",
-levels=(None, None))`; `levels` names the computer's level (`ai.LEVELS`) of each player, None
-for a person (kept in the record only: the match plays whatever shots it is given):
+physics=None, three_foul=False, theme="standard", dt=1/60, eight_break="respot")`; `players`
+are names (people) or players (`players.Player`: a name and a level, the computer's or None
+for a person; a computer player, `termpool.ai.Computer`, is handed in by whoever sets the
+match up). The match keeps their names (`players`), levels (`levels`, kept in the record
+only: the match plays whatever shots it is given) and the players themselves (`seats`):
 
 - `ids` (cue first, then "1".."15", or "1".."9"), `radius`, `mass`, `pos` (N, 2) and `on_table`
   (N,) describe the table between shots (a pocketed ball's `pos` is meaningless).
@@ -30,10 +32,14 @@ for a person (kept in the record only: the match plays whatever shots it is give
   (the options answered, with the shot they followed).
 - `begin(shot) -> ShotRun`; `ShotRun.step(dt)`, `.done`, `.finish() -> Outcome`, `.engine`
   (holds only the balls on the table: `.ids`, rows `.rows` of the match's arrays).
-- `needs_call()`, `warning()` (9-ball three-foul warning, or None), `placement_error(x, y)`,
-  `place_cue(x, y)`, `choose(option)`, `new_frame()`, practice's `rerack()` and
-  `take_back()`, `to_json()`,
+- `needs_call()`, `warning()` (the player owed the 9-ball three-foul warning, or None),
+  `placement_error(x, y)`, `place_cue(x, y)`, `waiting_spot()`, `choose(option)`,
+  `new_frame()`, practice's `rerack()` and `take_back()`, `to_json()`,
   `Match.from_json(data)`, `scene_dict()` (the table now, as a scene).
+
+Modules: `match` (turns, options, frames), `balls` (the balls between shots), `layout` (racks,
+re-spots and the one placement rule), `turn` (`Shot`, `ShotRun`), `record` (shot records and
+replays), `saved` (the match as JSON and back), `settings`, `players`, `history`.
 
 Choices made:
 
@@ -55,7 +61,8 @@ Choices made:
 - **Options.** After an illegal 8-ball break the incoming player chooses "accept" (shoot the
   table as it lies) or "rerack" (a fresh rack that they break). After a 9-ball push-out the
   incoming player chooses "shoot" or "pass" (the player who pushed shoots again).
-- **8 on the break**: re-spotted, as the referee decides. **Three fouls** (9-ball): on with
+- **8 on the break**: as the referee decides: re-spotted, or with `eight_break="rerack"` a
+  fresh rack broken again by the same player. **Three fouls** (9-ball): on with
   `three_foul=True`; the third consecutive foul loses the frame.
 - **Calls.** `needs_call()` is True in 8-ball once the shooter's group is cleared: the shot
   must then call ("8", pocket).

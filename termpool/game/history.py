@@ -39,10 +39,11 @@ from typing import Any
 
 from termpool.files import MiB, data_dir, to_json
 
+from .players import LEVELS
+
 FILE_NAME = "history.jsonl"
 VERSION = 1
 MAX_READ = 16 * MiB  # a longer history is read from its end (some 50,000 matches back)
-LEVELS = ("easy", "normal", "hard")
 RESULTS = ("won", "lost", "unfinished", "practice")
 COUNTS = ("race", "won", "lost", "shots", "pots", "potting_shots", "fouls", "break_runs",
           "longest_run")
@@ -250,7 +251,7 @@ def read_history(path: Path) -> tuple[list[dict], str | None, bool]:
 
 # ------------------------------------------------------------------------------ summing up
 
-GROUPS = ("easy", "normal", "hard", "player", "practice")  # whom the player played
+GROUPS = (*LEVELS, "player", "practice")  # whom the player played
 LAST = 20  # matches listed (and charted) in the summary
 
 

@@ -13,7 +13,7 @@ import numpy as np
 from termpool.physics.params import BALL_RADIUS
 from termpool.physics.table import Table
 from termpool.rules.common import SOLIDS, STRIPES
-from termpool.rules.words import KITCHEN
+from termpool.rules.words import KITCHEN, RECORD, Voice
 from termpool.scene import RACK_ROWS, rack
 
 # Balls closer than this overlap; a little slack so balls set exactly touching (a rack, a
@@ -130,11 +130,24 @@ def mouth_lines(table: Table) -> list[tuple[str, np.ndarray, np.ndarray]]:
     return out
 
 
+def head_string(table: Table) -> float:
+    """Where the head string crosses the table (x, m): through the head spot, a quarter of the
+    length from the head rail. The kitchen, where a break is taken from, is behind it."""
+    return table.head_spot[0]
+
+
+def in_area(table: Table, x, area: str):
+    """Whether centres at x (a number or an array) lie in `area`: anywhere, or in the kitchen
+    (x at most the head string's). The area part of the placement rule."""
+    return x <= head_string(table) if area == "kitchen" else np.full(np.shape(x), True)[()]
+
+
 def placement_error(table: Table, x: float, y: float, r: float, area: str,
-                    others: dict[str, tuple[float, float, float]]) -> str | None:
+                    others: dict[str, tuple[float, float, float]],
+                    v: Voice = RECORD) -> str | None:
     """Why a cue ball of radius r cannot be placed at (x, y) with ball in hand in `area`
-    ("anywhere" or "kitchen"), in words; None when it can. `others` maps the id of every other
-    ball on the table to (x, y, radius)."""
+    ("anywhere" or "kitchen"), in words (a pocket named in the voice `v`); None when it can.
+    `others` maps the id of every other ball on the table to (x, y, radius)."""
     if isinstance(x, bool) or isinstance(y, bool):
         return "the position must be two numbers (x, y)"
     try:
@@ -146,13 +159,33 @@ def placement_error(table: Table, x: float, y: float, r: float, area: str,
     if not table.inside(x, y, r):
         return (f"off the table: the centre must lie within [{r:.3f}, {table.length - r:.3f}] x "
                 f"[{r:.3f}, {table.width - r:.3f}] m")
-    if area == "kitchen" and x > table.length / 4:
+    if not in_area(table, x, area):
         return (f"not in the kitchen: {KITCHEN} the centre must be at "
-                f"x <= {table.length / 4:.3f} m")
+                f"x <= {head_string(table):.3f} m")
     for name, p, n in mouth_lines(table):
         if float(np.dot(np.array([x, y]) - p, n)) < r - TOUCH_TOL:
-            return f"in the mouth of the {name} pocket"
+            return f"in the mouth of the {v.pocket(name)} pocket"
     for bid, (bx, by, br) in others.items():
         if math.hypot(x - bx, y - by) < r + br - TOUCH_TOL:
             return f"overlaps the {bid}" if bid != "cue" else "overlaps the cue ball"
     return None
+
+
+def spots_ok(table: Table, xy: np.ndarray, r: float, area: str, others: np.ndarray,
+             others_r: np.ndarray, margin: float = 0.0) -> np.ndarray:
+    """`placement_error`'s rule for many spots at once: which of xy (M, 2) a cue ball of radius
+    r may be placed on with ball in hand in `area`, among balls at `others` (K, 2) of radii
+    `others_r` (K,). With `margin` the spot must also stay that far inside the cushion noses
+    and the pocket mouths, and twice that clear of every ball (0: the rule itself)."""
+    xy = np.asarray(xy, float).reshape(-1, 2)
+    x, y = xy[:, 0], xy[:, 1]
+    ok = (x >= r + margin) & (x <= table.length - r - margin)
+    ok &= (y >= r + margin) & (y <= table.width - r - margin)
+    ok &= in_area(table, x, area)
+    for _, p, n in mouth_lines(table):
+        ok &= (xy - p) @ n >= r - TOUCH_TOL + margin
+    others = np.asarray(others, float).reshape(-1, 2)
+    if len(others):
+        d = np.linalg.norm(xy[:, None] - others[None], axis=-1)
+        ok &= (d >= r + np.ravel(others_r)[None] + 2 * margin - TOUCH_TOL).all(axis=1)
+    return ok

@@ -1,90 +1,53 @@
-"""A match: the table between shots, whose turn, ball in hand, options, frames and the record.
+"""A match: whose turn, ball in hand, options, frames and the record.
 
-See the package docstring (`termpool.game`) for the API and the choices made.
+See the package docstring (`termpool.game`) for the API and the choices made. The balls
+between shots are `balls.Balls`; a shot's record is made by `record.shot_record`; the saved
+form is `saved`'s.
 """
 
 from __future__ import annotations
 
-import copy
 from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
-from termpool.ai import LEVELS
 from termpool.physics.engine import POCKETED
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.params import Physics
 from termpool.physics.results import DT  # the fixed engine step of every shot (recorded with it)
-from termpool.physics.table import PRESETS, Table
-from termpool.rules.common import GROUPS, MODE_BALLS, MODES, Outcome, State
+from termpool.physics.table import Table
+from termpool.rules.codec import game_block
+from termpool.rules.codes import Choice, Option
+from termpool.rules.common import GROUPS, MODE_BALLS, Outcome, State
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
-from termpool.rules.themes import THEMES
-from termpool.rules.words import FOUL_LIMIT, count_word, ordinal
+from termpool.rules.words import FOUL_LIMIT, RECORD, Voice
 from termpool.scene import table_to_dict
 
-from . import layout, record
-from .turn import Shot, ShotRun, game_block, state_to_json
-
-EIGHT_BREAKS = ("respot", "rerack")  # what the 8 pocketed on a legal break means
-OPTIONS = {"rerack_or_accept": ("rerack", "accept"), "shoot_or_pass": ("shoot", "pass")}
-FORMAT = "termpool-replay"
-VERSION = 1
+from . import record, saved
+from .balls import Balls
+from .players import Player
+from .settings import check_settings
+from .turn import Shot, ShotRun
 
 
 class Match:
-    """Two players (one in practice), frames to win, the layout between shots and the record."""
+    """Two players (one in practice), frames to win, the balls between shots and the record."""
 
     def __init__(self, mode: str = "8ball", *, table: str | Table = "9ft", frames: int = 1,
-                 players: tuple[str, str] = ("Player 1", "Player 2"), seed: int = 0,
-                 physics: Physics | None = None, three_foul: bool = False,
-                 theme: str = "standard", dt: float = DT, eight_break: str = "respot",
-                 levels: tuple[str | None, str | None] = (None, None)) -> None:
-        if mode not in MODES:
-            raise ValueError(f"mode: must be one of {', '.join(MODES)}, not {mode!r}")
-        if isinstance(table, str):
-            if table not in PRESETS:
-                raise ValueError(f"table: unknown preset {table!r} (use {', '.join(PRESETS)})")
-            table = Table.preset(table)
-        if not isinstance(table, Table) or table.pockets != "standard":
-            raise ValueError("table: must be a preset name or a Table with pockets")
-        if type(frames) is not int or frames < 1:
-            raise ValueError(f"frames: must be a whole number >= 1, not {frames!r}")
-        if (not isinstance(players, (tuple, list)) or len(players) != 2
-                or not all(isinstance(p, str) and p.strip() for p in players)):
-            raise ValueError("players: must be two non-empty names")
-        if type(seed) is not int:
-            raise ValueError(f"seed: must be a whole number, not {seed!r}")
-        if (not isinstance(levels, (tuple, list)) or len(levels) != 2
-                or not all(lv is None or lv in LEVELS for lv in levels)):
-            raise ValueError(f"levels: must be two of None (a person), {', '.join(LEVELS)}")
-        physics = Physics() if physics is None else physics
-        for k in record.NEVER_STOP:
-            if not getattr(physics, k) > 0:
-                raise ValueError(f"physics.{k}: must be positive in a match (else the balls "
-                                 "never stop)")
-        if three_foul and mode != "9ball":
-            raise ValueError("three_foul: only for mode '9ball'")
-        if eight_break not in EIGHT_BREAKS:
-            raise ValueError(f"eight_break: must be one of {', '.join(EIGHT_BREAKS)}, "
-                             f"not {eight_break!r}")
-        if theme not in THEMES:
-            raise ValueError(f"theme: must be one of {', '.join(THEMES)}, not {theme!r}")
-        if not (isinstance(dt, float) and record.DT_RANGE[0] <= dt <= record.DT_RANGE[1]):
-            raise ValueError(f"dt: must be from {record.DT_RANGE[0]:g} to "
-                             f"{record.DT_RANGE[1]:g} seconds (what a replay accepts)")
-        self.mode, self.table, self.physics = mode, table, physics
-        self.frames, self.players, self.seed = frames, tuple(players), seed
-        self.three_foul, self.theme, self.dt = bool(three_foul), theme, dt
-        self.eight_break = eight_break
-        self.levels = tuple(levels)
+                 players: tuple[str | Player, str | Player] = ("Player 1", "Player 2"),
+                 seed: int = 0, physics: Physics | None = None, three_foul: bool = False,
+                 theme: str = "standard", dt: float = DT, eight_break: str = "respot") -> None:
+        s = check_settings(mode, table, frames, players, seed, physics, three_foul, theme, dt,
+                           eight_break)
+        self.mode, self.table, self.physics, self.frames = s.mode, s.table, s.physics, s.frames
+        self.seats = s.players  # the players themselves (`players.Player`)
+        self.players = tuple(p.name for p in s.players)
+        self.levels = tuple(p.level for p in s.players)
+        self.seed, self.three_foul, self.theme, self.dt = s.seed, s.three_foul, s.theme, s.dt
+        self.eight_break = s.eight_break
         self.rng = np.random.default_rng(seed)
-        self.ids: list[str] = ["cue", *MODE_BALLS[mode]]
-        n = len(self.ids)
-        self.radius = np.full(n, BALL_RADIUS)
-        self.mass = np.full(n, BALL_MASS)
-        self.pos = np.zeros((n, 2))
-        self.on_table = np.zeros(n, dtype=bool)
+        self.balls = Balls(self.table, ["cue", *MODE_BALLS[mode]])
         self.scores = [0, 0]
         self.frame = -1  # new_frame makes it 0
         self.winner: int | None = None
@@ -92,11 +55,45 @@ class Match:
         self.history: list[dict] = []
         self.choices: list[dict] = []
         self.last_outcome: Outcome | None = None
+        self.state = State(mode=mode)  # the rack's, from new_frame
+        self.ball_in_hand: str | None = None
+        self.option: Option | None = None
+        self.breaker = 0
         self._run: ShotRun | None = None
         self._undo: list[dict] = []
         self.new_frame()
 
+    @classmethod
+    def from_json(cls, data: Any) -> Match:
+        """A match saved by `to_json`, ready to go on; ValueError (one line naming the key)
+        for a malformed one."""
+        return saved.load_match(cls, data)
+
+    def resume(self, where: saved.Position, choices: list[dict], history: list[dict],
+               last: Outcome | None) -> Match:
+        """This match (just made from a saved match's settings) at the saved position, with
+        its options answered, its shot records and the verdict on the last shot."""
+        self.balls.pos[:], self.balls.on_table[:] = where.pos, where.on_table
+        self.state, self.frame, self.breaker = where.state, where.frame, where.breaker
+        self.scores, self.winner, self.frame_winner = where.scores, where.winner, where.frame_winner
+        self.ball_in_hand, self.option = where.ball_in_hand, where.option
+        self.rng.bit_generator.state = where.rng
+        self.choices, self.history, self.last_outcome = choices, history, last
+        return self
+
+    def to_json(self) -> dict:
+        """The match as JSON: its settings, the position now and every shot's record (a
+        replay file for `termpool replay`)."""
+        self._check_idle("to_json")
+        return saved.match_json(self)
+
     # ------------------------------------------------------------------------- views
+    ids = property(lambda self: self.balls.ids)
+    radius = property(lambda self: self.balls.radius)
+    mass = property(lambda self: self.balls.mass)
+    pos = property(lambda self: self.balls.pos)
+    on_table = property(lambda self: self.balls.on_table)
+
     @property
     def shooter(self) -> int:
         return self.state.shooter
@@ -106,19 +103,19 @@ class Match:
         return self.frame_winner is not None
 
     def index(self, ball: str) -> int:
-        return self.ids.index(ball)
+        return self.balls.index(ball)
 
     def balls_on_table(self) -> list[str]:
-        return [b for b, on in zip(self.ids, self.on_table, strict=True) if on]
+        return self.balls.present()
 
-    def warning(self) -> str | None:
-        """The WPA warning owed to the shooter before a shot that could be their third
-        consecutive foul (9-ball with `three_foul`), else None."""
+    def warning(self) -> int | None:
+        """The shooter, when they are owed the WPA warning before a shot that could be their
+        last foul in a row (9-ball with `three_foul`: `words.foul_warning` says it); else
+        None."""
         s = self.state
         if not s.three_foul or s.fouls[s.shooter] < FOUL_LIMIT - 1 or self.frame_over:
             return None
-        return (f"{self.players[s.shooter]} is on {count_word(FOUL_LIMIT - 1)} fouls: a "
-                f"{ordinal(FOUL_LIMIT)} foul in a row loses the frame")
+        return s.shooter
 
     def needs_call(self) -> bool:
         """True when the shooter must name a pocket: 8-ball, their group cleared, the 8 next."""
@@ -130,14 +127,12 @@ class Match:
 
     # ------------------------------------------------------------------------- racks
     def _rack(self, breaker: int) -> None:
-        spots = layout.rack_balls(self.mode, self.table, self.rng, BALL_RADIUS)
-        for bid, (x, y) in spots.items():
-            self.pos[self.index(bid)] = (x, y)
-        self.on_table[:] = True
+        self.balls.rack(self.mode, self.rng)
         self.state = State(mode=self.mode, shooter=breaker, is_break=True,
-                           three_foul=self.three_foul)
-        self.ball_in_hand: str | None = "anywhere" if self.mode == "practice" else "kitchen"
-        self.option: str | None = None
+                           three_foul=self.three_foul,
+                           eight_break=self.eight_break if self.mode == "8ball" else "respot")
+        self.ball_in_hand = "anywhere" if self.mode == "practice" else "kitchen"
+        self.option = None
         self.breaker = breaker
 
     def new_frame(self) -> None:
@@ -161,17 +156,12 @@ class Match:
         self._rack(0)
 
     # --------------------------------------------------------------------- ball in hand
-    def _others(self, skip: str = "cue") -> dict[str, tuple[float, float, float]]:
-        return {b: (float(self.pos[i, 0]), float(self.pos[i, 1]), float(self.radius[i]))
-                for i, b in enumerate(self.ids) if self.on_table[i] and b != skip}
-
-    def placement_error(self, x: float, y: float) -> str | None:
-        """Why the cue ball cannot be placed at (x, y) now, in words; None when it can."""
+    def placement_error(self, x: float, y: float, v: Voice = RECORD) -> str | None:
+        """Why the cue ball cannot be placed at (x, y) now, in words (pockets named in the
+        voice `v`); None when it can."""
         if self.ball_in_hand is None:
             return "the cue ball is not in hand"
-        c = self.index("cue")
-        return layout.placement_error(self.table, x, y, float(self.radius[c]),
-                                      self.ball_in_hand, self._others())
+        return self.balls.placement_error(x, y, self.ball_in_hand, v)
 
     def place_cue(self, x: float, y: float) -> None:
         """Put the cue ball at (x, y) (ball in hand); ValueError(the reason) when illegal."""
@@ -179,27 +169,30 @@ class Match:
         why = self.placement_error(x, y)
         if why:
             raise ValueError(f"cue ball: {why}")
-        c = self.index("cue")
-        self.pos[c] = (float(x), float(y))
+        self.pos[self.index("cue")] = (float(x), float(y))
+
+    def waiting_spot(self) -> tuple[float, float]:
+        """Where the cue ball waits for a ball in hand (`Balls.waiting_spot`)."""
+        return self.balls.waiting_spot()
 
     # ------------------------------------------------------------------------- options
-    def choose(self, option: str) -> None:
+    def choose(self, choice: str) -> None:
         """Answer the pending option: "rerack" or "accept" after an illegal 8-ball break (a
         re-rack is broken by the player choosing), "shoot" or "pass" after a 9-ball push-out
         (a pass hands the shot back to the player who pushed)."""
         self._check_idle("choose")
         if self.option is None:
             raise ValueError("option: there is nothing to choose now")
-        allowed = OPTIONS[self.option]
-        if option not in allowed:
-            raise ValueError(f"option: must be {' or '.join(repr(a) for a in allowed)} "
-                             f"(pending: {self.option}), not {option!r}")
+        allowed = Option(self.option).choices
+        if choice not in allowed:
+            raise ValueError(f"option: must be {' or '.join(repr(a.value) for a in allowed)} "
+                             f"(pending: {self.option}), not {choice!r}")
         self.choices.append({"after_shot": len(self.history), "player": self.shooter,
-                             "option": self.option, "choice": option})
+                             "option": str(self.option), "choice": str(choice)})
         self._undo.clear()
-        if option == "rerack":
+        if choice == Choice.RERACK:
             self._rack(self.shooter)
-        elif option == "pass":
+        elif choice == Choice.PASS:
             self.state = replace(self.state, shooter=1 - self.shooter)
         self.option = None
 
@@ -234,8 +227,8 @@ class Match:
         if self.frame_over:
             raise ValueError("begin: the frame is over (call new_frame)")
         if self.option is not None:
-            raise ValueError(f"begin: player {self.shooter} must first choose "
-                             f"({' or '.join(OPTIONS[self.option])})")
+            raise ValueError(f"begin: {self.players[self.shooter]} must first choose "
+                             f"({' or '.join(Option(self.option).choices)})")
         if not isinstance(shot, Shot):
             raise ValueError("shot: must be a Shot")
         called = self._check_call(shot)
@@ -248,9 +241,8 @@ class Match:
                 raise ValueError(f"cue ball: {why}")
         state = replace(self.state, called=called,
                         push_out="declared" if shot.push_out else self.state.push_out)
-        scene = self.scene_dict(state)
         try:
-            run = ShotRun(self, shot, state, scene)
+            run = ShotRun(shot, state, self.scene_dict(state), self.ids, self.dt, self.settle)
         except ValueError as e:  # the strike's own checks (speed, miscue, ...)
             raise ValueError(str(e)) from None
         self._run = run
@@ -271,82 +263,42 @@ class Match:
         """The table now as a scene (`load_scene` form, balls at rest), with the game block
         of `state` (default: the match's state)."""
         state = self.state if state is None else state
-        balls = [{"id": b, "x": float(self.pos[i, 0]), "y": float(self.pos[i, 1]),
-                  "radius": float(self.radius[i]), "mass": float(self.mass[i])}
-                 for i, b in enumerate(self.ids) if self.on_table[i]]
         return {"table": table_to_dict(self.table), "physics": self.physics.to_dict(),
-                "balls": balls, "game": game_block(state)}
+                "balls": self.balls.scene_balls(), "game": game_block(state)}
 
-    def _snapshot(self) -> dict:
-        return {"pos": self.pos.copy(), "on_table": self.on_table.copy(), "state": self.state,
-                "ball_in_hand": self.ball_in_hand, "option": self.option,
-                "last_outcome": self.last_outcome, "history": len(self.history),
-                "choices": len(self.choices)}
-
-    def _apply(self, run: ShotRun) -> Outcome:
-        """Judge a finished shot, move the match on and record it (called by ShotRun)."""
+    def settle(self, run: ShotRun) -> Outcome:
+        """Judge a shot run to rest, record it and move the match on (`ShotRun.finish` calls
+        this once)."""
         if run is not self._run:
             raise ValueError("finish: this shot does not belong to the match's current turn")
         eng = run.engine
         summary = summarize(eng.events[0], run.ids, is_break=run.state.is_break)
         outcome, new_state = judge(run.state, summary)
-        snap = self._snapshot()
-        rec = {"n": len(self.history) + 1, "frame": self.frame + 1, "player": run.state.shooter,
-               "scene": run.scene_dict, "shot": run.shot.to_json(), "dt": run.dt,
-               **record.results(run.scene, eng, run.dt),
-               "outcome": outcome.to_json()}
-        # The layout at rest; pocketed balls leave the table.
-        self.pos[run.rows] = eng.pos[0]
-        self.on_table[run.rows] = eng.state[0] != POCKETED
-        for b in outcome.respot:
-            self._respot(b)
-        c = self.index("cue")
-        if not self.on_table[c]:
-            self.pos[c] = self.waiting_spot()
-            self.on_table[c] = True
+        self._undo.append(self._snapshot())
+        self.history.append(record.shot_record(run, outcome, len(self.history) + 1,
+                                               self.frame + 1))
+        if outcome.rerack:  # a fresh rack, broken by `next_shooter`: the new state is its
+            self._rack(outcome.next_shooter)
+        else:
+            self.balls.settle(run.rows, eng.pos[0], eng.state[0] != POCKETED, outcome.respot)
+            self.ball_in_hand = outcome.ball_in_hand_area if outcome.ball_in_hand else None
+            self.option = outcome.option
         self.state = new_state
         self.last_outcome = outcome
-        self.ball_in_hand = outcome.ball_in_hand_area if outcome.ball_in_hand else None
-        self.option = outcome.option
         if outcome.winner is not None:
             self.frame_winner = outcome.winner
             self.scores[outcome.winner] += 1
             if self.scores[outcome.winner] >= self.frames:
                 self.winner = outcome.winner
-        self.history.append(rec)
-        self._undo.append(snap)
-        if (self.eight_break == "rerack" and run.state.mode == "8ball" and run.state.is_break
-                and "8" in outcome.respot and outcome.winner is None):
-            # The variant where the 8 on the break means a fresh rack, broken by the same
-            # player (the record keeps the referee's verdict; replays judge it the same way).
-            breaker = run.state.shooter
-            self._rack(breaker)
-            outcome = replace(outcome, respot=(), ball_in_hand=True,
-                              ball_in_hand_area="kitchen", next_shooter=breaker,
-                              reason=f"{outcome.reason}; the 8 on the break: re-racked, "
-                                     f"player {breaker} breaks again")
-            self.last_outcome = outcome
         self._run = None
         return outcome
 
-    def waiting_spot(self) -> tuple[float, float]:
-        """Where the cue ball waits for a ball in hand: the head spot, or the nearest free point
-        behind it on the long string (then in front of it)."""
-        c = self.index("cue")
-        return layout.cue_return_point(self.table, float(self.radius[c]), *self._others_arrays())
-
-    def _others_arrays(self, skip: str = "cue") -> tuple[np.ndarray, np.ndarray]:
-        keep = self.on_table.copy()
-        keep[self.index(skip)] = False
-        return self.pos[keep], self.radius[keep]
-
-    def _respot(self, ball: str) -> None:
-        i = self.index(ball)
-        self.on_table[i] = False
-        keep = self.on_table.copy()
-        self.pos[i] = layout.respot_point(self.table, float(self.radius[i]), self.pos[keep],
-                                          self.radius[keep])
-        self.on_table[i] = True
+    # ------------------------------------------------------------------------- take back
+    def _snapshot(self) -> dict:
+        return {"balls": self.balls.snapshot(), "state": self.state,
+                "ball_in_hand": self.ball_in_hand, "option": self.option,
+                "last_outcome": self.last_outcome, "history": len(self.history),
+                "choices": len(self.choices)}
 
     def take_back(self) -> None:
         """Practice: undo the last shot (the layout, state and record before it)."""
@@ -356,45 +308,8 @@ class Match:
         if not self._undo:
             raise ValueError("take_back: no shot to take back")
         snap = self._undo.pop()
-        self.pos[:], self.on_table[:] = snap["pos"], snap["on_table"]  # same arrays: views stay
+        self.balls.restore(snap["balls"])
         self.state, self.ball_in_hand = snap["state"], snap["ball_in_hand"]
         self.option, self.last_outcome = snap["option"], snap["last_outcome"]
         del self.history[snap["history"]:]
         del self.choices[snap["choices"]:]
-
-    # ---------------------------------------------------------------------- saving
-    def to_json(self) -> dict:
-        """The match as JSON: its settings, the current position and every shot's record
-        (a replay file for `termpool replay`)."""
-        if self._run is not None:
-            raise ValueError("to_json: a shot is still running (finish it first)")
-        return copy.deepcopy({
-            "format": FORMAT,
-            "version": VERSION,
-            "match": {"mode": self.mode, "table": table_to_dict(self.table),
-                      "physics": self.physics.to_dict(), "frames": self.frames,
-                      "players": list(self.players), "seed": self.seed,
-                      "three_foul": self.three_foul, "theme": self.theme, "dt": self.dt,
-                      "eight_break": self.eight_break, "levels": list(self.levels)},
-            "current": {
-                "frame": self.frame, "breaker": self.breaker, "scores": list(self.scores),
-                "winner": self.winner, "frame_winner": self.frame_winner,
-                "ball_in_hand": self.ball_in_hand, "option": self.option,
-                "state": state_to_json(self.state),
-                "balls": [{"id": b, "x": float(self.pos[i, 0]), "y": float(self.pos[i, 1]),
-                           "on_table": bool(self.on_table[i])}
-                          for i, b in enumerate(self.ids)],
-                "last_outcome": None if self.last_outcome is None else self.last_outcome.to_json(),
-                "rng": self.rng.bit_generator.state,
-            },
-            "choices": self.choices,
-            "shots": self.history,
-        })
-
-    @classmethod
-    def from_json(cls, data: Any) -> Match:
-        """A match saved by `to_json`, ready to go on; ValueError (one line naming the key)
-        for a malformed one."""
-        from .saved import load_match
-
-        return load_match(cls, data)

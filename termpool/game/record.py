@@ -30,7 +30,11 @@ from termpool.files import MAX_REPLAY_BYTES, FileError, parse_json, read_text
 from termpool.physics.engine import Engine
 from termpool.physics.params import as_recorded
 from termpool.physics.results import DT_RANGE, sim_result
-from termpool.scene import Scene, SceneError, load_scene
+from termpool.rules import words
+from termpool.rules.common import Outcome
+from termpool.rules.referee import load_game_scene, verdict
+from termpool.rules.words import RECORD, Voice
+from termpool.scene import Scene, SceneError
 
 MAX_SHOT_TIME = 600.0  # simulated seconds: a shot that runs longer is a broken record
 NEVER_STOP = ("mu_slide", "mu_roll")  # with either at 0 a rolling ball never stops
@@ -49,12 +53,12 @@ def cue_shot(shot: dict) -> dict:
 
 
 def shot_scene(scene_dict: dict, shot: dict) -> Scene:
-    """The scene of a record with its shot applied, loaded and validated (with the cushion
-    it was played with, for records from before scenes chose one)."""
+    """The scene of a record with its shot applied, loaded and validated, its game block too
+    (with the cushion it was played with, for records from before scenes chose one)."""
     physics = scene_dict.get("physics", {})
     if isinstance(physics, dict):
         scene_dict = {**scene_dict, "physics": as_recorded(physics)}
-    return load_scene({**scene_dict, "shot": cue_shot(shot)})
+    return load_game_scene({**scene_dict, "shot": cue_shot(shot)})
 
 
 def start_engine(scene: Scene) -> Engine:
@@ -89,13 +93,25 @@ def results(scene: Scene, engine: Engine, dt: float) -> dict:
                                  | {"final": res["balls"]}))
 
 
-def judge_json(scene: Scene, engine: Engine) -> dict | None:
-    """The referee's outcome for the shot, or None for a scene without a game block."""
+def shot_record(run, outcome: Outcome, n: int, frame: int) -> dict:
+    """The record of a shot run to rest (a `turn.ShotRun`) and judged `outcome`: shot `n`
+    of the match, in frame `frame` (both from 1)."""
+    return {"n": n, "frame": frame, "player": run.state.shooter, "scene": run.scene_dict,
+            "shot": run.shot.to_json(), "dt": run.dt, **results(run.scene, run.engine, run.dt),
+            "outcome": outcome.to_json()}
+
+
+def recorded_verdict(rec: Any, path: str = "shot") -> Outcome | None:
+    """The referee's verdict on a record's shot, from its scene and its recorded events (the
+    verdict it was given, for a true record); None for a scene without a game block. Raises
+    ReplayError for a malformed record."""
+    scene, _ = _check_record(rec, path)
     if scene.game is None:
         return None
-    from termpool.rules.referee import referee
-
-    return json.loads(json.dumps(referee(scene.game, scene.ids, engine.events[0])))
+    try:
+        return verdict(scene.game, scene.ids, rec["events"])
+    except (KeyError, IndexError, TypeError, ValueError) as e:
+        raise _fail(f"{path}.events", f"not the events of a shot ({e})") from None
 
 
 # ------------------------------------------------------------------------------ comparing
@@ -201,9 +217,9 @@ def _check_record(rec: Any, path: str) -> tuple[Scene, float]:
     return scene, float(dt)
 
 
-def replay_shot(rec: Any, path: str = "shot") -> dict:
-    """Re-simulate one record: {"ok", "differences", "events", "reason"}. Raises ReplayError
-    when the record is malformed."""
+def replay_shot(rec: Any, path: str = "shot", v: Voice = RECORD) -> dict:
+    """Re-simulate one record: {"ok", "differences", "events", "reason"} (the verdict in the
+    voice `v`). Raises ReplayError when the record is malformed."""
     scene, dt = _check_record(rec, path)
     engine = start_engine(scene)
     try:
@@ -214,13 +230,14 @@ def replay_shot(rec: Any, path: str = "shot") -> dict:
     if not rested:
         return {"ok": False, "events": len(fresh["events"]), "reason": "",
                 "differences": [still_moving(rec["steps"])]}
-    fresh["outcome"] = judge_json(scene, engine)
+    outcome = None if scene.game is None else verdict(scene.game, scene.ids, engine.events[0])
+    fresh["outcome"] = None if outcome is None else json.loads(json.dumps(outcome.to_json()))
     diffs = []
     for k in ("time", "steps", "events", "final", "outcome"):
         d = first_difference(rec[k], fresh[k], k)
         if d:
             diffs.append(d)
-    reason = (fresh["outcome"] or {}).get("reason", "")
+    reason = "" if outcome is None else words.reason(outcome.said, v)
     return {"ok": not diffs, "differences": diffs, "events": len(fresh["events"]),
             "reason": reason}
 
@@ -262,14 +279,14 @@ def check_records(data: dict) -> list[tuple[Scene, float]]:
     return [_check_record(rec, f"shots[{k}]") for k, rec in enumerate(data["shots"])]
 
 
-def replay(data: dict) -> list[dict]:
-    """Check every shot of a parsed replay; one result per shot (see `replay_shot`), with the
-    record's n, frame and player. Raises ReplayError for the first malformed record, before
-    any shot is simulated."""
+def replay(data: dict, v: Voice = RECORD) -> list[dict]:
+    """Check every shot of a parsed replay; one result per shot (see `replay_shot`: its
+    verdict in the voice `v`), with the record's n, frame and player. Raises ReplayError for
+    the first malformed record, before any shot is simulated."""
     shots = data["shots"]
     check_records(data)
     out = []
     for k, rec in enumerate(shots):
-        res = replay_shot(rec, f"shots[{k}]")
+        res = replay_shot(rec, f"shots[{k}]", v)
         out.append({"n": rec["n"], "frame": rec["frame"], "player": rec["player"], **res})
     return out

@@ -1,19 +1,15 @@
-"""One turn: the shot a player makes (`Shot`), the shot in progress (`ShotRun`), and the
-rules state as JSON and as a scene's `game` block."""
+"""One turn: the shot a player makes (`Shot`) and the shot in progress (`ShotRun`)."""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from termpool.rules.common import Outcome, State, groups_to_json
+from termpool.rules.common import Outcome, State
 
 from . import record
-
-if TYPE_CHECKING:
-    from .match import Match
 
 
 @dataclass(frozen=True)
@@ -36,46 +32,6 @@ class Shot:
                 "push_out": bool(self.push_out)}
 
 
-def state_to_json(s: State) -> dict:
-    return {"mode": s.mode, "shooter": s.shooter, "groups": groups_to_json(s.groups),
-            "fouls": list(s.fouls), "pocketed": list(s.pocketed), "is_break": s.is_break,
-            "push_out": s.push_out, "called": None if s.called is None else list(s.called),
-            "three_foul": s.three_foul}
-
-
-def state_from_json(d: Any, path: str = "state") -> State:
-    if not isinstance(d, dict):
-        raise ValueError(f"{path}: must be an object")
-    try:
-        groups = d.get("groups")
-        called = d.get("called")
-        return State(
-            mode=d["mode"], shooter=d["shooter"],
-            groups=None if groups is None else {int(p): g for p, g in groups.items()},
-            fouls=tuple(int(n) for n in d["fouls"]), pocketed=tuple(d["pocketed"]),
-            is_break=bool(d["is_break"]), push_out=d["push_out"],
-            called=None if called is None else (str(called[0]), str(called[1])),
-            three_foul=bool(d["three_foul"]))
-    except KeyError as e:
-        raise ValueError(f"{path}: missing key '{e.args[0]}'") from None
-    except (TypeError, ValueError, AttributeError, IndexError) as e:
-        raise ValueError(f"{path}: {e}") from None
-
-
-def game_block(s: State) -> dict:
-    """The scene `game` block for the referee of the shot about to be played from `s`."""
-    g: dict[str, Any] = {"mode": s.mode, "shooter": s.shooter, "break": s.is_break,
-                         "fouls": {"0": s.fouls[0], "1": s.fouls[1]}}
-    if s.groups is not None:
-        g["groups"] = groups_to_json(s.groups)
-    if s.called is not None:
-        g["called"] = {"ball": s.called[0], "pocket": s.called[1]}
-    if s.mode == "9ball":
-        g["push_out"] = s.push_out == "declared"
-        g["three_foul"] = s.three_foul
-    return g
-
-
 def advance(engine, dt: float, owed: float) -> float:
     """Play `owed` seconds of a shot in whole engine steps of the fixed `dt` until the table is
     at rest; returns the time still owed (a remainder waits for the next call). The one way a
@@ -88,18 +44,20 @@ def advance(engine, dt: float, owed: float) -> float:
 
 class ShotRun:
     """One shot in progress: `engine` holds only the balls on the table (`ids`, which are
-    rows `rows` of the match's arrays). The UI calls `step(dt)` once per frame and reads
-    `engine.pos[0]`; `finish()` runs to rest, judges and applies the shot to the match."""
+    rows `rows` of the match's `match_ids`). The UI calls `step(dt)` once per frame and reads
+    `engine.pos[0]`; `finish()` runs to rest and hands the shot to `settle` (the match's),
+    which judges, records and applies it."""
 
-    def __init__(self, match: Match, shot: Shot, state: State, scene_dict: dict) -> None:
-        self.match, self.shot, self.state = match, shot, state
-        self.scene_dict = scene_dict
+    def __init__(self, shot: Shot, state: State, scene_dict: dict, match_ids: Sequence[str],
+                 dt: float, settle: Callable[[ShotRun], Outcome]) -> None:
+        self.shot, self.state, self.scene_dict = shot, state, scene_dict
         self.scene = record.shot_scene(scene_dict, shot.to_json())
         self.engine = record.start_engine(self.scene)
         self.ids: list[str] = list(self.scene.ids)
-        self.rows = np.array([match.ids.index(b) for b in self.ids])
-        self.dt = match.dt
+        self.rows = np.array([list(match_ids).index(b) for b in self.ids])
+        self.dt = dt
         self.outcome: Outcome | None = None
+        self._settle = settle
         self._owed = 0.0
 
     @property
@@ -115,9 +73,9 @@ class ShotRun:
         self._owed = advance(self.engine, self.dt, self._owed + dt)
 
     def finish(self) -> Outcome:
-        """Run to rest if needed, judge, apply the outcome to the match and record the shot.
-        Calling it again returns the same outcome."""
+        """Run to rest if needed, then judge, record and apply the shot (`settle`). Calling
+        it again returns the same outcome."""
         if self.outcome is None:
             record.run_to_rest(self.engine, self.dt)
-            self.outcome = self.match._apply(self)
+            self.outcome = self._settle(self)
         return self.outcome

@@ -10,6 +10,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
+from termpool.rules.codes import Foul, Option, Said
+from termpool.rules.words import reason as in_words
+
 SOLIDS = tuple(str(n) for n in range(1, 8))
 STRIPES = tuple(str(n) for n in range(9, 16))
 GROUPS = {"solids": SOLIDS, "stripes": STRIPES}
@@ -18,17 +21,10 @@ NINE_BALLS = tuple(str(n) for n in range(1, 10))
 MODES = ("8ball", "9ball", "practice")
 MODE_BALLS = {"8ball": EIGHT_BALLS, "9ball": NINE_BALLS, "practice": EIGHT_BALLS}
 PUSH_OUT = ("none", "available", "declared")
+EIGHT_BREAKS = ("respot", "rerack")  # what the 8 pocketed on an 8-ball break means
 AREAS = ("anywhere", "kitchen")
 
-# Foul names, in the order `Outcome.foul` reports them when a shot commits several.
-FOULS = (
-    "scratch",
-    "off_table",
-    "illegal_break",
-    "no_hit",
-    "wrong_ball_first",
-    "no_rail",
-)
+FOULS = tuple(Foul)  # in the order `Outcome.fouls` lists them
 
 
 def group_of(ball: str) -> str | None:
@@ -53,7 +49,8 @@ class State:
     (9-ball) is "available" on the shot after the break, "declared" when the shooter has
     announced a push-out for this shot, else "none". `called` is (ball, pocket) when the shooter
     has named a pocket (8-ball: needed to pot the 8). `three_foul` turns on 9-ball's three
-    consecutive fouls rule.
+    consecutive fouls rule. `eight_break` is what the 8 pocketed on an 8-ball break means:
+    "respot" (it is re-spotted) or "rerack" (the balls are racked again).
     """
 
     mode: str = "8ball"
@@ -65,6 +62,7 @@ class State:
     push_out: str = "none"
     called: tuple[str, str] | None = None
     three_foul: bool = False
+    eight_break: str = "respot"
 
     def __post_init__(self) -> None:
         if self.mode not in MODES:
@@ -73,6 +71,11 @@ class State:
             raise ValueError(f"shooter: must be 0 or 1, not {self.shooter!r}")
         if self.push_out not in PUSH_OUT:
             raise ValueError(f"push_out: must be one of {', '.join(PUSH_OUT)}")
+        if self.eight_break not in EIGHT_BREAKS:
+            raise ValueError(f"eight_break: must be one of {', '.join(EIGHT_BREAKS)}, "
+                             f"not {self.eight_break!r}")
+        if self.eight_break != "respot" and self.mode != "8ball":
+            raise ValueError("eight_break: only for mode '8ball'")
         if self.groups is not None:
             if sorted(self.groups) != [0, 1] or sorted(self.groups.values()) != sorted(GROUPS):
                 raise ValueError("groups: must give one player solids and the other stripes")
@@ -91,34 +94,42 @@ class State:
 class Outcome:
     """What a shot means.
 
-    `foul` is None or the name of the foul ("scratch", "off_table", "illegal_break", "no_hit",
-    "wrong_ball_first", "no_rail"); `fouls` lists every foul the shot committed. After a foul
+    `foul` is None or the first of `fouls`, every `Foul` the shot committed. After a foul
     the incoming player has ball in hand in `ball_in_hand_area` ("anywhere", or "kitchen":
     behind the head string); when there is no ball in hand the area is None. `groups` are the
     groups after the shot (None while the table is open). `winner` is None while the game goes
-    on, else the player who won. `respot` lists balls to put back on the table (the 8 pocketed
-    on the break, the 9 pocketed on a foul). `continue_turn` is True when the shooter shoots
-    again. `option` names a choice the incoming player has: "rerack_or_accept" (8-ball illegal
-    break) or "shoot_or_pass" (9-ball, after a push-out). Once `winner` is set the game is over
-    and `next_shooter` is simply the shooter; the match decides who breaks next.
+    on, else the player who won. `said` is the verdict as codes (`rules.codes.Said`), which
+    `rules.words` puts in words; `reason` is it in the record's words. `respot` lists balls to
+    put back on the table (the 8 pocketed on the break, the 9 pocketed on a foul).
+    `continue_turn` is True when the shooter shoots again. `option` is a choice the incoming
+    player has (`Option`). `rerack`: the balls are racked afresh and `next_shooter` breaks
+    (8-ball, the 8 on the break with the re-rack variant). Once `winner` is set the game is
+    over and `next_shooter` is simply the shooter; the match decides who breaks next.
     """
 
-    foul: str | None
+    foul: Foul | None
     next_shooter: int
     ball_in_hand: bool
     groups: dict[int, str] | None
     winner: int | None
-    reason: str
+    said: tuple[Said, ...]
     respot: tuple[str, ...] = ()
     continue_turn: bool = False
     ball_in_hand_area: str | None = None
-    fouls: tuple[str, ...] = ()
-    option: str | None = None
+    fouls: tuple[Foul, ...] = ()
+    option: Option | None = None
+    rerack: bool = False
+
+    @property
+    def reason(self) -> str:
+        """The verdict in the record's words ("... player 0 continues")."""
+        return in_words(self.said)
 
     def to_json(self) -> dict:
-        """A JSON-able dict (player keys of `groups` become "0" and "1")."""
-        return {
-            "foul": self.foul,
+        """A JSON-able dict (player keys of `groups` become "0" and "1"; codes their
+        strings). `rerack` is written only when set (outcomes from before it had none)."""
+        out = {
+            "foul": None if self.foul is None else self.foul.value,
             "next_shooter": self.next_shooter,
             "ball_in_hand": self.ball_in_hand,
             "groups": groups_to_json(self.groups),
@@ -127,9 +138,12 @@ class Outcome:
             "ball_in_hand_area": self.ball_in_hand_area,
             "continue_turn": self.continue_turn,
             "respot": list(self.respot),
-            "fouls": list(self.fouls),
-            "option": self.option,
+            "fouls": [f.value for f in self.fouls],
+            "option": None if self.option is None else self.option.value,
         }
+        if self.rerack:
+            out["rerack"] = True
+        return out
 
 
 def legal_targets(state: State, present: Sequence[str]) -> list[str]:
@@ -153,7 +167,7 @@ def groups_to_json(groups: dict[int, str] | None) -> dict[str, str] | None:
     return None if groups is None else {str(p): g for p, g in sorted(groups.items())}
 
 
-def order_fouls(fouls: set[str] | list[str]) -> tuple[str, ...]:
+def order_fouls(fouls: set[Foul]) -> tuple[Foul, ...]:
     return tuple(f for f in FOULS if f in fouls)
 
 
@@ -174,6 +188,7 @@ def after(state: State, **changes) -> State:
 __all__ = [
     "AREAS",
     "EIGHT_BALLS",
+    "EIGHT_BREAKS",
     "FOULS",
     "GROUPS",
     "MODES",

@@ -10,8 +10,9 @@ Choices made where the rules leave one to a player, or where they are simplified
   incoming player ball in hand behind the head string ("kitchen"); balls pocketed stay down.
 - **8 on the break** is re-spotted (``respot=("8",)``) and the breaker continues, unless the
   break was a foul, when the opponent gets ball in hand in the kitchen. WPA also lets the
-  breaker (or, after a scratch, the opponent) ask for a re-rack instead; the re-spot is the
-  option this referee always takes.
+  breaker (or, after a scratch, the opponent) ask for a re-rack instead: with
+  ``state.eight_break == "rerack"`` the 8 on the break always means a fresh rack, broken again
+  by the same player from the kitchen (``rerack=True``; the new state is that rack's break).
 - **Open table.** The table is open after the break whatever went down. On an open table any
   solid or stripe may be hit first, but hitting the 8 first is a foul. The first legal pocket
   after the break assigns the groups: the shooter gets the group of the ball pocketed; if both
@@ -32,6 +33,7 @@ Choices made where the rules leave one to a player, or where they are simplified
 
 from __future__ import annotations
 
+from termpool.rules.codes import Foul, Option, Said, Why
 from termpool.rules.common import (
     Outcome,
     State,
@@ -43,7 +45,7 @@ from termpool.rules.common import (
     other_group,
 )
 from termpool.rules.events import ShotSummary
-from termpool.rules.words import BREAK_RAIL_BALLS, KITCHEN, NO_HIT, NO_RAIL
+from termpool.rules.words import BREAK_RAIL_BALLS
 
 
 def judge(state: State, summary: ShotSummary) -> tuple[Outcome, State]:
@@ -55,48 +57,38 @@ def judge(state: State, summary: ShotSummary) -> tuple[Outcome, State]:
     return _shot(state, summary)
 
 
-def _ball(b: str) -> str:
-    return "the cue ball" if b == "cue" else f"the {b}"
-
-
-def _names(balls: list[str]) -> str:
-    names = [_ball(b) for b in balls]
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-
-
 def _down(state: State, summary: ShotSummary, respot: tuple[str, ...] = ()) -> tuple[str, ...]:
     gone = [*summary.object_pocketed, *(b for b in summary.off_table if b != summary.cue_id)]
     new = [b for b in dict.fromkeys(gone) if b not in respot and b not in state.pocketed]
     return (*state.pocketed, *new)
 
 
-def _cue_fouls(summary: ShotSummary) -> set[str]:
+def _cue_fouls(summary: ShotSummary) -> set[Foul]:
     fouls = set()
     if summary.scratch:
-        fouls.add("scratch")
+        fouls.add(Foul.SCRATCH)
     if summary.off_table:
-        fouls.add("off_table")
+        fouls.add(Foul.OFF_TABLE)
     return fouls
 
 
-def _foul_words(foul: str, summary: ShotSummary, targets: list[str], groups, shooter) -> str:
-    if foul == "scratch":
-        return f"scratch: {summary.scratch_words}"
-    if foul == "off_table":
-        return f"{_names(list(summary.off_table))} left the table"
-    if foul == "no_hit":
-        return NO_HIT
-    if foul == "wrong_ball_first":
+def _foul_said(foul: Foul, summary: ShotSummary, targets: list[str], groups,
+               shooter: int) -> Said:
+    if foul == Foul.SCRATCH:
+        return Said(Why.SCRATCH, pocket=summary.pocketed.get(summary.cue_id))
+    if foul == Foul.OFF_TABLE:
+        return Said(Why.LEFT_TABLE, balls=tuple(summary.off_table))
+    if foul == Foul.NO_HIT:
+        return Said(Why.NO_HIT)
+    if foul == Foul.WRONG_BALL_FIRST:
         hit = summary.first_contact
         if groups is None:
-            return f"the cue ball hit {_ball(hit)} first, which is not allowed on an open table"
+            return Said(Why.HIT_ON_OPEN_TABLE, ball=hit)
         own = groups[shooter]
         if targets == ["8"]:
-            return f"the cue ball hit {_ball(hit)} first; with the {own} cleared it must be the 8"
-        return f"the cue ball hit {_ball(hit)} first, not one of the {own}"
-    if foul == "no_rail":
-        return NO_RAIL
-    return foul
+            return Said(Why.HIT_NOT_EIGHT, ball=hit, group=own)
+        return Said(Why.HIT_NOT_GROUP, ball=hit, group=own)
+    return Said(Why.NO_RAIL)
 
 
 # ---------------------------------------------------------------------------------- break
@@ -109,27 +101,34 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     legal = bool(potted) or rails >= BREAK_RAIL_BALLS
     fouls = _cue_fouls(s)
     eight = "8" in s.pocketed or "8" in s.off_table
-    respot = ("8",) if eight else ()
+    rerack = eight and state.eight_break == "rerack"
+    respot = ("8",) if eight and not rerack else ()
     if not legal:
-        fouls.add("illegal_break")
+        fouls.add(Foul.ILLEGAL_BREAK)
     order = order_fouls(fouls)
-    words = []
+    said = []
     if not legal:
-        words.append(
-            f"illegal break: nothing pocketed and {rails} object "
-            f"{'ball' if rails == 1 else 'balls'} reached a cushion ({BREAK_RAIL_BALLS} needed)"
-        )
-    words += [_foul_words(f, s, [], None, me) for f in order if f != "illegal_break"]
+        said.append(Said(Why.ILLEGAL_BREAK, count=rails))
+    said += [_foul_said(f, s, [], None, me) for f in order if f != Foul.ILLEGAL_BREAK]
+    if rerack:
+        # The variant where the 8 on the break means a fresh rack, broken by the same player.
+        if legal:
+            said.insert(0, Said(Why.LEGAL_BREAK_POTTED, balls=tuple(potted)))
+        said.append(Said(Why.EIGHT_RERACKED, player=me))
+        out = Outcome(foul=order[0] if order else None, fouls=order, next_shooter=me,
+                      ball_in_hand=True, ball_in_hand_area="kitchen", groups=None,
+                      winner=None, said=tuple(said), continue_turn=not order, rerack=True)
+        return out, State(mode=state.mode, shooter=me, is_break=True,
+                          three_foul=state.three_foul, eight_break=state.eight_break)
     if eight:
-        words.append("the 8 went down on the break and is re-spotted")
+        said.append(Said(Why.EIGHT_RESPOTTED))
     pocketed_after = _down(state, s, respot)
     if order:
-        in_hand = bool(fouls - {"illegal_break"})
-        text = "; ".join(words)
+        in_hand = bool(fouls - {Foul.ILLEGAL_BREAK})
         if not legal:
-            text += f"; player {you} may accept the table or have it re-racked"
+            said.append(Said(Why.MAY_RERACK, player=you))
         if in_hand:
-            text += f"; player {you} has ball in hand {KITCHEN}"
+            said.append(Said(Why.IN_HAND_KITCHEN, player=you))
         out = Outcome(
             foul=order[0],
             fouls=order,
@@ -138,21 +137,21 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
             ball_in_hand_area="kitchen" if in_hand else None,
             groups=None,
             winner=None,
-            reason=text,
+            said=tuple(said),
             respot=respot,
             continue_turn=False,
-            option=None if legal else "rerack_or_accept",
+            option=None if legal else Option.RERACK_OR_ACCEPT,
         )
         new = after(state, shooter=you, groups=None, fouls=count_fouls(state, True),
                     pocketed=pocketed_after)
         return out, new
     if potted:
-        words.insert(0, f"legal break: {_names(potted)} pocketed")
-        words.append(f"the table is open and player {me} continues")
+        said.insert(0, Said(Why.LEGAL_BREAK_POTTED, balls=tuple(potted)))
+        said.append(Said(Why.OPEN_CONTINUES, player=me))
         nxt = me
     else:
-        words.insert(0, f"legal break: {rails} object balls reached a cushion, nothing pocketed")
-        words.append(f"the table is open and it is player {you}'s turn")
+        said.insert(0, Said(Why.LEGAL_BREAK_RAILS, count=rails))
+        said.append(Said(Why.OPEN_TURN, player=you))
         nxt = you
     out = Outcome(
         foul=None,
@@ -160,7 +159,7 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
         ball_in_hand=False,
         groups=None,
         winner=None,
-        reason="; ".join(words),
+        said=tuple(said),
         respot=respot,
         continue_turn=nxt == me,
     )
@@ -182,18 +181,17 @@ def _shot(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     targets = _targets(state)
     fouls = _cue_fouls(s)
     if s.first_contact is None:
-        fouls.add("no_hit")
+        fouls.add(Foul.NO_HIT)
     else:
         if s.first_contact not in targets:
-            fouls.add("wrong_ball_first")
+            fouls.add(Foul.WRONG_BALL_FIRST)
         if not s.rail_balls and not s.object_pocketed:
-            fouls.add("no_rail")
+            fouls.add(Foul.NO_RAIL)
     order = order_fouls(fouls)
     groups = state.groups
-    words = [_foul_words(f, s, targets, groups, me) for f in order]
+    said = [_foul_said(f, s, targets, groups, me) for f in order]
 
-    def end(winner: int, why: str) -> tuple[Outcome, State]:
-        reason = "; ".join([*words, why]) if words else why
+    def end(winner: int, why: Said) -> tuple[Outcome, State]:
         out = Outcome(
             foul=order[0] if order else None,
             fouls=order,
@@ -201,33 +199,31 @@ def _shot(state: State, s: ShotSummary) -> tuple[Outcome, State]:
             ball_in_hand=False,
             groups=groups,
             winner=winner,
-            reason=reason,
+            said=(*said, why),
         )
         return out, after(state, fouls=count_fouls(state, bool(order)), pocketed=_down(state, s))
 
     if "8" in s.off_table:
-        return end(you, f"with the 8 off the table player {me} loses")
+        return end(you, Said(Why.EIGHT_OFF_TABLE, player=me))
     if "8" in s.pocketed:
         pocket = s.pocketed["8"]
         if order:
-            return end(you, f"the 8 went down on a foul: player {me} loses")
+            return end(you, Said(Why.EIGHT_ON_FOUL, player=me))
         if targets != ["8"]:
-            still = "the table is open" if groups is None else f"the {groups[me]} were not cleared"
-            return end(you, f"the 8 went down early ({still}): player {me} loses")
+            return end(you, Said(Why.EIGHT_EARLY, player=me,
+                                 group=None if groups is None else groups[me]))
         if state.called is None or state.called[0] != "8":
-            return end(you, f"the 8 went into the {pocket} pocket without a call: "
-                            f"player {me} loses")
+            return end(you, Said(Why.EIGHT_UNCALLED, pocket=pocket, player=me))
         if state.called[1] != pocket:
-            return end(you, f"the 8 went into the {pocket} pocket, not the called "
-                            f"{state.called[1]}: player {me} loses")
-        return end(me, f"the 8 went into the called {pocket} pocket: player {me} wins")
+            return end(you, Said(Why.EIGHT_WRONG_POCKET, pocket=pocket, called=state.called[1],
+                                 player=me))
+        return end(me, Said(Why.EIGHT_CALLED, pocket=pocket, player=me))
 
-    potted = s.object_pocketed
+    potted = tuple(s.object_pocketed)
     if order:
-        reason = "; ".join(words)
         if potted:
-            reason += f"; {_names(potted)} stay{'s' if len(potted) == 1 else ''} down"
-        reason += f"; player {you} has ball in hand"
+            said.append(Said(Why.STAY_DOWN, balls=potted))
+        said.append(Said(Why.IN_HAND, player=you))
         out = Outcome(
             foul=order[0],
             fouls=order,
@@ -236,7 +232,7 @@ def _shot(state: State, s: ShotSummary) -> tuple[Outcome, State]:
             ball_in_hand_area="anywhere",
             groups=groups,
             winner=None,
-            reason=reason,
+            said=tuple(said),
         )
         new = after(state, shooter=you, fouls=count_fouls(state, True), pocketed=_down(state, s))
         return out, new
@@ -244,20 +240,20 @@ def _shot(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     if groups is None and potted:
         g = group_of(potted[0])
         groups = {me: g, you: other_group(g)}
-        nxt, why = me, f"{_names(potted)} pocketed: player {me} takes the {g} and continues"
+        nxt, why = me, Said(Why.TAKES_GROUP, balls=potted, player=me, group=g)
     elif groups is not None and any(group_of(b) == groups[me] for b in potted):
-        nxt, why = me, f"{_names(potted)} pocketed: player {me} continues"
+        nxt, why = me, Said(Why.POTTED_CONTINUES, balls=potted, player=me)
     elif potted:
-        nxt, why = you, f"{_names(potted)} pocketed, none of the {groups[me]}: player {you}'s turn"
+        nxt, why = you, Said(Why.POTTED_NOT_OWN, balls=potted, group=groups[me], player=you)
     else:
-        nxt, why = you, f"nothing pocketed: player {you}'s turn"
+        nxt, why = you, Said(Why.NOTHING_TURN, player=you)
     out = Outcome(
         foul=None,
         next_shooter=nxt,
         ball_in_hand=False,
         groups=groups,
         winner=None,
-        reason=why,
+        said=(why,),
         continue_turn=nxt == me,
     )
     new = after(state, shooter=nxt, groups=groups, fouls=count_fouls(state, False),

@@ -56,14 +56,6 @@ class ShotSummary:
     def cue_off_table(self) -> bool:
         return self.cue_id in self.off_table
 
-    @property
-    def scratch_words(self) -> str:
-        """Where the cue ball went, in words (for the reasons)."""
-        pocket = self.pocketed.get(self.cue_id)
-        if pocket is None:
-            return "the cue ball was pocketed"
-        return f"the cue ball went into the {pocket} pocket"
-
 
 def _ball_ids(ev: dict, ids: Sequence[str]) -> list[str]:
     if "i" in ev:

@@ -23,25 +23,10 @@
 
 from __future__ import annotations
 
+from termpool.rules.codes import Foul, Option, Said, Why
 from termpool.rules.common import Outcome, State, after, count_fouls, order_fouls
 from termpool.rules.events import ShotSummary
-from termpool.rules.words import (
-    BREAK_RAIL_BALLS,
-    FOUL_LIMIT,
-    NO_HIT,
-    NO_RAIL,
-    PUSH_OUT_CHOICE,
-    ordinal,
-)
-
-
-def _ball(b: str | None) -> str:
-    return "the cue ball" if b == "cue" else f"the {b}"
-
-
-def _names(balls: list[str]) -> str:
-    names = [_ball(b) for b in balls]
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+from termpool.rules.words import BREAK_RAIL_BALLS, FOUL_LIMIT
 
 
 def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
@@ -55,40 +40,38 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     me, you = state.shooter, state.opponent
     on = state.on_table()
     lowest = min(on, key=int) if on else None
-    potted = s.object_pocketed
+    potted = tuple(s.object_pocketed)
     rails = len(s.object_rail_balls)
 
-    fouls: set[str] = set()
-    words: list[str] = []
+    fouls: set[Foul] = set()
+    said: list[Said] = []
     if s.scratch:
-        fouls.add("scratch")
-        words.append(f"scratch: {s.scratch_words}")
+        fouls.add(Foul.SCRATCH)
+        said.append(Said(Why.SCRATCH, pocket=s.pocketed.get(s.cue_id)))
     if s.off_table:
-        fouls.add("off_table")
-        words.append(f"{_names(list(s.off_table))} left the table")
+        fouls.add(Foul.OFF_TABLE)
+        said.append(Said(Why.LEFT_TABLE, balls=tuple(s.off_table)))
     if not push:
         if s.first_contact is None:
-            fouls.add("no_hit")
-            words.append(NO_HIT)
+            fouls.add(Foul.NO_HIT)
+            said.append(Said(Why.NO_HIT))
         elif s.first_contact != lowest:
-            fouls.add("wrong_ball_first")
-            words.append(f"the cue ball hit {_ball(s.first_contact)} first, "
-                         f"not the lowest ball, {_ball(lowest)}")
+            fouls.add(Foul.WRONG_BALL_FIRST)
+            said.append(Said(Why.HIT_NOT_LOWEST, ball=s.first_contact, lowest=lowest))
         if is_break:
             if not potted and rails < BREAK_RAIL_BALLS:
-                fouls.add("illegal_break")
-                words.append(f"illegal break: nothing pocketed and {rails} object "
-                             f"{'ball' if rails == 1 else 'balls'} reached a cushion "
-                             f"({BREAK_RAIL_BALLS} needed)")
+                fouls.add(Foul.ILLEGAL_BREAK)
+                said.append(Said(Why.ILLEGAL_BREAK, count=rails))
         elif s.first_contact is not None and not s.rail_balls and not potted:
-            fouls.add("no_rail")
-            words.append(NO_RAIL)
+            fouls.add(Foul.NO_RAIL)
+            said.append(Said(Why.NO_RAIL))
     order = order_fouls(fouls)
     nine = "9" in s.pocketed or "9" in s.off_table
     gone = [*potted, *(b for b in s.off_table if b != s.cue_id)]
     # Pushing out becomes possible after a break that met its requirements (1 first, and a
     # pocket or four balls to a cushion), for whoever shoots next.
-    break_ok = is_break and not ({"no_hit", "wrong_ball_first", "illegal_break"} & fouls)
+    break_ok = is_break and not ({Foul.NO_HIT, Foul.WRONG_BALL_FIRST, Foul.ILLEGAL_BREAK}
+                                 & fouls)
     push_next = "available" if break_ok else "none"
 
     def new_state(shooter: int, respot: tuple[str, ...]) -> State:
@@ -99,45 +82,43 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     if order:
         respot = ("9",) if nine else ()
         if potted:
-            words.append(f"{_names(potted)} pocketed on a foul")
+            said.append(Said(Why.POTTED_ON_FOUL, balls=potted))
         if nine:
-            words.append("the 9 is re-spotted")
+            said.append(Said(Why.NINE_RESPOTTED))
         nxt = new_state(you, respot)
         if state.three_foul and nxt.fouls[me] >= FOUL_LIMIT:
-            words.append(f"{ordinal(FOUL_LIMIT)} consecutive foul: player {me} loses")
+            said.append(Said(Why.FOUL_LIMIT, player=me))
             out = Outcome(foul=order[0], fouls=order, next_shooter=me, ball_in_hand=False,
-                          groups=None, winner=you, reason="; ".join(words), respot=respot)
+                          groups=None, winner=you, said=tuple(said), respot=respot)
             return out, after(nxt, shooter=me)
-        words.append(f"player {you} has ball in hand")
+        said.append(Said(Why.IN_HAND, player=you))
         out = Outcome(foul=order[0], fouls=order, next_shooter=you, ball_in_hand=True,
                       ball_in_hand_area="anywhere", groups=None, winner=None,
-                      reason="; ".join(words), respot=respot)
+                      said=tuple(said), respot=respot)
         return out, nxt
 
     if push:
         respot = ("9",) if nine else ()
-        text = "push-out"
-        if potted:
-            text += f": {_names(potted)} pocketed, not counted" + (
-                "; the 9 is re-spotted" if nine else "")
-        text += f"; player {you} chooses {PUSH_OUT_CHOICE}"
+        said = [Said(Why.PUSH_OUT, balls=potted)]
+        if potted and nine:
+            said.append(Said(Why.NINE_RESPOTTED))
+        said.append(Said(Why.CHOOSES, player=you))
         out = Outcome(foul=None, next_shooter=you, ball_in_hand=False, groups=None,
-                      winner=None, reason=text, respot=respot, option="shoot_or_pass")
+                      winner=None, said=tuple(said), respot=respot,
+                      option=Option.SHOOT_OR_PASS)
         return out, new_state(you, respot)
 
     if nine:
-        text = f"the 9 went into the {s.pocketed['9']} pocket"
-        text += " on the break" if is_break else " on a legal shot"
+        why = Why.NINE_ON_BREAK if is_break else Why.NINE_LEGAL
         out = Outcome(foul=None, next_shooter=me, ball_in_hand=False, groups=None, winner=me,
-                      reason=f"{text}: player {me} wins")
+                      said=(Said(why, pocket=s.pocketed["9"], player=me),))
         return out, new_state(me, ())
 
     if potted:
-        nxt, why = me, f"{_names(potted)} pocketed: player {me} continues"
+        nxt, why = me, Said(Why.POTTED_CONTINUES, balls=potted, player=me)
     else:
-        nxt, why = you, f"nothing pocketed: player {you}'s turn"
-    if is_break:
-        why = "legal break; " + why
+        nxt, why = you, Said(Why.NOTHING_TURN, player=you)
+    said = [Said(Why.LEGAL_BREAK), why] if is_break else [why]
     out = Outcome(foul=None, next_shooter=nxt, ball_in_hand=False, groups=None, winner=None,
-                  reason=why, continue_turn=nxt == me)
+                  said=tuple(said), continue_turn=nxt == me)
     return out, new_state(nxt, ())

@@ -11,6 +11,7 @@ shot, not only its events) and belong to ``termpool.game``: a re-rack starts a f
 
 from __future__ import annotations
 
+from termpool.rules.codes import Said, Why
 from termpool.rules.common import Outcome, State, after
 
 
@@ -21,12 +22,12 @@ def judge(state: State, s) -> tuple[Outcome, State]:
     me = state.shooter
     gone = [*s.object_pocketed, *(b for b in s.off_table if b != s.cue_id)]
     down = [b for b in dict.fromkeys(gone) if b not in state.pocketed]
-    words = [f"{', '.join('the ' + b for b in down)} pocketed"] if down else ["nothing pocketed"]
+    said = [Said(Why.PRACTICE_POTTED, balls=tuple(down)) if down else Said(Why.NOTHING_POCKETED)]
     in_hand = s.scratch or s.cue_off_table
     if s.scratch:
-        words.append(f"{s.scratch_words}: ball in hand")
+        said.append(Said(Why.SCRATCH_IN_HAND, pocket=s.pocketed.get(s.cue_id)))
     elif s.cue_off_table:
-        words.append("the cue ball left the table: ball in hand")
+        said.append(Said(Why.CUE_LEFT_IN_HAND))
     out = Outcome(
         foul=None,
         next_shooter=me,
@@ -34,7 +35,7 @@ def judge(state: State, s) -> tuple[Outcome, State]:
         ball_in_hand_area="anywhere" if in_hand else None,
         groups=None,
         winner=None,
-        reason="; ".join(words),
+        said=tuple(said),
         continue_turn=True,
     )
     return out, after(state, pocketed=(*state.pocketed, *down), fouls=(0, 0))

@@ -1,16 +1,20 @@
 """The scriptable referee: a scene's `game` block plus one shot's events -> an outcome.
 
-`termpool sim` calls `referee` when a scene has a `game` block (validated by
-``termpool.scene``); the block and its meaning are documented in docs/scenes.md.
+`termpool sim` loads its scene with `load_game_scene` (the scene with its game block checked,
+see `rules.codec`) and calls `referee` when the scene has a game block; the block and its
+meaning are documented in docs/scenes.md.
 """
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable, Sequence
 
 from termpool.rules import eight, nine, practice
-from termpool.rules.common import MODE_BALLS, Outcome, State
+from termpool.rules.codec import read_game, state_from_game
+from termpool.rules.common import Outcome, State
 from termpool.rules.events import ShotSummary, summarize
+from termpool.scene import Scene, ball_id, load_scene
 
 JUDGES = {"8ball": eight.judge, "9ball": nine.judge, "practice": practice.judge}
 
@@ -20,32 +24,26 @@ def judge(state: State, summary: ShotSummary) -> tuple[Outcome, State]:
     return JUDGES[state.mode](state, summary)
 
 
-def state_from_game(game: dict, ids: Sequence[str]) -> State:
-    """The state before the shot described by a scene's (validated) `game` block.
-
-    Balls of the game's set that are not in the scene count as already pocketed.
-    """
-    mode = game["mode"]
-    groups = game.get("groups")
-    called = game.get("called")
-    fouls = game.get("fouls", {})
-    present = set(ids)
-    return State(
-        mode=mode,
-        shooter=int(game.get("shooter", 0)),
-        groups=None if groups is None else {int(p): g for p, g in groups.items()},
-        fouls=(int(fouls.get("0", 0)), int(fouls.get("1", 0))),
-        pocketed=tuple(b for b in MODE_BALLS[mode] if b not in present),
-        is_break=bool(game.get("break", False)),
-        push_out="declared" if game.get("push_out") else "none",
-        called=None if called is None else (str(called["ball"]), str(called["pocket"])),
-        three_foul=bool(game.get("three_foul", False)),
-    )
+def load_game_scene(src: str | os.PathLike | dict) -> Scene:
+    """`scene.load_scene`, and the scene's game block (if any) validated and normalized;
+    SceneError, one line naming the key, for a bad one."""
+    scene = load_scene(src)
+    if scene.game is not None:
+        shot = scene.raw.get("shot")
+        struck = None if shot is None else ball_id(shot.get("ball", "cue"), "shot.ball")
+        scene.game = read_game(scene.game, scene.ids, scene.table.hole_names, struck)
+    return scene
 
 
-def referee(game: dict, ids: Sequence[str], events: Iterable[dict]) -> dict:
-    """The JSON `outcome` of one shot: the scene's game block, its ball ids and its events."""
+def verdict(game: dict, ids: Sequence[str], events: Iterable[dict]) -> Outcome:
+    """The outcome of one shot: the scene's (validated) game block, its ball ids and the
+    shot's events (the engine's, or as `termpool sim` prints them)."""
     state = state_from_game(game, ids)
     summary = summarize(events, ids, is_break=state.is_break)
     outcome, _ = judge(state, summary)
-    return outcome.to_json()
+    return outcome
+
+
+def referee(game: dict, ids: Sequence[str], events: Iterable[dict]) -> dict:
+    """The JSON `outcome` of one shot (see `verdict`)."""
+    return verdict(game, ids, events).to_json()

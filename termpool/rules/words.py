@@ -1,37 +1,78 @@
-"""The referee's words for people: "player 0" becomes the player's name, pockets lose their
-underscores ("foot left"), a player called "You" gets its grammar ("you continue"), and the
-groups take the theme's words ("reds" for solids in the classic theme)."""
+"""Words for people and for the record: the referee's verdicts (codes, `rules.codes`), the
+match's news and the rules page, written once here.
+
+A `Voice` says how players, pockets and groups are named. `RECORD` is the record's voice:
+"player 0" and "player 1", the rules' names of pockets ("foot_left") and groups ("solids");
+records and `termpool sim` keep verdicts in it. `voice(players, theme)` is a person's: the
+players' names (a player called "You" is spoken to: "you continue", "your turn"), pockets in
+words ("foot left") and the theme's groups ("reds" for solids in the classic theme).
+"""
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
+from dataclasses import dataclass
 
-from termpool.rules.themes import group_label
+from termpool.rules.codes import Choice, Option, Said, Why
 
-YOU_GRAMMAR = (("You continues", "You continue"), ("You loses", "You lose"),
-               ("You wins", "You win"), ("You has", "You have"), ("You's", "your"),
-               ("You is", "You are"))
-
-
-def themed(text: str, theme: str = "standard") -> str:
-    """`text` with the rules' group names ("solids", "stripes") in the words of `theme`."""
-    if theme != "standard":
-        for g in ("solids", "stripes"):
-            text = re.sub(rf"\b{g}\b", group_label(g, theme), text)
-    return text
+YOU = "You"  # the name of a player spoken to (the person against the computer)
+# The ball themes and each one's words for the rules' groups. The balls' colours are the UI's.
+GROUP_WORDS = {
+    "standard": {"solids": "solids", "stripes": "stripes"},
+    "classic": {"solids": "reds", "stripes": "yellows"},
+}
+THEMES = tuple(GROUP_WORDS)
 
 
-def in_names(text: str, players: Sequence[str], theme: str = "standard") -> str:
-    """`text` (a referee's reason) with "player 0" / "player 1" as `players` name them, in the
-    words of the ball `theme`."""
-    # The referee says "player 0"; default names such as "Player 1" must not be rewritten.
-    text = re.sub(r"\bplayer ([01])\b", lambda g: players[int(g.group(1))], text)
-    for a, b in YOU_GRAMMAR:
-        text = text.replace(a, b)
-    text = re.sub(r"(?<=[a-z0-9,;:] )You\b", "you", text)  # "... and you continue"
-    text = themed(text, theme)
-    return re.sub(r"\b(head|side|foot)_(left|right)\b", r"\1 \2", text)
+def group_label(group: str, theme: str = "standard") -> str:
+    """The theme's word for a rules group: "solids" is "reds" in the classic theme."""
+    return GROUP_WORDS[theme][group]
+
+
+@dataclass(frozen=True)
+class Voice:
+    """How words name the players, the pockets and the groups."""
+
+    players: tuple[str, str] = ("player 0", "player 1")
+    theme: str = "standard"
+    plain: bool = True  # pockets as the table names them ("foot_left"), else in words
+
+    def pocket(self, name: str) -> str:
+        return name if self.plain else name.replace("_", " ")
+
+    def group(self, group: str) -> str:
+        return group_label(group, self.theme)
+
+    def spoken_to(self, p: int) -> bool:
+        return self.players[p] == YOU
+
+    def name(self, p: int) -> str:
+        return "you" if self.spoken_to(p) else self.players[p]
+
+    def verb(self, p: int, third: str, second: str) -> str:
+        """The verb's form for player p: "continues", or "continue" for a player spoken to."""
+        return second if self.spoken_to(p) else third
+
+    def does(self, p: int, third: str, second: str) -> str:
+        """The player and a verb: "Bob continues", "you continue"."""
+        return f"{self.name(p)} {self.verb(p, third, second)}"
+
+    def whose(self, p: int) -> str:
+        return "your" if self.spoken_to(p) else f"{self.players[p]}'s"
+
+
+RECORD = Voice()
+
+
+def voice(players: Sequence[str], theme: str = "standard") -> Voice:
+    """A person's voice: the players' names, pockets in words, the theme's groups."""
+    return Voice((players[0], players[1]), theme, plain=False)
+
+
+def _start(text: str) -> str:
+    """A sentence that begins with a player spoken to begins "You"."""
+    return "Y" + text[1:] if text.startswith("you ") else text
+
 
 # ------------------------------------------------------------------------------- shared facts
 # Said by the referees in their verdicts and stated by the rules page (`rules_page`, shown by
@@ -62,20 +103,184 @@ def ordinal(n: int) -> str:
 MODE_NAMES = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}
 
 
+# ----------------------------------------------------------------------------------- verdicts
+
+
+def _ball(b: str | None) -> str:
+    return "the cue ball" if b == "cue" else f"the {b}"
+
+
+def _balls(balls: Sequence[str]) -> str:
+    names = [_ball(b) for b in balls]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def _cue_down(v: Voice, pocket: str | None) -> str:
+    if pocket is None:
+        return "the cue ball was pocketed"
+    return f"the cue ball went into the {v.pocket(pocket)} pocket"
+
+
+def _illegal_break(n: int) -> str:
+    return (f"illegal break: nothing pocketed and {n} object {'ball' if n == 1 else 'balls'} "
+            f"reached a cushion ({BREAK_RAIL_BALLS} needed)")
+
+
+def _early(v: Voice, s: Said) -> str:
+    still = "the table is open" if s.group is None else f"the {v.group(s.group)} were not cleared"
+    return f"the 8 went down early ({still}): {v.does(s.player, 'loses', 'lose')}"
+
+
+def _push_out(s: Said) -> str:
+    return "push-out" + (f": {_balls(s.balls)} pocketed, not counted" if s.balls else "")
+
+
+CLAUSES = {
+    Why.SCRATCH: lambda v, s: f"scratch: {_cue_down(v, s.pocket)}",
+    Why.LEFT_TABLE: lambda v, s: f"{_balls(s.balls)} left the table",
+    Why.ILLEGAL_BREAK: lambda v, s: _illegal_break(s.count),
+    Why.NO_HIT: lambda v, s: NO_HIT,
+    Why.HIT_ON_OPEN_TABLE: lambda v, s: f"the cue ball hit {_ball(s.ball)} first, which is "
+                                        "not allowed on an open table",
+    Why.HIT_NOT_EIGHT: lambda v, s: f"the cue ball hit {_ball(s.ball)} first; with the "
+                                    f"{v.group(s.group)} cleared it must be the 8",
+    Why.HIT_NOT_GROUP: lambda v, s: f"the cue ball hit {_ball(s.ball)} first, not one of the "
+                                    f"{v.group(s.group)}",
+    Why.HIT_NOT_LOWEST: lambda v, s: f"the cue ball hit {_ball(s.ball)} first, not the lowest "
+                                     f"ball, {_ball(s.lowest)}",
+    Why.NO_RAIL: lambda v, s: NO_RAIL,
+    Why.LEGAL_BREAK: lambda v, s: "legal break",
+    Why.LEGAL_BREAK_POTTED: lambda v, s: f"legal break: {_balls(s.balls)} pocketed",
+    Why.LEGAL_BREAK_RAILS: lambda v, s: f"legal break: {s.count} object balls reached a "
+                                        "cushion, nothing pocketed",
+    Why.EIGHT_RESPOTTED: lambda v, s: "the 8 went down on the break and is re-spotted",
+    Why.EIGHT_RERACKED: lambda v, s: "the 8 on the break: re-racked, "
+                                     f"{v.does(s.player, 'breaks', 'break')} again",
+    Why.MAY_RERACK: lambda v, s: f"{v.name(s.player)} may accept the table or have it "
+                                 "re-racked",
+    Why.OPEN_CONTINUES: lambda v, s: "the table is open and "
+                                     f"{v.does(s.player, 'continues', 'continue')}",
+    Why.OPEN_TURN: lambda v, s: f"the table is open and it is {v.whose(s.player)} turn",
+    Why.IN_HAND: lambda v, s: f"{v.does(s.player, 'has', 'have')} ball in hand",
+    Why.IN_HAND_KITCHEN: lambda v, s: f"{v.does(s.player, 'has', 'have')} ball in hand "
+                                      f"{KITCHEN}",
+    Why.STAY_DOWN: lambda v, s: f"{_balls(s.balls)} stay{'s' if len(s.balls) == 1 else ''} "
+                                "down",
+    Why.POTTED_ON_FOUL: lambda v, s: f"{_balls(s.balls)} pocketed on a foul",
+    Why.NINE_RESPOTTED: lambda v, s: "the 9 is re-spotted",
+    Why.TAKES_GROUP: lambda v, s: f"{_balls(s.balls)} pocketed: "
+                                  f"{v.does(s.player, 'takes', 'take')} the "
+                                  f"{v.group(s.group)} and "
+                                  f"{v.verb(s.player, 'continues', 'continue')}",
+    Why.POTTED_CONTINUES: lambda v, s: f"{_balls(s.balls)} pocketed: "
+                                       f"{v.does(s.player, 'continues', 'continue')}",
+    Why.POTTED_NOT_OWN: lambda v, s: f"{_balls(s.balls)} pocketed, none of the "
+                                     f"{v.group(s.group)}: {v.whose(s.player)} turn",
+    Why.NOTHING_TURN: lambda v, s: f"nothing pocketed: {v.whose(s.player)} turn",
+    Why.PUSH_OUT: lambda v, s: _push_out(s),
+    Why.CHOOSES: lambda v, s: f"{v.does(s.player, 'chooses', 'choose')} {PUSH_OUT_CHOICE}",
+    Why.EIGHT_OFF_TABLE: lambda v, s: "with the 8 off the table "
+                                      f"{v.does(s.player, 'loses', 'lose')}",
+    Why.EIGHT_ON_FOUL: lambda v, s: f"the 8 went down on a foul: "
+                                    f"{v.does(s.player, 'loses', 'lose')}",
+    Why.EIGHT_EARLY: _early,
+    Why.EIGHT_UNCALLED: lambda v, s: f"the 8 went into the {v.pocket(s.pocket)} pocket "
+                                     f"without a call: {v.does(s.player, 'loses', 'lose')}",
+    Why.EIGHT_WRONG_POCKET: lambda v, s: f"the 8 went into the {v.pocket(s.pocket)} pocket, "
+                                         f"not the called {v.pocket(s.called)}: "
+                                         f"{v.does(s.player, 'loses', 'lose')}",
+    Why.EIGHT_CALLED: lambda v, s: f"the 8 went into the called {v.pocket(s.pocket)} pocket: "
+                                   f"{v.does(s.player, 'wins', 'win')}",
+    Why.NINE_ON_BREAK: lambda v, s: f"the 9 went into the {v.pocket(s.pocket)} pocket on the "
+                                    f"break: {v.does(s.player, 'wins', 'win')}",
+    Why.NINE_LEGAL: lambda v, s: f"the 9 went into the {v.pocket(s.pocket)} pocket on a legal "
+                                 f"shot: {v.does(s.player, 'wins', 'win')}",
+    Why.FOUL_LIMIT: lambda v, s: f"{ordinal(FOUL_LIMIT)} consecutive foul: "
+                                 f"{v.does(s.player, 'loses', 'lose')}",
+    Why.PRACTICE_POTTED: lambda v, s: f"{', '.join('the ' + b for b in s.balls)} pocketed",
+    Why.NOTHING_POCKETED: lambda v, s: "nothing pocketed",
+    Why.SCRATCH_IN_HAND: lambda v, s: f"{_cue_down(v, s.pocket)}: ball in hand",
+    Why.CUE_LEFT_IN_HAND: lambda v, s: "the cue ball left the table: ball in hand",
+}
+
+
+def reason(said: Sequence[Said], v: Voice = RECORD) -> str:
+    """A verdict's clauses in words, joined by semicolons (in the record's voice unless
+    given another)."""
+    return _start("; ".join(CLAUSES[s.why](v, s) for s in said))
+
+
+def verdict(outcome, v: Voice) -> tuple[str, str]:
+    """An outcome as the panel says it: (text, tone), the tone "foul", "good" (the shooter
+    goes on, or won) or "plain"."""
+    text = reason(outcome.said, v)
+    if outcome.foul:
+        return f"Foul: {text}", "foul"
+    return text, "good" if outcome.continue_turn else "plain"
+
+
+# ---------------------------------------------------------------------------- the match's news
+
+
+def frame_won(v: Voice, winner: int, scores: Sequence[int], breaker: int) -> str:
+    return _start(f"{v.does(winner, 'wins', 'win')} the frame ({scores[0]}-{scores[1]}); "
+                  f"{v.does(breaker, 'breaks', 'break')}")
+
+
+def game_won(v: Voice, winner: int) -> str:
+    return _start(f"{v.does(winner, 'wins', 'win')}!")
+
+
+def match_won(v: Voice, winner: int, score: str = "") -> str:
+    """"Bob wins the match 2-1" (`score` may be empty)."""
+    return _start(f"{v.does(winner, 'wins', 'win')} the match{score}")
+
+
+def foul_warning(v: Voice, player: int) -> str:
+    """The warning owed before a shot that could be a player's last foul in a row."""
+    return _start(f"{v.does(player, 'is', 'are')} on {count_word(FOUL_LIMIT - 1)} fouls: a "
+                  f"{ordinal(FOUL_LIMIT)} foul in a row loses the frame")
+
+
+# The options: what the box asks, the key of each answer, and the answer in words.
+OPTION_QUESTIONS = {
+    Option.RERACK_OR_ACCEPT: "The break was illegal.",
+    Option.SHOOT_OR_PASS: "Your opponent pushed out.",
+}
+CHOICE_KEYS = {Choice.RERACK: "r", Choice.ACCEPT: "a", Choice.SHOOT: "s", Choice.PASS: "p"}
+CHOICE_WORDS = {Choice.RERACK: "re-rack and break", Choice.ACCEPT: "accept the table",
+                Choice.SHOOT: "shoot", Choice.PASS: "pass the shot back"}
+CHOICE_OFFERS = {Choice.RERACK: "re-rack and break yourself",
+                 Choice.ACCEPT: "accept the table and shoot",
+                 Choice.SHOOT: "shoot from here", Choice.PASS: "pass the shot back"}
+
+
+def option_lines(option: Option) -> list[str]:
+    """The option box: the question, then a line per answer with its key."""
+    option = Option(option)
+    return [OPTION_QUESTIONS[option], "",
+            *(f"{CHOICE_KEYS[c]}: {CHOICE_OFFERS[c]}" for c in option.choices)]
+
+
+def chose(name: str, choice: Choice) -> str:
+    """"Bob chose to accept the table"."""
+    return f"{name} chose to {CHOICE_WORDS[choice]}"
+
+
 def rules_page(mode: str, *, three_foul: bool | None = None, eight_break: str | None = None,
                theme: str = "standard") -> list[tuple[str, str]]:
     """The rules of `mode` in plain words, as (heading, text) paragraphs. `three_foul` and
     `eight_break` say how the game in play is set (None: both ways are described); `theme`
     names the groups ("reds" and "yellows" in the classic theme)."""
     if mode == "8ball":
-        page = _eight(eight_break)
+        page = _eight(eight_break, theme)
     elif mode == "9ball":
         page = _nine(three_foul)
     elif mode == "practice":
         page = _practice()
     else:
         raise ValueError(f"mode: must be one of 8ball, 9ball, practice, not {mode!r}")
-    return [(head, themed(text, theme)) for head, text in [*page, POCKETS]]
+    return [*page, POCKETS]
 
 
 # The pockets' names, as verdicts and the computer's plans say them ("the foot left pocket").
@@ -91,15 +296,15 @@ def _fouls(after: str) -> str:
             + after)
 
 
-def _eight(eight_break: str | None) -> list[tuple[str, str]]:
+def _eight(eight_break: str | None, theme: str) -> list[tuple[str, str]]:
     rail = count_word(BREAK_RAIL_BALLS)
     respot = ("the 8 is re-spotted and the breaker shoots on, unless the break was a foul")
     rerack = "the balls are re-racked and the breaker breaks again"
     on_break = {"respot": respot, "rerack": rerack}.get(
         eight_break, f"{respot} (with --eight-break rerack: {rerack})")
     return [
-        ("Goal", "pocket all seven balls of your group, the solids (1-7) or the stripes "
-                 "(9-15), then the 8."),
+        ("Goal", f"pocket all seven balls of your group, the {group_label('solids', theme)} "
+                 f"(1-7) or the {group_label('stripes', theme)} (9-15), then the 8."),
         ("The break", f"from ball in hand {KITCHEN} (the line across the table a quarter of "
                       f"its length from the head rail). It is legal when a ball is pocketed "
                       f"or at least {rail} object balls reach a cushion; if not, it is a foul "

@@ -52,12 +52,6 @@ def game_seed(seed: int, index: int) -> int:
     return int(np.random.SeedSequence([seed, index]).generate_state(1, np.uint64)[0])
 
 
-def shot_seed(match: Match) -> int:
-    """The seed of the computer's next decision (as the game's own: the match seed and the
-    shot number)."""
-    return match.seed * 1000 + len(match.history)
-
-
 def _tally(level: str) -> dict:
     return {"level": level, "shots": 0, "pot_attempts": 0, "pots": 0, "fouls": 0,
             "safeties": 0, "breaks": 0, "runs": 0, "after_pot_attempts": 0,
@@ -94,7 +88,9 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
     ends; `stop()` is asked before every shot, and True ends the game there, unfinished.
     """
     levels = tuple(levels)
-    m = Match(mode, table=table, players=players_for(levels), seed=seed, levels=levels)
+    players = tuple(ai.Computer(lv, name, candidates)
+                    for lv, name in zip(levels, players_for(levels), strict=True))
+    m = Match(mode, table=table, players=players, seed=seed)
     tallies = [_tally(levels[0]), _tally(levels[1])]
     # (player, dropped) of the last shot: a pot attempt right after one's own pot that
     # dropped is a test of position.
@@ -106,24 +102,17 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
             if stop():
                 break
             me = m.shooter
-            level, mine = levels[me], tallies[me]
+            player, mine = m.seats[me], tallies[me]
             if m.option is not None:
-                m.choose(ai.choose_option(m.option))
+                m.choose(player.answer(m))
                 continue
-            s = shot_seed(m)
             t0, c0 = clock(), time.process_time()
             if m.ball_in_hand:
-                x, y = ai.choose_placement(*_args(m), m.state, m.ball_in_hand, level=level,
-                                           seed=s)
-                if m.placement_error(x, y):  # never expected; where a scratched ball waits
-                    x, y = m.waiting_spot()
-                m.place_cue(x, y)
-            plan = ai.choose_shot(*_args(m), m.state, level=level, seed=s,
-                                  max_candidates=candidates)
-            struck = ai.as_struck(plan, level, s)
+                m.place_cue(*player.place(m))
+            struck = player.shot(m)  # as struck; its kind and target as meant
             mine["decisions"].append(clock() - t0)
             mine["decisions_cpu"].append(time.process_time() - c0)
-            defence = DEFENCE.get(plan.kind)
+            defence = DEFENCE.get(struck.kind)
             before = _chance_for(m, 1 - me, None) if defence else None
             is_break = m.state.is_break
             run = m.begin(Shot(struck.speed, struck.angle, struck.side, struck.top,
@@ -138,8 +127,8 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
                 kinds = mine["foul_kinds"]
                 kinds[out.foul] = kinds.get(out.foul, 0) + 1
             dropped = False
-            if plan.kind in ("pot", "combo"):
-                dropped = summary.pocketed.get(plan.ball) == plan.pocket
+            if struck.kind in ("pot", "combo"):
+                dropped = summary.pocketed.get(struck.ball) == struck.pocket
                 mine["pot_attempts"] += 1
                 mine["pots"] += dropped
                 if last == (me, True):

@@ -14,7 +14,8 @@ from pathlib import Path
 
 from termpool.physics.engine import Engine
 from termpool.physics.results import DT
-from termpool.scene import SceneError, load_scene
+from termpool.rules.referee import load_game_scene
+from termpool.scene import SceneError
 from termpool.ui.frame import render_scene_text
 
 DEFAULT_SCENE = Path(__file__).resolve().parent.parent / "examples" / "break.json"
@@ -29,7 +30,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
 
     try:
-        scene = load_scene(args.scene)
+        scene = load_game_scene(args.scene)  # a game block is checked as termpool sim does
     except SceneError as e:
         print(f"demo: {e}", file=sys.stderr)
         return 2

@@ -100,7 +100,7 @@ def check_name(text: str) -> str:
 
 
 # The levels, sizes, themes and depths are the ones the game has (tests hold them to ai,
-# physics.table, rules.themes, ui.predict and ui.output); written here too because the command
+# physics.table, rules.words, ui.predict and ui.output); written here too because the command
 # line is parsed before numpy is imported.
 SETTINGS: tuple[Setting, ...] = (
     Setting("level", "Computer's level", "the computer's skill: easy (a beginner), normal (a "

@@ -30,8 +30,9 @@ import numpy as np
 from termpool.ai import Plan
 from termpool.game import Match, ShotRun
 from termpool.physics.results import DT
+from termpool.rules import words
+from termpool.rules.codes import Choice
 from termpool.rules.common import legal_targets
-from termpool.rules.words import in_names
 from termpool.ui.aim import Aim as Trace
 from termpool.ui.aim import aim_trace
 from termpool.ui.controls import AimControl, HoldRamp, KeyMap, PowerCharge
@@ -134,7 +135,7 @@ class Answering:
     """The computer has decided how to answer the option; it says so at the next tick."""
 
     phase: ClassVar[Phase] = Phase.CPU
-    choice: str
+    choice: Choice
 
 
 @dataclass(frozen=True)
@@ -308,9 +309,9 @@ def shooter_is_cpu(s: State) -> bool:
     return s.cpu[s.match.shooter]
 
 
-def names(s: State, text: str) -> str:
-    """The referee's words with the players' names (see rules.words)."""
-    return in_names(text, s.match.players, s.opts.theme)
+def voice(s: State) -> words.Voice:
+    """How words name this match's players, pockets and groups (rules.words)."""
+    return words.voice(s.match.players, s.opts.theme)
 
 
 def shot_clock(s: State) -> float:

@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from termpool.game.layout import head_string
 from termpool.physics.state import POCKETED
+from termpool.rules import words
 from termpool.rules.common import GROUPS, legal_targets
-from termpool.rules.themes import group_label
 from termpool.rules.words import KITCHEN, MODE_NAMES
 from termpool.ui import aid
 from termpool.ui import overlay as ov
@@ -49,10 +50,9 @@ from termpool.ui.state import (
     Thinking,
     cue_index,
     help_of,
-    names,
+    voice,
 )
 from termpool.ui.table_view import Geometry, Layout, TableView
-from termpool.ui.words import OPTION_TEXT
 
 SPIN_TEXT_COLS = 10  # the spin readout beside the face
 POWER_COLS = 14  # the power meter's width in the panel
@@ -128,7 +128,7 @@ def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
 
     def mark(chars) -> None:
         if kitchen:
-            ov.mono_head_string(chars, lay, m.table.length / 4)
+            ov.mono_head_string(chars, lay, head_string(m.table))
         if pred is not None:
             ov.mono_prediction(chars, lay, pred, level, float(m.radius[c]))
         if called is not None:
@@ -136,7 +136,7 @@ def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
 
     def paint(cv) -> None:
         if kitchen:
-            ov.draw_head_string(cv, lay, m.table.length / 4)
+            ov.draw_head_string(cv, lay, head_string(m.table))
         if called is not None:
             ov.draw_called_pocket(cv, lay, holes[called], m.table.hole_r[called])
         if aiming and m.on_table[c]:
@@ -166,10 +166,10 @@ def called_pocket(s: State) -> int | None:
 def _question(s: State, cells) -> None:
     m = s.match
     if s.phase is Phase.OPTION:
-        draw_box(cells, OPTION_TEXT.get(m.option, [m.option]), "your call")
+        draw_box(cells, words.option_lines(m.option), "your call")
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
-        draw_box(cells, [names(s, f"player {m.winner} wins!"), why, "",
+        draw_box(cells, [words.game_won(voice(s), m.winner), why, "",
                          "n: new game   m: menu   q: quit", "w: watch this match"],
                  "game over", "good")
 
@@ -186,7 +186,7 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
             mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
             balls = [k for k in mine if m.on_table[k]]
             down = [k for k in mine if not m.on_table[k]]
-        label = group_label(group, s.opts.theme) if group and s.opts.theme != "standard" \
+        label = words.group_label(group, s.opts.theme) if group and s.opts.theme != "standard" \
             else group
         fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
         score = f"{m.scores[p]}/{frames}" if frames > 1 else None
@@ -245,16 +245,16 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
     m = s.match
     name = m.players[m.shooter]
     out = []
-    warn = m.warning() if s.phase in (Phase.AIM, Phase.PLACE) else None
-    if warn:
-        out.append((warn, "foul"))
+    warned = m.warning() if s.phase in (Phase.AIM, Phase.PLACE) else None
+    if warned is not None:
+        out.append((words.foul_warning(voice(s), warned), "foul"))
     ch = s.controls.charge
     if s.phase is Phase.AIM:
         what = "break" if m.state.is_break else "shoot"
         line = f"{name} to {what}"
         if m.needs_call():
             ball, pocket = aid.called(s)
-            line += f" · calling the {ball} in {pocket.replace('_', ' ')} (C to change)"
+            line += f" · calling the {ball} in {voice(s).pocket(pocket)} (C to change)"
         if m.state.mode == "9ball" and not m.state.is_break:
             on = legal_targets(m.state, m.balls_on_table())
             if on:

@@ -35,9 +35,11 @@ from termpool.game.turn import advance
 from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_RADIUS
 from termpool.physics.results import DT
+from termpool.rules import words
+from termpool.rules.codes import Choice
 from termpool.rules.common import GROUPS, MODE_BALLS, MODES
-from termpool.rules.themes import THEMES, group_label
-from termpool.rules.words import MODE_NAMES, in_names
+from termpool.rules.referee import verdict
+from termpool.rules.words import MODE_NAMES, THEMES, group_label
 from termpool.scene import Scene
 from termpool.text import shown
 from termpool.ui import overlay as ov
@@ -56,7 +58,6 @@ from termpool.ui.panel import (
 )
 from termpool.ui.shots import MAX_SHOT_FRAMES, Clock, speed_to_power
 from termpool.ui.table_view import Geometry
-from termpool.ui.words import OPTION_WORDS, chose
 
 AIM_S = 1.0  # the stick is shown on the shot's line this long before the strike ...
 VERDICT_S = 2.5  # ... and the verdict this long after the balls stop, before the next shot
@@ -117,7 +118,7 @@ def _choices(data: dict) -> dict[int, list[dict]]:
     raw = data.get("choices", [])
     for c in raw if isinstance(raw, list) else []:
         if (isinstance(c, dict) and type(c.get("after_shot")) is int
-                and c.get("player") in (0, 1) and c.get("choice") in OPTION_WORDS):
+                and c.get("player") in (0, 1) and c.get("choice") in tuple(Choice)):
             out.setdefault(c["after_shot"], []).append(c)
     return out
 
@@ -343,41 +344,52 @@ class Watch:
 
         return view.cells(ids, pos, state, radius, mono, paint=paint, mark=mark)
 
-    def _say(self, text: str) -> str:
-        """Words from the file for the screen: the players' names, the theme's groups, any
-        control character escaped."""
-        return in_names(shown(text), self.players, self.theme)
+    def voice(self) -> words.Voice:
+        """How words name the players (as the screen may show them), pockets and groups."""
+        return words.voice(self.players, self.theme)
 
     def mode(self) -> str | None:
         return (self.scenes[self.i][0].game or {}).get("mode")
 
     def verdict(self, i: int) -> list[tuple[str, str]]:
         """The referee's verdict on shot i as the game said it, and any option answered."""
-        out = self.shots[i].get("outcome") or {}
         lines = []
-        if out.get("reason"):
-            reason = self._say(str(out["reason"]))
-            if out.get("foul"):
+        out = self._verdict(i)
+        if out is not None:
+            reason = words.reason(out.said, self.voice())
+            if out.foul:
                 lines.append((f"Foul: {reason}", "foul"))
             else:
-                lines.append((reason, "good" if out.get("continue_turn") or
-                              out.get("winner") is not None else "plain"))
+                lines.append((reason, "good" if out.continue_turn or
+                              out.winner is not None else "plain"))
         for c in self.choices.get(i + 1, []):
-            lines.append((chose(self.players[c["player"]], c["choice"]), "dim"))
+            lines.append((words.chose(self.players[c["player"]], Choice(c["choice"])), "dim"))
         return lines
+
+    def _verdict(self, i: int):
+        """The referee's verdict on shot i: its recorded events judged again (the verdict
+        the game gave, for a true record); None without a game block or with events that
+        are not a shot's."""
+        scene, rec = self.scenes[i][0], self.shots[i]
+        if scene.game is None:
+            return None
+        try:
+            return verdict(scene.game, scene.ids, rec["events"])
+        except (KeyError, IndexError, TypeError, ValueError):
+            return None
 
     def describe(self, i: int) -> str:
         """The shot in words: its power, the cue tip, the call, a push-out."""
         shot = self.shots[i]["shot"]
-        words = [f"power {round(100 * speed_to_power(shot['speed']))}%"]
+        parts = [f"power {round(100 * speed_to_power(shot['speed']))}%"]
         if shot["side"] or shot["top"]:
-            words.append(f"tip {shot['side']:+.1f} side {shot['top']:+.1f} top")
+            parts.append(f"tip {shot['side']:+.1f} side {shot['top']:+.1f} top")
         if shot.get("called"):
             ball, pocket = shot["called"]
-            words.append(self._say(f"calling the {ball} in {pocket}"))
+            parts.append(shown(f"calling the {ball} in {self.voice().pocket(pocket)}"))
         if shot.get("push_out"):
-            words.append("push-out")
-        return " · ".join(words)
+            parts.append("push-out")
+        return " · ".join(parts)
 
     def ending(self) -> str:
         """What the end of the record is: the match won (frames in a race), or where the
@@ -387,7 +399,7 @@ class Watch:
         for p in (0, 1):
             if won[p] >= need:
                 score = f" {won[p]}-{won[1 - p]}" if self.race else ""
-                return self._say(f"player {p} wins the match{score}")
+                return words.match_won(self.voice(), p, score)
         return "the record stops here"
 
     def status(self) -> list[tuple[str, str]]:

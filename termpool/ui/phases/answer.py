@@ -5,10 +5,11 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from termpool.rules import words
+from termpool.rules.codes import Option
 from termpool.ui.phases.turn import new_match, start_turn, to_menu
 from termpool.ui.state import Phase, State
 from termpool.ui.watch import Watch
-from termpool.ui.words import OPTION_KEYS, chose
 
 
 def key(s: State, key) -> State | None:
@@ -16,10 +17,11 @@ def key(s: State, key) -> State | None:
     other keys then do what they do in any phase)."""
     m = s.match
     if s.phase is Phase.OPTION:
-        pick = OPTION_KEYS.get(m.option, {}).get(key.name)
+        keys = {words.CHOICE_KEYS[c]: c for c in Option(m.option).choices}
+        pick = keys.get(key.name)
         if pick is None:
             return None
-        line = (chose(m.players[m.shooter], pick), "dim")
+        line = (words.chose(m.players[m.shooter], pick), "dim")
         player = m.shooter
         m.choose(pick)
         return start_turn(replace(s, message=(line,), chosen=(player, line)))

@@ -4,13 +4,13 @@ in words, then shoots. Any key makes it shoot at once."""
 
 from __future__ import annotations
 
-import re
 from dataclasses import replace
 
-from termpool import ai
+from termpool.ai import Plan
+from termpool.rules import words
+from termpool.rules.codes import Choice
 from termpool.ui.phases.turn import shoot, start_turn
-from termpool.ui.state import Aiming, Answering, State, Thinking, names
-from termpool.ui.words import chose
+from termpool.ui.state import Aiming, Answering, State, Thinking
 
 CPU_AIM_S = 0.6  # the computer turns its stick onto its aim over this long ...
 CPU_SHOW_S = 1.2  # ... then holds it there, its aid and plan on show, this long before it
@@ -34,14 +34,14 @@ def tick(s: State, t: float) -> State:
         if t - part.since < CPU_THINK_FRAME_S:
             return s
         s, decision = plan(s)
-        if isinstance(decision, str):
+        if isinstance(decision, Choice):
             return replace(s, part=Answering(decision))
         # Its turn is timed from the first frame that shows the plan: `t` is from before
         # the plan, which takes a second of its own.
         return replace(s, part=Aiming(decision, s.stroke.angle, skip=part.skip))
     if isinstance(part, Answering):
         m = s.match
-        line = (chose(m.players[m.shooter], part.choice), "turn")
+        line = (words.chose(m.players[m.shooter], part.choice), "turn")
         player = m.shooter
         m.choose(part.choice)
         return start_turn(replace(s, message=(line,), chosen=(player, line)))
@@ -58,25 +58,19 @@ def tick(s: State, t: float) -> State:
     return s
 
 
-def plan(s: State) -> tuple[State, ai.Plan | str]:
-    """The computer's decision: an option's answer, or a placement and then a shot (with its
-    plan in words for the panel)."""
+def plan(s: State) -> tuple[State, Plan | Choice]:
+    """The computer's decision (game.players.Computer): an option's answer, or a placement
+    and then a shot (with its plan in words for the panel)."""
     m = s.match
+    player = m.seats[m.shooter]
     if m.option is not None:
-        return s, ai.choose_option(m.option)
-    level = s.opts.level
-    args = (m.table, m.physics, m.ids, m.pos, m.radius, m.mass, m.on_table, m.state)
-    seed = m.seed * 1000 + len(m.history)
+        return s, player.answer(m)
     if m.ball_in_hand:
-        x, y = ai.choose_placement(*args, m.ball_in_hand, level=level, seed=seed)
-        if m.placement_error(x, y):  # never expected; where a scratched cue ball waits
-            x, y = m.waiting_spot()
-        m.place_cue(x, y)
-    decision = ai.choose_shot(*args[:6], m.on_table, m.state, level=level, seed=seed)
-    decision = ai.as_struck(decision, level, seed)
-    foresees = re.search(r"\b(wins?|loses?|turn|foul)\b", decision.note or "")
-    note = ((names(s, f"Computer: {decision.note}"), "turn"),) if decision.note and not \
-        foresees else ()  # a plan ("3 in the foot left pocket"), not the result it simulated
+        m.place_cue(*player.place(m))
+    decision = player.shot(m)
+    foresees = decision.sees in ("win", "loss", "foul")
+    note = ((f"Computer: {decision.note}", "turn"),) if decision.note and not foresees \
+        else ()  # a plan ("3 in the foot left pocket"), not the result it simulated
     # The verdict on the player's own last shot stays in view through the computer's turn,
     # however many shots it takes (with the computer's answer to an option, if it just gave
     # one); else the last verdict (without the plan of the shot it was about).

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from termpool.ui.state import Aim, Place, State, cue_index, names, nearest_angle
+from termpool.game.layout import head_string
+from termpool.ui.state import Aim, Place, State, cue_index, nearest_angle, voice
 
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 ARROWS = {"left": (-1, 0), "right": (1, 0), "up": (0, 1), "down": (0, -1)}
@@ -15,7 +16,7 @@ def clamp(s: State, x: float, y: float) -> tuple[float, float]:
     m = s.match
     r = float(m.radius[cue_index(s)])
     L, W = m.table.length, m.table.width
-    right = L / 4 if m.ball_in_hand == "kitchen" else L - r
+    right = head_string(m.table) if m.ball_in_hand == "kitchen" else L - r
     return min(right, max(r, x)), min(W - r, max(r, y))
 
 
@@ -27,10 +28,9 @@ def key(s: State, key, action: str | None, t: float) -> State:
         dx, dy = ARROWS[key.name]
         return replace(s, part=Place(clamp(s, x + dx * step, y + dy * step)))
     if action in ("confirm", "place", "shoot") and key.kind == "press":
-        why = s.match.placement_error(x, y)
+        why = s.match.placement_error(x, y, voice(s))
         if why:
-            return replace(s, message=((names(s, f"Can't place the cue ball there: {why}"),
-                                        "foul"),))
+            return replace(s, message=((f"Can't place the cue ball there: {why}", "foul"),))
         s.match.place_cue(x, y)
         # Held, the key that put the ball down keeps coming (repeats; on terminals without
         # releases, as presses): none of it may start a shot.

@@ -7,8 +7,10 @@ from __future__ import annotations
 import secrets
 from dataclasses import replace
 
+from termpool.ai import Computer
 from termpool.game import Match, Shot
 from termpool.physics.cue import clamp_tip
+from termpool.rules import words
 from termpool.ui.controls import PowerCharge
 from termpool.ui.settings import player_names
 from termpool.ui.shots import DEFAULT_POWER, power_to_speed, simulate
@@ -23,9 +25,9 @@ from termpool.ui.state import (
     Stroke,
     Thinking,
     cue_index,
-    names,
     nearest_angle,
     shooter_is_cpu,
+    voice,
 )
 from termpool.ui.term import signals_held
 
@@ -57,11 +59,11 @@ def new_match(s: State, mode: str, opponent: str) -> State:
     cpu = (False, opponent == "cpu" and mode != "practice")
     # Without a seed every game deals a new rack; the seed is in the record either way.
     seed = opts.seed if opts.seed is not None else secrets.randbits(63)
-    match = Match(mode, table=opts.table, frames=opts.frames,
-                  players=player_names(opts.player1, opts.player2, mode, opponent),
-                  seed=seed, theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
-                  eight_break=opts.eight_break,
-                  levels=tuple(opts.level if c else None for c in cpu))
+    names = player_names(opts.player1, opts.player2, mode, opponent)
+    players = tuple(Computer(opts.level, n) if c else n for n, c in zip(names, cpu, strict=True))
+    match = Match(mode, table=opts.table, frames=opts.frames, players=players, seed=seed,
+                  theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
+                  eight_break=opts.eight_break)
     s = replace(s, opts=opts, played=played, match=match, cpu=cpu, last_power=DEFAULT_POWER,
                 shot_power_set=False, message=(), your_verdict=None, stroke=Stroke())
     return start_turn(s)
@@ -77,8 +79,7 @@ def start_turn(s: State) -> State:
     if m.frame_over and m.winner is None:
         won = m.frame_winner
         m.new_frame()
-        frame = (names(s, f"player {won} wins the frame ({m.scores[0]}-{m.scores[1]}); "
-                          f"player {m.shooter} breaks"), "good")
+        frame = (words.frame_won(voice(s), won, m.scores, m.shooter), "good")
         s = replace(s, your_verdict=None, message=(*s.message, frame))  # the news now
     if m.winner is not None:
         return log_match(replace(s, part=Over()))
@@ -133,11 +134,7 @@ def finish_shot(s: State) -> State:
     by_cpu = shooter_is_cpu(s)
     with signals_held():  # judged and recorded whole, whatever interrupts
         out = s.part.shot.finish()
-    reason = names(s, out.reason)
-    if out.foul:
-        verdict = (f"Foul: {reason}", "foul")
-    else:
-        verdict = (reason, "good" if out.continue_turn else "plain")
+    verdict = words.verdict(out, voice(s))
     s = replace(s, message=(*s.shot_note, verdict))
     if not by_cpu and any(s.cpu):
         s = replace(s, your_verdict=verdict)
