@@ -61,6 +61,9 @@ SCENARIOS: dict[str, tuple[dict, str, str]] = {
     # The computer answers an illegal break.
     "cpu_option": ({"mode": "8ball", "opponent": "cpu", "seed": 5}, "release",
                    "enter space-hold 0.15 wait 4.8 q y"),
+    # The computer answers a push-out, then plays on with the verdict and its answer in view.
+    "cpu_push": ({"mode": "9ball", "opponent": "cpu", "seed": 5}, "release",
+                 "enter space-hold 1.3 wait 10 o space-hold 0.2 wait 9 q y"),
     # Terminals without key releases: a hold inferred from repeats, a tap that falls back to
     # the meter; the classic meter.
     "legacy": ({"mode": "practice", "seed": 6}, "repeat",
