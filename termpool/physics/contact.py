@@ -1,5 +1,4 @@
-"""Impulse responses at ball-ball contacts (vectorized over contacts), and the vector
-helpers the cushion models share (`termpool.physics.cushion`).
+"""Impulse responses at ball-ball contacts (vectorized over contacts).
 
 Impulses act at the contact point of rigid spheres. Vertical components of linear velocity
 that an impulse would give are absorbed by the slate (no jumping), which can only remove
@@ -12,16 +11,7 @@ import math
 
 import numpy as np
 
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    # np.cross is slow on small arrays; this is the same product, component by component.
-    ax, ay, az = a[:, 0], a[:, 1], a[:, 2]
-    bx, by, bz = b[:, 0], b[:, 1], b[:, 2]
-    return np.stack([ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx], axis=1)
-
-
-def _to3(v2: np.ndarray) -> np.ndarray:
-    return np.concatenate([v2, np.zeros(v2.shape[:-1] + (1,))], axis=-1)
+from termpool.physics.vec import cross, cross_one, to3
 
 
 def ball_ball(
@@ -38,10 +28,10 @@ def ball_ball(
     vj = vj + (jn / mj)[:, None] * n
     if not frictional:
         return vi, vj, wi, wj
-    n3 = _to3(n)
+    n3 = to3(n)
     arm_i = ri[:, None] * n3
     arm_j = -rj[:, None] * n3
-    slip = (_to3(vi) + _cross(wi, arm_i)) - (_to3(vj) + _cross(wj, arm_j))
+    slip = (to3(vi) + cross(wi, arm_i)) - (to3(vj) + cross(wj, arm_j))
     slip_t = slip - np.einsum("ij,ij->i", slip, n3)[:, None] * n3
     speed = np.linalg.norm(slip_t, axis=1)
     # Alciatore's fit: ball-ball friction falls with the sliding speed at the contact.
@@ -54,15 +44,9 @@ def ball_ball(
     ij = 0.4 * mj * rj * rj
     vi = vi + imp[:, :2] / mi[:, None]
     vj = vj - imp[:, :2] / mj[:, None]
-    wi = wi + _cross(arm_i, imp) / ii[:, None]
-    wj = wj + _cross(arm_j, -imp) / ij[:, None]
+    wi = wi + cross(arm_i, imp) / ii[:, None]
+    wj = wj + cross(arm_j, -imp) / ij[:, None]
     return vi, vj, wi, wj
-
-
-def _cross1(a: list, b: list) -> list:
-    ax, ay, az = a
-    bx, by, bz = b
-    return [ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx]
 
 
 def ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, e, v_inelastic, frictional):
@@ -84,7 +68,7 @@ def ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, e, v_inelastic, fricti
         return vi, vj, list(wi), list(wj)
     arm_i = [ri * n0, ri * n1, ri * 0.0]
     arm_j = [-rj * n0, -rj * n1, -rj * 0.0]
-    ci, cj = _cross1(wi, arm_i), _cross1(wj, arm_j)
+    ci, cj = cross_one(wi, arm_i), cross_one(wj, arm_j)
     slip = [(vi[0] + ci[0]) - (vj[0] + cj[0]), (vi[1] + ci[1]) - (vj[1] + cj[1]),
             (0.0 + ci[2]) - (0.0 + cj[2])]
     sn = (slip[0] * n0 + slip[2] * 0.0) + slip[1] * n1
@@ -101,8 +85,8 @@ def ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, e, v_inelastic, fricti
     ij = 0.4 * mj * rj * rj
     vi = [vi[0] + imp[0] / mi, vi[1] + imp[1] / mi]
     vj = [vj[0] - imp[0] / mj, vj[1] - imp[1] / mj]
-    ti = _cross1(arm_i, imp)
-    tj = _cross1(arm_j, [-x for x in imp])
+    ti = cross_one(arm_i, imp)
+    tj = cross_one(arm_j, [-x for x in imp])
     wi = [wi[k] + ti[k] / ii for k in range(3)]
     wj = [wj[k] + tj[k] / ij for k in range(3)]
     return vi, vj, wi, wj

@@ -37,11 +37,11 @@ from termpool.physics.state import (  # noqa: F401  (state codes are part of the
     SPINNING,
     STATE_NAMES,
     STATIONARY,
-    dots,
 )
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
 from termpool.physics.table import Table
+from termpool.physics.vec import dots
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
 
 FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed

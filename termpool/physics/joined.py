@@ -27,8 +27,8 @@ from termpool.physics.cluster import Rows, solve_inelastic, solve_psd
 from termpool.physics.params import Physics
 from termpool.physics.roots import A_MIN
 from termpool.physics.state import EPS_V, EPS_W, ROLLING, SLIDING, SPINNING, STATIONARY
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
 
 TURN = 0.01  # rad: a fixed friction direction is renewed after the true one turns this far
 TURN_ROLL = 0.2  # rad: the same for a rolling ball's resistance, 20 times weaker

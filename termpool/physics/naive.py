@@ -34,9 +34,9 @@ import numpy as np
 from termpool.physics import contact, cushion
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.state import POCKETED, ROLLING, SPINNING, STATIONARY
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
 from termpool.physics.table import POCKET_NAMES, Table
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
 
 TINY = 1e-300  # keeps 0 / 0 out of speed updates
 EPS_SLIP = 1e-9  # m/s: a slip below this is rounding error of a rolling ball

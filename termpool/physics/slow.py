@@ -15,9 +15,10 @@ import numpy as np
 from termpool.physics.cluster import Rows, solve_inelastic
 from termpool.physics.joined import push
 from termpool.physics.roots import A_MIN, V_MIN
-from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED, dots
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
+from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
+from termpool.physics.vec import dots
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
 
 
 class SlowContacts:

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from termpool.physics.contact import _cross, _cross1, _to3
+from termpool.physics.vec import cross, cross_one, to3
 
 if TYPE_CHECKING:
     from termpool.physics.params import Physics
@@ -38,18 +38,18 @@ def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.nda
     ee = np.where(approach > v_inelastic, e, 0.0)
     p_h = (1.0 + ee) * m * np.maximum(approach, 0.0)
     v = v + (p_h / m)[:, None] * n
-    n3 = _to3(n)
+    n3 = to3(n)
     z = np.array([0.0, 0.0, 1.0])
     arm = r[:, None] * (-cos_t[:, None] * n3 + sin_t[:, None] * z)
     normal = -arm / r[:, None]
-    slip = _to3(v) + _cross(w, arm)
+    slip = to3(v) + cross(w, arm)
     slip_t = slip - np.einsum("ij,ij->i", slip, normal)[:, None] * normal
     speed = np.linalg.norm(slip_t, axis=1)
     jt = np.minimum(mu * p_h / cos_t, speed * m / 3.5)
     dirn = np.where(speed[:, None] > 0, slip_t / speed[:, None], 0.0)
     imp = -jt[:, None] * dirn
     v = v + imp[:, :2] / m[:, None]
-    w = w + _cross(arm, imp) / (0.4 * m * r * r)[:, None]
+    w = w + cross(arm, imp) / (0.4 * m * r * r)[:, None]
     return v, w
 
 
@@ -69,7 +69,7 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
     c = -cos_t
     arm = [r * (c * n0 + sin_t * 0.0), r * (c * n1 + sin_t * 0.0), r * (c * 0.0 + sin_t * 1.0)]
     normal = [-x / r for x in arm]
-    cw = _cross1(w, arm)
+    cw = cross_one(w, arm)
     slip = [v[0] + cw[0], v[1] + cw[1], 0.0 + cw[2]]
     sn = (slip[0] * normal[0] + slip[2] * normal[2]) + slip[1] * normal[1]
     st = [slip[x] - sn * normal[x] for x in range(3)]
@@ -79,7 +79,7 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
     dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
     imp = [-jt * x for x in dirn]
     v = [v[0] + imp[0] / m, v[1] + imp[1] / m]
-    torque = _cross1(arm, imp)
+    torque = cross_one(arm, imp)
     inertia = 0.4 * m * r * r
     w = [w[x] + torque[x] / inertia for x in range(3)]
     return v, w
