@@ -7,14 +7,11 @@ The game's first cushion model, kept to the bit so that records made with it rep
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from termpool.physics.cushion.model import CushionPhysics
 from termpool.physics.vec import cross, cross_one, to3
-
-if TYPE_CHECKING:
-    from termpool.physics.params import Physics
 
 # Restitution and nose friction when a scene gives none: the game's cushion from the start
 # (the nominal values pooltool uses too).
@@ -23,7 +20,7 @@ MU_CUSHION = 0.2
 
 
 def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.ndarray,
-           ph: Physics) -> tuple[np.ndarray, np.ndarray]:
+           ph: CushionPhysics) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w).
 
     The nose touches the ball above its centre (sin t = (h - R) / R), so friction at the
@@ -54,7 +51,7 @@ def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.nda
 
 
 def bounce_one(n: list, v: list, w: list, r: float, m: float,
-               ph: Physics) -> tuple[list, list]:
+               ph: CushionPhysics) -> tuple[list, list]:
     """`bounce` for one ball in plain floats (lists in, lists out), bit-identical to the
     array version (same operations in the same order; see contact.ball_ball_one)."""
     e, mu, height, v_inelastic = ph.e_cushion, ph.mu_cushion, ph.cushion_height, ph.v_inelastic
