@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from termpool.physics import contact, cushion, motion
-from termpool.physics.motion import max0
+from termpool.physics.motion import Col, max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.roots import (
     V_MIN,
@@ -71,7 +71,6 @@ _TRANSITION_NAMES = {
 }
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
-_NCOL, _RATE, _RADIUS, _MASS = 15, 12, 13, 14  # Engine._motion: columns, and constants' places
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 
@@ -128,16 +127,16 @@ class Engine(SlowContacts):
         # takes one gather (the cost of a pass is the number of numpy calls, not the data):
         # t0, p0 (2), v0 (2), acc (2), w0 (3), alpha (2, the rate of change of wx, wy), and
         # the ball's side-spin decay rate, radius and mass. The named fields are views into it.
-        self._motion = np.zeros((B, N, _NCOL))
-        self.t0 = self._motion[..., 0]
-        self.p0 = self._motion[..., 1:3]
-        self.v0 = self._motion[..., 3:5]
-        self.acc = self._motion[..., 5:7]
-        self.w0 = self._motion[..., 7:10]
-        self.alpha = self._motion[..., 10:12]
-        self._motion[..., _RATE] = self.spin_rate
-        self._motion[..., _RADIUS] = self.radius
-        self._motion[..., _MASS] = self.mass
+        self._motion = np.zeros((B, N, Col.N))
+        self.t0 = self._motion[..., Col.T0]
+        self.p0 = self._motion[..., Col.P]
+        self.v0 = self._motion[..., Col.V]
+        self.acc = self._motion[..., Col.ACC]
+        self.w0 = self._motion[..., Col.W]
+        self.alpha = self._motion[..., Col.ALPHA]
+        self._motion[..., Col.RATE] = self.spin_rate
+        self._motion[..., Col.RADIUS] = self.radius
+        self._motion[..., Col.MASS] = self.mass
         self.state = np.zeros((B, N), dtype=np.int8)
         self.pocket = np.full((B, N), -1, dtype=np.int16)
         # Every prediction of a table in one row, in the order of the event codes, so that
@@ -183,18 +182,18 @@ class Engine(SlowContacts):
     def _eval(self, b, i, t, spin: bool = True):
         """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
         m = self._motion[b, i]  # a fancy-indexed copy: its w0 columns may be changed in place
-        d = (t - m[..., 0])[..., None]
-        v0 = m[..., 3:5]
-        acc = m[..., 5:7]
-        p = m[..., 1:3] + (v0 + 0.5 * acc * d) * d
+        d = (t - m[..., Col.T0])[..., None]
+        v0 = m[..., Col.V]
+        acc = m[..., Col.ACC]
+        p = m[..., Col.P] + (v0 + 0.5 * acc * d) * d
         v = v0 + acc * d
         if not spin:
             return p, v, None
-        w = m[..., 7:10]
-        w[..., :2] += m[..., 10:12] * d
+        w = m[..., Col.W]
+        w[..., :2] += m[..., Col.ALPHA] * d
         wz = w[..., 2]
         # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
-        decay = m[..., _RATE] * np.maximum(d[..., 0], 0.0)
+        decay = m[..., Col.RATE] * np.maximum(d[..., 0], 0.0)
         w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
         return p, v, w
 
@@ -251,7 +250,7 @@ class Engine(SlowContacts):
         state, t_trans, rows = zip(*out, strict=True)
         self.state[b, i] = state
         self.t_trans[b, i] = t_trans
-        self._motion[b, i, :_RATE] = rows
+        self._motion[b, i, :Col.RATE] = rows
 
     def _set_many(self, b, i, t, p, v, w) -> None:
         ph = self.physics
@@ -285,7 +284,7 @@ class Engine(SlowContacts):
         state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
                                                      np.where(spinning, SPINNING, STATIONARY)))
         self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self._motion[b, i, :_RATE] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
+        self._motion[b, i, :Col.RATE] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
         self.t_trans[b, i] = t + dt
 
     # ----------------------------------------------------------------- predictions
@@ -690,7 +689,7 @@ class Engine(SlowContacts):
                 w[0] = w[1] = 0.0
             elif st == SPINNING:
                 w[2] = 0.0
-            out.append(motion.start(ph, t, p, v, w, R, row[_RATE], st == POCKETED))
+            out.append(motion.start(ph, t, p, v, w, R, row[Col.RATE], st == POCKETED))
         self._write_few(b, i, out)
 
     def _cushion(self, b, i) -> None:
@@ -745,14 +744,14 @@ class Engine(SlowContacts):
             d0, d1 = p[0] - ref[0], p[1] - ref[1]
             dist = float(np.hypot(d0, d1))
             n = [d0 / dist, d1 / dist]
-        r, m = row[_RADIUS], row[_MASS]
+        r, m = row[Col.RADIUS], row[Col.MASS]
         v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, m, ph)
         # As _cushion: undo a sink.
         depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
         lift = max0(depth)
         p = [p[0] + lift * n[0], p[1] + lift * n[1]]
         self._write_few(np.array([b]), np.array([i]), [
-            motion.start(ph, t, p, v, w, r, row[_RATE], bool(self.state[b, i] == POCKETED))])
+            motion.start(ph, t, p, v, w, r, row[Col.RATE], bool(self.state[b, i] == POCKETED))])
 
     def _sunk(self, b, i) -> np.ndarray:
         """True for balls (b, i) sunk deeper than CLUSTER_GAP into the rail, jaw or jaw tip
@@ -794,8 +793,8 @@ class Engine(SlowContacts):
         ph = self.physics
         if closing < ph.v_inelastic:
             return False
-        ri, rj = rows[0][_RADIUS], rows[1][_RADIUS]
-        mi, mj = rows[0][_MASS], rows[1][_MASS]
+        ri, rj = rows[0][Col.RADIUS], rows[1][Col.RADIUS]
+        mi, mj = rows[0][Col.MASS], rows[1][Col.MASS]
         vi, vj, wi, wj = contact.ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj,
                                                ph.e_ball, ph.v_inelastic,
                                                ph.ball_ball == "frictional")
@@ -808,8 +807,8 @@ class Engine(SlowContacts):
         pj = [pj[0] + kj * n0, pj[1] + kj * n1]
         pocketed = self.state[b, [i, j]] == POCKETED
         self._write_few(np.array([b, b]), np.array([i, j]), [
-            motion.start(ph, t, pi, vi, wi, ri, rows[0][_RATE], bool(pocketed[0])),
-            motion.start(ph, t, pj, vj, wj, rj, rows[1][_RATE], bool(pocketed[1]))])
+            motion.start(ph, t, pi, vi, wi, ri, rows[0][Col.RATE], bool(pocketed[0])),
+            motion.start(ph, t, pj, vj, wj, rj, rows[1][Col.RATE], bool(pocketed[1]))])
         return True
 
     def _collide(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:

@@ -30,6 +30,17 @@ _hypot = np.hypot
 INF = math.inf
 
 
+class Col:
+    """The columns of a ball's packed motion, a row of the engine's motion array: its clock
+    t0; its position, velocity and acceleration at t0; its spin at t0 and the rate of change
+    of (wx, wy); then the ball's constants: side-spin decay rate, radius and mass. A new
+    motion (`start`) writes the columns before RATE."""
+
+    T0, PX, PY, VX, VY, AX, AY, WX, WY, WZ, ALX, ALY, RATE, RADIUS, MASS = range(15)
+    N = 15
+    P, V, ACC, W, ALPHA = slice(1, 3), slice(3, 5), slice(5, 7), slice(7, 10), slice(10, 12)
+
+
 def _over(x: float, d: float) -> float:
     """x / d as numpy divides (d = 0 gives inf or nan instead of an exception)."""
     if d != 0.0:
@@ -47,7 +58,7 @@ def max0(x: float) -> float:
 def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: float,
           pocketed: bool) -> tuple[int, float, list]:
     """One ball's new motion from time t at (p, v, w): returns (state, t_trans, row), row the
-    ball's packed motion (t0, p0, v0, acc, w0, alpha) as Engine._motion holds it."""
+    ball's packed motion up to Col.RATE (t0, p0, v0, acc, w0, alpha)."""
     g, mu_s, mu_r = ph.g, ph.mu_slide, ph.mu_roll
     px, py = p
     vx, vy = v
@@ -110,8 +121,8 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
 
 def at(row: list, t: float) -> tuple[list, list, list]:
     """Position, velocity and spin at time t of a ball whose packed motion is `row` (a row of
-    Engine._motion): Engine._eval for one ball."""
-    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row[:13]
+    the engine's motion array): Engine._eval for one ball."""
+    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row[:Col.RADIUS]  # Col's order
     d = t - t0
     p = [px + (vx + 0.5 * ax * d) * d, py + (vy + 0.5 * ay * d) * d]
     v = [vx + ax * d, vy + ay * d]

@@ -14,6 +14,7 @@ import numpy as np
 
 from termpool.physics.cluster import Rows, solve_inelastic
 from termpool.physics.joined import push
+from termpool.physics.motion import Col
 from termpool.physics.roots import A_MIN, V_MIN
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.vec import dots
@@ -44,13 +45,13 @@ class SlowContacts:
             if f >= nseg + self._npt:
                 return np.array([math.inf])
             row = self._motion[bb, ib].tolist()
-            d = float(self.tb[bb]) - row[0]
-            vx, vy = row[3] + row[5] * d, row[4] + row[6] * d
+            d = float(self.tb[bb]) - row[Col.T0]
+            vx, vy = row[Col.VX] + row[Col.AX] * d, row[Col.VY] + row[Col.AY] * d
             if f < nseg:
                 nx, ny = self.table.seg_n[f].tolist()
             else:
-                px = row[1] + (row[3] + 0.5 * row[5] * d) * d
-                py = row[2] + (row[4] + 0.5 * row[6] * d) * d
+                px = row[Col.PX] + (row[Col.VX] + 0.5 * row[Col.AX] * d) * d
+                py = row[Col.PY] + (row[Col.VY] + 0.5 * row[Col.AY] * d) * d
                 tx, ty = self.table.points[f - nseg].tolist()
                 r = math.hypot(px - tx, py - ty)
                 nx, ny = (px - tx) / r, (py - ty) / r
@@ -243,7 +244,7 @@ class SlowContacts:
         # What the solves changed: velocities as the balls now start (a resting contact's
         # last rounding of speed taken out, a ball set at rest), and positions.
         row = self._motion[b, mem]
-        moved = (row[:, 3:5] != v_in[mem]).any(axis=1) | (row[:, 1:3] != p0[mem]).any(axis=1)
+        moved = (row[:, Col.V] != v_in[mem]).any(axis=1) | (row[:, Col.P] != p0[mem]).any(axis=1)
         return members, mem[moved].tolist()
 
     def _join(self, b: int, mem, t: float, p, v, w, ra, rc_, rn, bend) -> None:
@@ -265,7 +266,7 @@ class SlowContacts:
                 self.mass[b, held], self.spin_rate[b, held], rows)
             self.state[b, held] = state
             self.t_trans[b, held] = t + duration
-            self._motion[b, held, :12] = np.concatenate(
+            self._motion[b, held, :Col.RATE] = np.concatenate(
                 [np.full((held.size, 1), t), p[held], vj, acc, wj, alpha], axis=1)
             self.group[b, held] = int(held.min())
         self._ngroup[b] = int((self.group[b] >= 0).sum())
