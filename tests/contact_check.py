@@ -30,7 +30,7 @@ def _fail(what: str, t: float, gap: float) -> None:
 
 def _where(eng, b: int, i: int) -> np.ndarray:
     s = eng.ball_state(b, i)  # at the table's clock, which the engine has set to the event
-    return np.array([s["x"], s["y"]])
+    return np.array([s.x, s.y])
 
 
 def check_events(eng, tabs: np.ndarray, code: np.ndarray) -> None:

@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from termpool.physics import contact, cushion, motion
+from termpool.physics.events import ENDS, BallState, Event, EventKind
 from termpool.physics.motion import Col, max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.roots import (
@@ -61,14 +62,6 @@ CLUSTER_WORK = 32
 BUDGET = 200
 WINDOW = 1 / 60
 
-_TRANSITION_NAMES = {
-    (SLIDING, ROLLING): "slide_to_roll",
-    (SLIDING, SPINNING): "slide_to_spin",
-    (SLIDING, STATIONARY): "slide_to_stop",
-    (ROLLING, SPINNING): "roll_to_spin",
-    (ROLLING, STATIONARY): "roll_to_stop",
-    (SPINNING, STATIONARY): "spin_to_stop",
-}
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
@@ -162,7 +155,9 @@ class Engine(SlowContacts):
         self.passes = 0  # event passes run
         self.work = 0  # units of work done, and the limit (see WORK_LIMIT)
         self.max_work = WORK_LIMIT if max_work is None else max_work
-        self.events: list[list[dict]] = [[] for _ in range(B)]
+        self.log: list[list[Event]] = [[] for _ in range(B)]  # each table's events, typed
+        self._json: list[list[dict]] = [[] for _ in range(B)]  # and as JSON (`events`)
+        self._unsynced = False
         self._nseg, self._npt = len(table.seg_a), len(table.points)
         seg_d = table.seg_b - table.seg_a
         self._seg_len = _norm(seg_d)
@@ -514,7 +509,8 @@ class Engine(SlowContacts):
                 k = np.flatnonzero(crowd)
                 crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
             if self.record:
-                labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
+                f = self.f_cush[tabs[cu], i[cu]]
+                labels = dict(zip(cu.tolist(), zip(f.tolist(), self._features(f), strict=True),
                                   strict=True))
             for n in cu[crowd].tolist():
                 clusters.append((n, [int(i[n])], bool(busy[n]), True))
@@ -571,7 +567,7 @@ class Engine(SlowContacts):
                 # each such end is an event of its own.
                 self_ = int(i[n]) if kind[n] == 0 else -1  # a transition's own ball
                 ends = [(k, int(before[k]), int(self.state[b, k])) for k in members if k != self_]
-                ends = [e for e in ends if e[1:] in _TRANSITION_NAMES]
+                ends = [e for e in ends if e[1:] in ENDS]
                 also.setdefault(n, []).extend(ends)
             if kind[n] != 0:  # a group renewed by a transition moves others by rounding only
                 skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(extra.get(n, ()))
@@ -836,13 +832,11 @@ class Engine(SlowContacts):
         self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
                   np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
 
-    def ball_state(self, b: int, i: int) -> dict:
-        """One ball's state now, as plain numbers (for events and output)."""
+    def ball_state(self, b: int, i: int) -> BallState:
+        """Ball i of table b as it is at the table's clock (for events and output)."""
         p, v, w = self._eval(np.array([b]), np.array([i]), np.array([self.tb[b]]))
-        return {
-            "x": float(p[0, 0]), "y": float(p[0, 1]), "vx": float(v[0, 0]), "vy": float(v[0, 1]),
-            "w": [float(x) for x in w[0]], "state": STATE_NAMES[self.state[b, i]],
-        }
+        return BallState(float(p[0, 0]), float(p[0, 1]), float(v[0, 0]), float(v[0, 1]),
+                         (float(w[0, 0]), float(w[0, 1]), float(w[0, 2])), int(self.state[b, i]))
 
     def _log(self, tabs, kind, i, j, old_state, labels, extra, also, quiet) -> None:
         """Record events; a contact solved with its cluster also names the other balls of the
@@ -856,34 +850,46 @@ class Engine(SlowContacts):
                 self._log_also(b, also.get(n, ()))
                 continue
             ib = int(i[n])
-            ev: dict = {"t": float(self.tb[b])}
+            where: dict = {}
             if k == 0:
                 pair = (int(old_state[n]), int(self.state[b, ib]))
                 if pair[0] == pair[1]:  # a group's motion renewed, nothing ended
                     self._log_also(b, also.get(n, ()))
                     continue
-                ev["type"] = _TRANSITION_NAMES.get(pair, "transition")
-                ev["i"] = [ib]
+                what = ENDS.get(pair, EventKind.TRANSITION)
+                balls = [ib]
             elif k == 2:
+                f, name = labels[n]
                 if self.state[b, ib] == POCKETED:
-                    ev["type"] = "pocket"
-                    ev["pocket"] = labels[n]
+                    what, where["pocket"] = EventKind.POCKET, name
                 else:
-                    ev["type"] = "cushion"
-                    ev["feature"] = labels[n]
-                ev["i"] = [ib]
+                    what, where["cushion"], where["feature"] = EventKind.CUSHION, f, name
+                balls = [ib]
             else:
-                ev["type"] = "ball_ball"
-                ev["i"] = [ib, int(j[n])]
-            ev["i"] += extra.get(n, [])
-            ev["balls"] = [self.ball_state(b, x) for x in ev["i"]]
-            self.events[b].append(ev)
+                what = EventKind.BALL_BALL
+                balls = [ib, int(j[n])]
+            balls += extra.get(n, [])
+            self._append(Event(what, float(self.tb[b]), b, tuple(balls),
+                               tuple(self.ball_state(b, x) for x in balls), **where))
             self._log_also(b, also.get(n, ()))
 
     def _log_also(self, b: int, changes) -> None:
         for x, old, new in changes:
-            self.events[b].append({"t": float(self.tb[b]), "type": _TRANSITION_NAMES[(old, new)],
-                                   "i": [x], "balls": [self.ball_state(b, x)]})
+            self._append(Event(ENDS[(old, new)], float(self.tb[b]), b, (x,),
+                               (self.ball_state(b, x),)))
+
+    def _append(self, ev: Event) -> None:
+        self.log[ev.table].append(ev)
+        self._unsynced = True
+
+    @property
+    def events(self) -> list[list[dict]]:
+        """Each table's events in the JSON form (`Event.to_json`) of records and output."""
+        if self._unsynced:
+            for log, out in zip(self.log, self._json, strict=True):
+                out.extend(ev.to_json() for ev in log[len(out):])
+            self._unsynced = False
+        return self._json
 
     # ----------------------------------------------------------------- public view and driving
     def _now(self):
