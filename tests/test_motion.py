@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from termpool.physics import contact, motion
+from termpool.physics import motion
+from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.cushion import MODELS
 from termpool.physics.engine import FEW, Engine
 from termpool.physics.params import BALL_RADIUS, Physics
@@ -139,9 +140,12 @@ def _contacts(seed: int, k: int = 300):
 @pytest.mark.parametrize("seed", [8, 9])
 def test_one_collision_in_floats_matches_the_array_path_bit_for_bit(frictional, seed):
     args = _contacts(seed)
-    many = contact.ball_ball(*args, 0.95, 0.005, frictional)
+    ph = Physics(e_ball=0.95, v_inelastic=0.005,
+                 ball_ball="frictional" if frictional else "frictionless")
+    model = BALL_BALL[ph.ball_ball]
+    many = model.collide(*args, ph)
     for n in range(len(args[0])):
-        one = contact.ball_ball_one(*(x[n].tolist() for x in args), 0.95, 0.005, frictional)
+        one = model.collide_one(*(x[n].tolist() for x in args), ph)
         assert one == tuple(x[n].tolist() for x in many)
 
 

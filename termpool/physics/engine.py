@@ -16,7 +16,9 @@ import math
 
 import numpy as np
 
-from termpool.physics import contact, cushion, motion
+from termpool.physics import cushion, motion
+from termpool.physics.ball_ball import MODELS as BALL_BALL
+from termpool.physics.ball_ball import sink
 from termpool.physics.events import ENDS, BallState, Event, EventKind
 from termpool.physics.motion import Col, max0
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
@@ -791,16 +793,9 @@ class Engine(SlowContacts):
             return False
         ri, rj = rows[0][Col.RADIUS], rows[1][Col.RADIUS]
         mi, mj = rows[0][Col.MASS], rows[1][Col.MASS]
-        vi, vj, wi, wj = contact.ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj,
-                                               ph.e_ball, ph.v_inelastic,
-                                               ph.ball_ball == "frictional")
-        # As _part: undo a resting contact's sub-micrometre sink, shared by inverse mass.
-        n0, n1 = d0 / dist, d1 / dist
-        depth = max0(ri + rj - dist)
-        share = mj / (mi + mj)
-        ki, kj = depth * share, depth * (1.0 - share)
-        pi = [pi[0] - ki * n0, pi[1] - ki * n1]
-        pj = [pj[0] + kj * n0, pj[1] + kj * n1]
+        vi, vj, wi, wj = BALL_BALL[ph.ball_ball].collide_one(pi, pj, vi, vj, wi, wj, ri, rj,
+                                                             mi, mj, ph)
+        pi, pj = sink.undo_one(pi, pj, ri, rj, mi, mj)  # as _part
         pocketed = self.state[b, [i, j]] == POCKETED
         self._write_few(np.array([b, b]), np.array([i, j]), [
             motion.start(ph, t, pi, vi, wi, ri, rows[0][Col.RATE], bool(pocketed[0])),
@@ -813,22 +808,15 @@ class Engine(SlowContacts):
         t = self.tb[b]
         ri, rj = self.radius[b, i], self.radius[b, j]
         mi, mj = self.mass[b, i], self.mass[b, j]
-        vi, vj, wi, wj = contact.ball_ball(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph.e_ball,
-                                           ph.v_inelastic, ph.ball_ball == "frictional")
+        vi, vj, wi, wj = BALL_BALL[ph.ball_ball].collide(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj,
+                                                         ph)
         self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
 
     def _part(self, b, i, j, t, pi, pj, vi, vj, wi, wj) -> None:
         """Start both balls of contacts (b, i, j) on their new motion, first undoing a resting
-        contact's sub-micrometre sink (shared by inverse mass)."""
-        ri, rj = self.radius[b, i], self.radius[b, j]
-        mi, mj = self.mass[b, i], self.mass[b, j]
-        d = pj - pi
-        dist = _norm(d)
-        n = d / dist[:, None]
-        depth = np.maximum(ri + rj - dist, 0.0)
-        share = mj / (mi + mj)
-        pi = pi - (depth * share)[:, None] * n
-        pj = pj + (depth * (1.0 - share))[:, None] * n
+        contact's sub-micrometre sink."""
+        pi, pj = sink.undo(pi, pj, self.radius[b, i], self.radius[b, j], self.mass[b, i],
+                           self.mass[b, j])
         self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
                   np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
 
