@@ -20,7 +20,7 @@ from termpool.physics import cushion, motion
 from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.ball_ball import sink
 from termpool.physics.events import ENDS, BallState, Event, EventKind
-from termpool.physics.motion import Col, max0
+from termpool.physics.motion import Col
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
 from termpool.physics.roots import (
     V_MIN,
@@ -42,7 +42,7 @@ from termpool.physics.state import (  # noqa: F401  (state codes are part of the
     STATIONARY,
 )
 from termpool.physics.table import Table
-from termpool.physics.vec import dots
+from termpool.physics.vec import dots, max_one
 from termpool.physics.vec import norm as _norm
 from termpool.physics.vec import perp as _perp
 
@@ -746,7 +746,7 @@ class Engine(SlowContacts):
         v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, m, ph)
         # As _cushion: undo a sink.
         depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
-        lift = max0(depth)
+        lift = max_one(depth, 0.0)
         p = [p[0] + lift * n[0], p[1] + lift * n[1]]
         self._write_few(np.array([b]), np.array([i]), [
             motion.start(ph, t, p, v, w, r, row[Col.RATE], bool(self.state[b, i] == POCKETED))])

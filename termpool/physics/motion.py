@@ -25,6 +25,7 @@ from termpool.physics.state import (
     SPINNING,
     STATIONARY,
 )
+from termpool.physics.vec import max_one
 
 _hypot = np.hypot
 INF = math.inf
@@ -50,11 +51,6 @@ def _over(x: float, d: float) -> float:
     return math.copysign(INF, x) * math.copysign(1.0, d)
 
 
-def max0(x: float) -> float:
-    """np.maximum(x, 0.0) for one float (nan and -0.0 kept as numpy keeps them)."""
-    return 0.0 if x < 0.0 else x
-
-
 def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: float,
           pocketed: bool) -> tuple[int, float, list]:
     """One ball's new motion from time t at (p, v, w): returns (state, t_trans, row), row the
@@ -73,7 +69,7 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
         k = 0.5 * mu_s * g * ts
         px = px + (vx - k * uhx) * ts
         py = py + (vy - k * uhy) * ts
-        wz = math.copysign(max0(abs(wz) - rate * ts), wz)
+        wz = math.copysign(max_one(abs(wz) - rate * ts, 0.0), wz)
         vx = vx - ux / 3.5
         vy = vy - uy / 3.5
         wx = (vy * -1.0) / R
@@ -127,6 +123,6 @@ def at(row: list, t: float) -> tuple[list, list, list]:
     p = [px + (vx + 0.5 * ax * d) * d, py + (vy + 0.5 * ay * d) * d]
     v = [vx + ax * d, vy + ay * d]
     # Before t0 (a ball whose tiny slide was completed ahead) spin is held.
-    decay = rate * max0(d)
-    w = [wx + alx * d, wy + aly * d, math.copysign(max0(abs(wz) - decay), wz)]
+    decay = rate * max_one(d, 0.0)
+    w = [wx + alx * d, wy + aly * d, math.copysign(max_one(abs(wz) - decay, 0.0), wz)]
     return p, v, w

@@ -44,3 +44,18 @@ def cross_one(a: list, b: list) -> list:
 def to3(v2: np.ndarray) -> np.ndarray:
     """Horizontal vectors (..., 2) as 3-vectors (..., 3) with z = 0."""
     return np.concatenate([v2, np.zeros(v2.shape[:-1] + (1,))], axis=-1)
+
+
+# numpy's maximum and minimum give the second argument where the two are equal, so that
+# np.maximum(-0.0, 0.0) is 0.0 and np.maximum(0.0, -0.0) is -0.0 (numpy 2 as measured; its
+# documentation says np.where(a >= b, a, b)), and NaN where either is NaN.
+
+
+def min_one(a: float, b: float) -> float:
+    """np.minimum for two floats, bit for bit."""
+    return a if (a < b or a != a) else b
+
+
+def max_one(a: float, b: float) -> float:
+    """np.maximum for two floats, bit for bit."""
+    return a if (a > b or a != a) else b

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from termpool.physics.ball_ball.frictionless import impulse, impulse_one
-from termpool.physics.vec import cross, cross_one, to3
+from termpool.physics.vec import cross, cross_one, min_one, to3
 
 
 def collide(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
@@ -54,7 +54,7 @@ def collide_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
     mu = 0.00995 + 0.108 * float(np.exp(-1.088 * speed))
     k = 3.5 * inv
     a, b = mu * jn, speed / k
-    jt = a if (a <= b or a != a) else b  # np.minimum, nan included
+    jt = min_one(a, b)
     dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
     imp = [-jt * x for x in dirn]
     ii = 0.4 * mi * ri * ri

@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from termpool.physics.vec import max_one
+
 
 def impulse(pi, pj, vi, vj, mi, mj, e: float, v_inelastic: float) -> tuple:
     """The normal impulse of contacts (arrays over K): returns (n, jn, inv, vi, vj), n the unit
@@ -28,10 +30,11 @@ def impulse_one(pi, pj, vi, vj, mi, mj, e: float, v_inelastic: float) -> tuple:
     d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
     nrm = math.sqrt(d0 * d0 + d1 * d1)
     n0, n1 = d0 / nrm, d1 / nrm
-    closing = (vi[0] - vj[0]) * n0 + (vi[1] - vj[1]) * n1
+    # numpy's row sum starts from +0.0: a sum of -0.0 terms comes out +0.0 there too.
+    closing = (0.0 + (vi[0] - vj[0]) * n0) + (vi[1] - vj[1]) * n1
     ee = e if closing > v_inelastic else 0.0
     inv = 1.0 / mi + 1.0 / mj
-    jn = (1.0 + ee) * (closing if not closing < 0.0 else 0.0) / inv
+    jn = (1.0 + ee) * max_one(closing, 0.0) / inv
     ki, kj = jn / mi, jn / mj
     vi = [vi[0] - ki * n0, vi[1] - ki * n1]
     vj = [vj[0] + kj * n0, vj[1] + kj * n1]

@@ -6,8 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from termpool.physics.motion import max0
-from termpool.physics.vec import norm
+from termpool.physics.vec import max_one, norm
 
 
 def undo(pi, pj, ri, rj, mi, mj) -> tuple[np.ndarray, np.ndarray]:
@@ -25,7 +24,7 @@ def undo_one(pi: list, pj: list, ri: float, rj: float, mi: float, mj: float) -> 
     d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
     dist = float(np.hypot(d0, d1))
     n0, n1 = d0 / dist, d1 / dist
-    depth = max0(ri + rj - dist)
+    depth = max_one(ri + rj - dist, 0.0)
     share = mj / (mi + mj)
     ki, kj = depth * share, depth * (1.0 - share)
     return [pi[0] - ki * n0, pi[1] - ki * n1], [pj[0] + kj * n0, pj[1] + kj * n1]

@@ -47,13 +47,12 @@ from termpool.physics.cushion.model import CushionPhysics
 from termpool.physics.cushion.rail import (
     from_rail,
     from_rail_one,
-    max_one,
-    min_one,
     nose,
     nose_one,
     to_rail,
     to_rail_one,
 )
+from termpool.physics.vec import max_one, min_one
 
 # Restitution and nose friction when a scene gives none: the values Mathavan et al. fitted
 # to their measured rebounds (snooker balls and cushions).

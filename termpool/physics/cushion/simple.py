@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from termpool.physics.cushion.model import CushionPhysics
-from termpool.physics.vec import cross, cross_one, to3
+from termpool.physics.vec import cross, cross_one, max_one, min_one, to3
 
 # Restitution and nose friction when a scene gives none: the game's cushion from the start
 # (the nominal values pooltool uses too).
@@ -60,7 +60,7 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
     cos_t = math.sqrt(1.0 - sin_t * sin_t)
     approach = -(v[0] * n0 + v[1] * n1)
     ee = e if approach > v_inelastic else 0.0
-    p_h = (1.0 + ee) * m * (approach if not approach < 0.0 else 0.0)
+    p_h = (1.0 + ee) * m * max_one(approach, 0.0)
     k = p_h / m
     v = [v[0] + k * n0, v[1] + k * n1]
     c = -cos_t
@@ -72,7 +72,7 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
     st = [slip[x] - sn * normal[x] for x in range(3)]
     speed = math.sqrt((st[0] * st[0] + st[1] * st[1]) + st[2] * st[2])
     a, b = mu * p_h / cos_t, speed * m / 3.5
-    jt = a if (a <= b or a != a) else b  # np.minimum, nan included
+    jt = min_one(a, b)
     dirn = [x / speed for x in st] if speed > 0 else [0.0, 0.0, 0.0]
     imp = [-jt * x for x in dirn]
     v = [v[0] + imp[0] / m, v[1] + imp[1] / m]

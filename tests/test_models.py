@@ -1,0 +1,130 @@
+"""Every response model's array form against its plain-float form, bit for bit
+(physics/models.py lists them): generated for each model of the registry, on random inputs
+and on the exact geometry games are made of (frozen balls, balls exactly 2R apart, balls on a
+rail, straight hits), for several physics."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from termpool.physics.models import MODELS
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+
+R, M = BALL_RADIUS, BALL_MASS
+K = 400  # random rows per family
+
+
+def _bits(x) -> bytes:
+    """The values' bits, NaNs made one NaN (a NaN's payload is no result); -0.0 kept."""
+    a = np.asarray(x, dtype=float)
+    return np.where(np.isnan(a), np.nan, a).tobytes()
+
+
+def _rows(*cols) -> list[np.ndarray]:
+    return [np.array(c, dtype=float) for c in cols]
+
+
+def _ball_ball(rng) -> list[np.ndarray]:
+    """Contacts: random ones (touching or sunk a little, closing, any spin), then exact ones:
+    balls exactly 2R apart along an axis, the object ball frozen, stun and rolling hits
+    straight and at a cut, grazing and parting pairs, a closing speed of exactly v_inelastic."""
+    ri, rj = rng.uniform(0.02, 0.04, K), rng.uniform(0.02, 0.04, K)
+    ang = rng.uniform(0, 2 * np.pi, K)
+    n = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    pi = rng.uniform(1.0, 9.0, (K, 2))
+    pj = pi + n * (ri + rj - rng.choice([0.0, 1e-7], K))[:, None]
+    vi = rng.normal(0.0, 2.0, (K, 2)) + 2.0 * n
+    vj = rng.normal(0.0, 2.0, (K, 2)) * rng.choice([1.0, 0.0], (K, 1))
+    wi, wj = rng.normal(0.0, 80.0, (K, 3)), rng.normal(0.0, 80.0, (K, 3))
+    mi, mj = rng.uniform(0.1, 0.2, K), rng.uniform(0.1, 0.2, K)
+    rows = list(zip(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, strict=True))
+    x0, y0 = 1.25, 0.635
+    for d in ((2 * R, 0.0), (0.0, 2 * R), (-2 * R, 0.0), (0.0, -2 * R)):
+        ux, uy = np.sign(d[0]), np.sign(d[1])
+        for speed in (8.0, 2.0, 0.005, 1e-7, 0.0):
+            v = (speed * ux, speed * uy)
+            roll = (-v[1] / R, v[0] / R, 0.0)
+            cut = (speed * ux + 0.3 * uy, speed * uy + 0.3 * ux)  # a cut, also grazing at 0
+            for vi_, wi_ in ((v, (0.0, 0.0, 0.0)), (v, roll), (cut, (0.0, 0.0, 20.0)),
+                             ((-v[0], -v[1]), (0.0, 0.0, 0.0))):  # the last ones part
+                rows.append(((x0, y0), (x0 + d[0], y0 + d[1]), vi_, (0.0, 0.0), wi_,
+                             (0.0, 0.0, 0.0), R, R, M, M))
+    return _rows(*zip(*rows, strict=True))
+
+
+def _sink(rng) -> list[np.ndarray]:
+    """Pairs exactly touching, sunk by up to 2 SINK, or apart; any masses."""
+    pi, pj, _, _, _, _, ri, rj, mi, mj = _ball_ball(rng)
+    d = pj - pi
+    u = d / np.hypot(d[:, 0], d[:, 1])[:, None]
+    gap = rng.choice([0.0, -4.5e-7, -9e-7, 1e-6, 0.0], len(pi))
+    pj = pi + u * (ri + rj + gap)[:, None]
+    return [pi, pj, ri, rj, mi, mj]
+
+
+def _cushion(rng) -> list[np.ndarray]:
+    """Balls meeting a rail, jaw or jaw tip: random normals, speeds and spins, some slow or
+    with a nearly still contact point; then balls on the four rails exactly: rolling along
+    them, frozen to them, struck straight in, spinning on the spot, closing at exactly
+    v_inelastic."""
+    k = 3 * K
+    n = rng.normal(0.0, 1.0, (k, 2))
+    n /= np.hypot(n[:, 0], n[:, 1])[:, None]
+    v = rng.normal(0.0, 2.0, (k, 2)) - rng.uniform(0.0, 3.0, (k, 1)) * n
+    v[::7] *= 1e-3
+    w = rng.normal(0.0, 80.0, (k, 3))
+    w[::5] *= 1e-9
+    r, m = rng.uniform(0.02, 0.04, k), rng.uniform(0.1, 0.2, k)
+    rows = list(zip(n, v, w, r, m, strict=True))
+    for nn in ((0.0, 1.0), (0.0, -1.0), (1.0, 0.0), (-1.0, 0.0)):
+        along = (nn[1], -nn[0])
+        for speed in (3.0, 0.005, 1e-6, 0.0):
+            into = (-speed * nn[0], -speed * nn[1])
+            par = (speed * along[0], speed * along[1])
+            for v_, w_ in ((into, (0.0, 0.0, 0.0)), (into, (-into[1] / R, into[0] / R, 0.0)),
+                           (par, (-par[1] / R, par[0] / R, 0.0)), ((0.0, 0.0), (0.0, 0.0, 30.0)),
+                           ((into[0] + par[0], into[1] + par[1]), (0.0, 0.0, -40.0))):
+                rows.append((nn, v_, w_, R, M))
+    return _rows(*zip(*rows, strict=True))
+
+
+# Each family: its inputs, and the physics it is run with (ph passed last, or not at all).
+FAMILIES = {
+    "ball_ball": (_ball_ball, [Physics(), Physics(e_ball=1.0, v_inelastic=0.0),
+                               Physics(e_ball=0.0)]),
+    "sink": (_sink, [None]),
+    "cushion": (_cushion, [dict(e_cushion=0.85, mu_cushion=0.2),
+                           dict(e_cushion=0.0, mu_cushion=0.6),
+                           dict(e_cushion=1.0, mu_cushion=0.0, cushion_height=0.028575)]),
+}
+
+
+def _physics(family: str, name: str, ph):
+    if family == "cushion":
+        return Physics(cushion=name, **ph)
+    if family == "ball_ball":
+        return Physics(**{**ph.to_dict(), "ball_ball": name})
+    return ph
+
+
+def test_every_family_of_the_registry_has_its_generated_inputs():
+    assert {m.family for m in MODELS} <= set(FAMILIES)
+    assert len({(m.family, m.name) for m in MODELS}) == len(MODELS)
+
+
+@pytest.mark.parametrize("model", MODELS, ids=[f"{m.family}-{m.name}" for m in MODELS])
+@pytest.mark.parametrize("seed", [1, 2])
+def test_the_array_and_plain_float_forms_of_every_model_agree_bit_for_bit(model, seed):
+    make, physics = FAMILIES[model.family]
+    args = make(np.random.default_rng(seed))
+    for ph in physics:
+        ph = _physics(model.family, model.name, ph)
+        extra = () if ph is None else (ph,)
+        with np.errstate(all="ignore"):  # as the engine runs them
+            many = model.many(*(a.copy() for a in args), *extra)
+        for k in range(len(args[0])):
+            one = model.one(*(a[k].tolist() for a in args), *extra)
+            assert len(one) == len(many)
+            for x, y in zip(one, many, strict=True):
+                assert _bits(x) == _bits(y[k]), (k, [a[k].tolist() for a in args])
