@@ -8,8 +8,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from termpool.physics import motion
 from termpool.physics.models import MODELS
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.state import EPS_U
 
 R, M = BALL_RADIUS, BALL_MASS
 K = 400  # random rows per family
@@ -89,11 +91,54 @@ def _cushion(rng) -> list[np.ndarray]:
     return _rows(*zip(*rows, strict=True))
 
 
-# Each family: its inputs, and the physics it is run with (ph passed last, or not at all).
+def _start(rng) -> list[np.ndarray]:
+    """Balls starting every kind of motion: random ones (sliding, rolling exactly, a slip under
+    EPS_U, side spin only, nothing, some pocketed), then exact ones: frozen balls, rolling
+    along an axis, a slip of exactly EPS_U, spinning on the spot, at t = 0."""
+    t = rng.uniform(0.0, 5.0, K)
+    p = rng.uniform(1.0, 9.0, (K, 2))
+    v = rng.normal(0.0, 2.0, (K, 2)) * rng.choice([1.0, 1e-3, 1e-9, 0.0], (K, 1))
+    w = rng.normal(0.0, 60.0, (K, 3))
+    kind = rng.integers(0, 5, K)
+    roll = np.stack([-v[:, 1], v[:, 0]], axis=1) / R
+    w[kind == 1, :2] = roll[kind == 1]
+    tiny = rng.uniform(0.0, EPS_U, K)
+    w[kind == 2, :2] = roll[kind == 2] + tiny[kind == 2, None] / R * np.array([0.6, -0.8])
+    v[kind >= 3] = 0.0
+    w[kind >= 3, :2] = 0.0
+    w[kind == 4, 2] = 0.0
+    rate = np.full(K, 2.5 * 0.0127 * 9.81 / R)
+    pocketed = rng.random(K) < 0.05
+    rows = list(zip(t, p, v, w, np.full(K, R), rate, pocketed, strict=True))
+    for speed in (2.0, EPS_U, 1e-9, 0.0):
+        for d in ((1.0, 0.0), (0.0, -1.0)):
+            v_ = (speed * d[0], speed * d[1])
+            for w_ in ((0.0, 0.0, 0.0), (-v_[1] / R, v_[0] / R, 0.0), (0.0, 0.0, 25.0),
+                       (-v_[1] / R, v_[0] / R, -3.0)):
+                for pocketed_ in (False, True):
+                    rows.append((0.0, (1.25, 0.635), v_, w_, R, rate[0], pocketed_))
+    return _rows(*zip(*rows, strict=True))
+
+
+def _at(rng) -> list[np.ndarray]:
+    """Motions started as `_start` gives them, evaluated before their clock (a completed tiny
+    slide), at it, inside their state and beyond its end."""
+    t, p, v, w, r, rate, pocketed = _start(rng)
+    with np.errstate(all="ignore"):
+        _, _, rows = motion.start_many(Physics(), t, p, v, w, r, rate, pocketed.astype(bool))
+    rows = np.concatenate([rows, rate[:, None], r[:, None], np.full((len(r), 1), M)], axis=1)
+    when = rows[:, 0] + rng.choice([-1e-4, 0.0, 0.3, 7.0], len(r))
+    return [rows, when]
+
+
+# Each family: its inputs, the physics it is run with, and how a form is called with them.
 FAMILIES = {
     "ball_ball": (_ball_ball, [Physics(), Physics(e_ball=1.0, v_inelastic=0.0),
                                Physics(e_ball=0.0)]),
     "sink": (_sink, [None]),
+    "start": (_start, [Physics(), Physics(mu_slide=0.0), Physics(mu_roll=0.0, mu_spin=0.0),
+                       Physics(mu_slide=0.5, mu_roll=0.03, mu_spin=0.05, g=3.0)]),
+    "at": (_at, [None]),
     "cushion": (_cushion, [dict(e_cushion=0.85, mu_cushion=0.2),
                            dict(e_cushion=0.0, mu_cushion=0.6),
                            dict(e_cushion=1.0, mu_cushion=0.0, cushion_height=0.028575)]),
@@ -108,6 +153,14 @@ def _physics(family: str, name: str, ph):
     return ph
 
 
+def _call(family: str, form, args: list, ph):
+    if family == "start":
+        args[-1] = np.asarray(args[-1], dtype=bool) if isinstance(args[-1], np.ndarray) \
+            else bool(args[-1])
+        return form(ph, *args)
+    return form(*args) if ph is None else form(*args, ph)
+
+
 def test_every_family_of_the_registry_has_its_generated_inputs():
     assert {m.family for m in MODELS} <= set(FAMILIES)
     assert len({(m.family, m.name) for m in MODELS}) == len(MODELS)
@@ -120,11 +173,10 @@ def test_the_array_and_plain_float_forms_of_every_model_agree_bit_for_bit(model,
     args = make(np.random.default_rng(seed))
     for ph in physics:
         ph = _physics(model.family, model.name, ph)
-        extra = () if ph is None else (ph,)
         with np.errstate(all="ignore"):  # as the engine runs them
-            many = model.many(*(a.copy() for a in args), *extra)
+            many = _call(model.family, model.many, [a.copy() for a in args], ph)
         for k in range(len(args[0])):
-            one = model.one(*(a[k].tolist() for a in args), *extra)
+            one = _call(model.family, model.one, [a[k].tolist() for a in args], ph)
             assert len(one) == len(many)
             for x, y in zip(one, many, strict=True):
                 assert _bits(x) == _bits(y[k]), (k, [a[k].tolist() for a in args])

@@ -178,52 +178,7 @@ class Engine(SlowContacts):
     # ----------------------------------------------------------------- motion between events
     def _eval(self, b, i, t, spin: bool = True):
         """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
-        m = self._motion[b, i]  # a fancy-indexed copy: its w0 columns may be changed in place
-        d = (t - m[..., Col.T0])[..., None]
-        v0 = m[..., Col.V]
-        acc = m[..., Col.ACC]
-        p = m[..., Col.P] + (v0 + 0.5 * acc * d) * d
-        v = v0 + acc * d
-        if not spin:
-            return p, v, None
-        w = m[..., Col.W]
-        w[..., :2] += m[..., Col.ALPHA] * d
-        wz = w[..., 2]
-        # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
-        decay = m[..., Col.RATE] * np.maximum(d[..., 0], 0.0)
-        w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
-        return p, v, w
-
-    def _snap(self, p, v, w, R, rate, only=None, move=True):
-        """Complete tiny slides at once: returns (p, v, w, t_s), t_s = 0 where nothing changed.
-
-        A slip u with |u| <= EPS_U ends after t_s = |u| / (3.5 mu_s g) with v -= u / 3.5 and
-        the ball rolling. With `move`, the returned p is where the slide ends,
-        p + v t_s - mu_s g t_s^2 u/2|u|, and side spin has decayed (at `rate`) for t_s: a ball
-        started rolling from there at t + t_s follows the exact path from then on, and before
-        then (extrapolated back) strays from the slide by under 20 nm at 1 mm/s. Without it
-        only the velocities change (the solves of slow contacts, whose clocks stay put).
-        No snap on frictionless cloth, where a slide never ends.
-        """
-        ph = self.physics
-        u = v + R[:, None] * _perp(w[:, :2])
-        us = _norm(u)
-        small = (us <= EPS_U) & (us > 0) & (ph.mu_slide > 0)
-        if only is not None:
-            small &= only
-        ts = np.where(small, us / (3.5 * ph.mu_slide * ph.g), 0.0)
-        if not small.any():
-            return p, v, w, ts
-        s = small[:, None]
-        if move:
-            uhat = u / np.where(us > 0, us, 1.0)[:, None]
-            p = np.where(s, p + (v - 0.5 * ph.mu_slide * ph.g * ts[:, None] * uhat) * ts[:, None],
-                         p)
-            wz = w[:, 2]
-            w[:, 2] = np.copysign(np.maximum(np.abs(wz) - rate * ts, 0.0), wz)
-        v = np.where(s, v - u / 3.5, v)
-        w[:, :2] = np.where(s, _perp(v) / R[:, None], w[:, :2])
-        return p, v, w, ts
+        return motion.at_many(self._motion[b, i], t, spin)
 
     def _set(self, b, i, t, p, v, w) -> None:
         """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
@@ -250,39 +205,10 @@ class Engine(SlowContacts):
         self._motion[b, i, :Col.RATE] = rows
 
     def _set_many(self, b, i, t, p, v, w) -> None:
-        ph = self.physics
-        g = ph.g
-        R = self.radius[b, i]
-        # A tiny slide is completed at once: the ball starts rolling where and when it ends.
-        p, v, w, ts = self._snap(p, v, w, R, self.spin_rate[b, i])
-        t = t + ts
-        u = v + R[:, None] * _perp(w[:, :2])  # contact-point slip
-        us = _norm(u)
-        vs, wz = _norm(v), np.abs(w[:, 2])
-        pocketed = self.state[b, i] == POCKETED
-        sliding = (us > (EPS_U if ph.mu_slide > 0 else 0.0)) & ~pocketed
-        rolling = ~sliding & (vs > EPS_V) & ~pocketed
-        spinning = ~sliding & ~rolling & (wz > EPS_W) & ~pocketed
-        still = ~(sliding | rolling)
-        v = np.where(still[:, None], 0.0, v)
-        # Rolling is kept exact (slip zero); still balls keep only their side spin.
-        w[:, :2] = np.where(rolling[:, None], _perp(v) / R[:, None],
-                            np.where(still[:, None], 0.0, w[:, :2]))
-        w[:, 2] = np.where(spinning | ~still, w[:, 2], 0.0)
-        uhat = np.where(sliding[:, None], u / us[:, None], 0.0)
-        vhat = np.where(rolling[:, None], v / vs[:, None], 0.0)
-        acc = -ph.mu_slide * g * uhat - ph.mu_roll * g * vhat
-        alpha = np.where(sliding[:, None], (2.5 * ph.mu_slide * g / R)[:, None] * _perp(uhat),
-                         _perp(acc) / R[:, None])
-        dt = np.where(sliding, us / (3.5 * ph.mu_slide * g),
-                      np.where(rolling, vs / (ph.mu_roll * g),
-                               np.where(spinning, wz / self.spin_rate[b, i], np.inf)))
-        dt = np.where(np.isnan(dt) | pocketed, np.inf, dt)
-        state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
-                                                     np.where(spinning, SPINNING, STATIONARY)))
-        self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self._motion[b, i, :Col.RATE] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
-        self.t_trans[b, i] = t + dt
+        state, self.t_trans[b, i], self._motion[b, i, :Col.RATE] = motion.start_many(
+            self.physics, t, p, v, w, self.radius[b, i], self.spin_rate[b, i],
+            self.state[b, i] == POCKETED)
+        self.state[b, i] = state
 
     # ----------------------------------------------------------------- predictions
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:

@@ -80,7 +80,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
     bend = np.array([r[3] for r in rows], dtype=float)
     J = Rows(a_idx, c_idx, normal, M)
-    # A slip too small to slide on (state.EPS_U) is completed at once, as Engine._snap does:
+    # A slip too small to slide on (state.EPS_U) is completed at once, as motion.snap does:
     # the ball rolls on with the speed the slide would have left it.
     u = v + R[:, None] * _perp(w[:, :2])
     us = _norm(u)

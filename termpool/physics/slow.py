@@ -14,7 +14,7 @@ import numpy as np
 
 from termpool.physics.cluster import Rows, solve_inelastic
 from termpool.physics.joined import push
-from termpool.physics.motion import Col
+from termpool.physics.motion import Col, snap
 from termpool.physics.roots import A_MIN, V_MIN
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.vec import dots
@@ -120,8 +120,8 @@ class SlowContacts:
             jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
             vi = vi - (jn / mi)[:, None] * n
             vj = vj + (jn / mj)[:, None] * n
-            _, vi, wi, _ = self._snap(pi, vi, wi, ri, None, live, move=False)
-            _, vj, wj, _ = self._snap(pj, vj, wj, rj, None, live, move=False)
+            _, vi, wi, _ = snap(self.physics, pi, vi, wi, ri, None, live, move=False)
+            _, vj, wj, _ = snap(self.physics, pj, vj, wj, rj, None, live, move=False)
         self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
         return changed
 
@@ -216,7 +216,8 @@ class SlowContacts:
             v = v + J.spread(lam, inv_m)
             # A push leaves a rolling ball with a tiny slip that is completed at once; do it
             # here so that the solve sees the velocities that result.
-            _, v[mem], w[mem], _ = self._snap(p[mem], v[mem], w[mem], R[mem], None, move=False)
+            _, v[mem], w[mem], _ = snap(self.physics, p[mem], v[mem], w[mem], R[mem], None,
+                                                move=False)
         # Undo sub-micrometre sinks: the smallest mass-weighted moves that leave no contact
         # overlapping (the same complementarity problem, on positions), so a light ball
         # squeezed against a rail by a heavy one moves the heavy one back.
