@@ -131,6 +131,39 @@ def _at(rng) -> list[np.ndarray]:
     return [rows, when]
 
 
+def _lift(rng) -> list[np.ndarray]:
+    """Balls at a rail, jaw or tip: exactly at their reach, sunk by up to 2 SINK, or clear;
+    normals along the axes (rails) and any way (jaws, tips)."""
+    k = K
+    n = rng.normal(0.0, 1.0, (k, 2))
+    n /= np.hypot(n[:, 0], n[:, 1])[:, None]
+    axes = np.array([[0.0, 1.0], [0.0, -1.0], [1.0, 0.0], [-1.0, 0.0]])
+    n[: k // 2] = axes[rng.integers(0, 4, k // 2)]
+    ref = rng.uniform(0.0, 2.5, (k, 2))
+    ref[: k // 4] = np.round(ref[: k // 4], 1)  # exact decimals, as a table's rails
+    rc = rng.uniform(0.02, 0.03, k)
+    rc[: k // 4] = R
+    sunk = rng.choice([0.0, 4.5e-7, 9e-7, -1e-6, -0.5], k)
+    along = rng.normal(0.0, 0.3, k)[:, None] * np.stack([-n[:, 1], n[:, 0]], axis=1)
+    along[: k // 8] = 0.0
+    p = ref + along + n * (rc - sunk)[:, None]
+    return [p, ref, n, rc]
+
+
+def _pocket(rng) -> list[np.ndarray]:
+    from termpool.physics.table import Table
+    return [np.concatenate([Table.preset(s).hole_c for s in ("7ft", "8ft", "9ft")])]
+
+
+def _transition(rng) -> list[np.ndarray]:
+    """Motions at their ends: balls started as `_start` gives them, in every state."""
+    t, p, v, w, r, rate, pocketed = _start(rng)
+    with np.errstate(all="ignore"):
+        st, _, _ = motion.start_many(Physics(), t, p, v, w.copy(), r, rate, pocketed.astype(bool))
+    assert set(st.tolist()) == set(range(5))  # every state ends, a pocketed ball's never
+    return [st.astype(float), v, w, r]
+
+
 # Each family: its inputs, the physics it is run with, and how a form is called with them.
 FAMILIES = {
     "ball_ball": (_ball_ball, [Physics(), Physics(e_ball=1.0, v_inelastic=0.0),
@@ -139,6 +172,9 @@ FAMILIES = {
     "start": (_start, [Physics(), Physics(mu_slide=0.0), Physics(mu_roll=0.0, mu_spin=0.0),
                        Physics(mu_slide=0.5, mu_roll=0.03, mu_spin=0.05, g=3.0)]),
     "at": (_at, [None]),
+    "lift": (_lift, [None]),
+    "pocket": (_pocket, [None]),
+    "transition": (_transition, [None]),
     "cushion": (_cushion, [dict(e_cushion=0.85, mu_cushion=0.2),
                            dict(e_cushion=0.0, mu_cushion=0.6),
                            dict(e_cushion=1.0, mu_cushion=0.0, cushion_height=0.028575)]),
@@ -158,7 +194,10 @@ def _call(family: str, form, args: list, ph):
         args[-1] = np.asarray(args[-1], dtype=bool) if isinstance(args[-1], np.ndarray) \
             else bool(args[-1])
         return form(ph, *args)
-    return form(*args) if ph is None else form(*args, ph)
+    if family == "transition":  # the state is an integer code
+        args[0] = args[0].astype(np.int64) if isinstance(args[0], np.ndarray) else int(args[0])
+    out = form(*args) if ph is None else form(*args, ph)
+    return out if isinstance(out, tuple) else (out,)
 
 
 def test_every_family_of_the_registry_has_its_generated_inputs():

@@ -16,9 +16,10 @@ import math
 
 import numpy as np
 
-from termpool.physics import cushion, motion
+from termpool.physics import cushion, motion, pocket, transition
 from termpool.physics.ball_ball import MODELS as BALL_BALL
-from termpool.physics.ball_ball import sink
+from termpool.physics.ball_ball import sink as ball_sink
+from termpool.physics.cushion import sink
 from termpool.physics.events import ENDS, BallState, Event, EventKind
 from termpool.physics.motion import Col
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
@@ -42,9 +43,8 @@ from termpool.physics.state import (  # noqa: F401  (state codes are part of the
     STATIONARY,
 )
 from termpool.physics.table import Table
-from termpool.physics.vec import dots, max_one
+from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
-from termpool.physics.vec import perp as _perp
 
 FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
@@ -583,19 +583,13 @@ class Engine(SlowContacts):
             clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every, True))
 
     def _transition(self, b, i) -> None:
+        """Balls (b, i) whose motion state ends now start their next one."""
         if b.size <= FEW:
             self._transition_few(b, i)
             return
         t = self.tb[b]
-        st = self.state[b, i]
         p, v, w = self._eval(b, i, t)
-        R = self.radius[b, i]
-        # End of sliding: slip exactly zero; end of rolling: no translation; end of spin.
-        w[:, :2] = np.where((st == SLIDING)[:, None], _perp(v) / R[:, None], w[:, :2])
-        rl = (st == ROLLING)[:, None]
-        v = np.where(rl, 0.0, v)
-        w[:, :2] = np.where(rl, 0.0, w[:, :2])
-        w[:, 2] = np.where(st == SPINNING, 0.0, w[:, 2])
+        v, w = transition.end(self.state[b, i], v, w, self.radius[b, i])
         self._set(b, i, t, p, v, w)
 
     def _transition_few(self, b, i) -> None:
@@ -606,20 +600,15 @@ class Engine(SlowContacts):
                                  self.state[b, i].tolist(), self.radius[b, i].tolist(),
                                  strict=True):
             p, v, w = motion.at(row, t)
-            if st == SLIDING:
-                w[0], w[1] = (v[1] * -1.0) / R, (v[0] * 1.0) / R
-            elif st == ROLLING:
-                v = [0.0, 0.0]
-                w[0] = w[1] = 0.0
-            elif st == SPINNING:
-                w[2] = 0.0
+            v, w = transition.end_one(st, v, w, R)
             out.append(motion.start(ph, t, p, v, w, R, row[Col.RATE], st == POCKETED))
         self._write_few(b, i, out)
 
     def _cushion(self, b, i) -> None:
+        """Balls (b, i) meet the rail, jaw, jaw tip or pocket hole they were headed for."""
         tab, ph = self.table, self.physics
         nseg, npt = self._nseg, self._npt
-        if b.size == 1 and self.f_cush[b[0], i[0]] < nseg + npt:
+        if b.size == 1:
             self._cushion_one(int(b[0]), int(i[0]))
             return
         t = self.tb[b]
@@ -639,12 +628,10 @@ class Engine(SlowContacts):
         bounce = np.nonzero(~hole)[0]
         if bounce.size:
             bb, ib = b[bounce], i[bounce]
-            nb, pb = n[bounce], p[bounce]
+            nb = n[bounce]
             vb, wb = cushion.MODELS[ph.cushion].bounce(nb, v[bounce], w[bounce],
                                                        self.radius[bb, ib], self.mass[bb, ib], ph)
-            # Undo a resting contact's sub-micrometre sink.
-            depth = rc[bounce] - np.einsum("ij,ij->i", pb - ref[bounce], nb)
-            pb = pb + np.maximum(depth, 0.0)[:, None] * nb
+            pb = sink.lift(p[bounce], ref[bounce], nb, rc[bounce])
             self._set(bb, ib, t[bounce], pb, vb, wb)
         hl = np.nonzero(hole)[0]
         if hl.size:
@@ -652,28 +639,31 @@ class Engine(SlowContacts):
             k = f[hl] - nseg - npt
             self.state[bh, ih] = POCKETED
             self.pocket[bh, ih] = k
-            self._set(bh, ih, t[hl], tab.hole_c[k], np.zeros((hl.size, 2)), np.zeros((hl.size, 3)))
+            self._set(bh, ih, t[hl], *pocket.drop(tab.hole_c[k]))
 
     def _cushion_one(self, b: int, i: int) -> None:
-        """One bounce off a rail, jaw or jaw tip in plain floats, bit-identical to _cushion."""
+        """_cushion for one ball in plain floats, bit-identical to it."""
         tab, ph = self.table, self.physics
         t = float(self.tb[b])
         f = int(self.f_cush[b, i])
         row = self._motion[b, i].tolist()
-        p, v, w = motion.at(row, t)
-        if f < self._nseg:
-            ref, n = tab.seg_a[f].tolist(), tab.seg_n[f].tolist()
+        r = row[Col.RADIUS]
+        hole = f - self._nseg - self._npt
+        if hole >= 0:
+            self.state[b, i] = POCKETED
+            self.pocket[b, i] = hole
+            p, v, w = pocket.drop_one(tab.hole_c[hole].tolist())
         else:
-            ref = tab.points[f - self._nseg].tolist()
-            d0, d1 = p[0] - ref[0], p[1] - ref[1]
-            dist = float(np.hypot(d0, d1))
-            n = [d0 / dist, d1 / dist]
-        r, m = row[Col.RADIUS], row[Col.MASS]
-        v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, m, ph)
-        # As _cushion: undo a sink.
-        depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
-        lift = max_one(depth, 0.0)
-        p = [p[0] + lift * n[0], p[1] + lift * n[1]]
+            p, v, w = motion.at(row, t)
+            if f < self._nseg:
+                ref, n = tab.seg_a[f].tolist(), tab.seg_n[f].tolist()
+            else:
+                ref = tab.points[f - self._nseg].tolist()
+                d0, d1 = p[0] - ref[0], p[1] - ref[1]
+                dist = float(np.hypot(d0, d1))
+                n = [d0 / dist, d1 / dist]
+            v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, row[Col.MASS], ph)
+            p = sink.lift_one(p, ref, n, float(self.rc[b, i]))
         self._write_few(np.array([b]), np.array([i]), [
             motion.start(ph, t, p, v, w, r, row[Col.RATE], bool(self.state[b, i] == POCKETED))])
 
@@ -721,7 +711,7 @@ class Engine(SlowContacts):
         mi, mj = rows[0][Col.MASS], rows[1][Col.MASS]
         vi, vj, wi, wj = BALL_BALL[ph.ball_ball].collide_one(pi, pj, vi, vj, wi, wj, ri, rj,
                                                              mi, mj, ph)
-        pi, pj = sink.undo_one(pi, pj, ri, rj, mi, mj)  # as _part
+        pi, pj = ball_sink.undo_one(pi, pj, ri, rj, mi, mj)  # as _part
         pocketed = self.state[b, [i, j]] == POCKETED
         self._write_few(np.array([b, b]), np.array([i, j]), [
             motion.start(ph, t, pi, vi, wi, ri, rows[0][Col.RATE], bool(pocketed[0])),
@@ -741,7 +731,7 @@ class Engine(SlowContacts):
     def _part(self, b, i, j, t, pi, pj, vi, vj, wi, wj) -> None:
         """Start both balls of contacts (b, i, j) on their new motion, first undoing a resting
         contact's sub-micrometre sink."""
-        pi, pj = sink.undo(pi, pj, self.radius[b, i], self.radius[b, j], self.mass[b, i],
+        pi, pj = ball_sink.undo(pi, pj, self.radius[b, i], self.radius[b, j], self.mass[b, i],
                            self.mass[b, j])
         self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
                   np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))

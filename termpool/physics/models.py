@@ -10,6 +10,9 @@ The families and their signatures (arrays over K, or one event's values; ph a `P
     ball_ball  (pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> (vi, vj, wi, wj)
     sink       (pi, pj, ri, rj, mi, mj) -> (pi, pj)    two balls' overlap undone
     cushion    (n, v, w, r, m, ph) -> (v, w)           n the feature's normal into the table
+    lift       (p, ref, n, rc) -> p                    a ball's sink into a cushion undone
+    pocket     (centre) -> (p, v, w)                   a ball drops into a hole
+    transition (state, v, w, R) -> (v, w)              a motion state ends
     start      (ph, t, p, v, w, R, rate, pocketed) -> (state, t_trans, row)
                                                        a ball's motion on the cloth begins
     at         (row, t) -> (p, v, w)                   a ball's motion evaluated
@@ -20,10 +23,11 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from termpool.physics import motion
+from termpool.physics import motion, pocket, transition
 from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.ball_ball import sink
 from termpool.physics.cushion import MODELS as CUSHIONS
+from termpool.physics.cushion import sink as cushion_sink
 
 
 @dataclass(frozen=True)
@@ -41,6 +45,9 @@ def _models() -> tuple[Model, ...]:
     # array form proper is then `bounce_many`.
     out += [Model("cushion", k, getattr(m, "bounce_many", m.bounce), m.bounce_one)
             for k, m in CUSHIONS.items()]
+    out.append(Model("lift", "normal", cushion_sink.lift, cushion_sink.lift_one))
+    out.append(Model("pocket", "drop", pocket.drop, pocket.drop_one))
+    out.append(Model("transition", "cloth", transition.end, transition.end_one))
     out.append(Model("start", "cloth", motion.start_many, motion.start))
     out.append(Model("at", "cloth", motion.at_many, motion.at))
     return tuple(out)
