@@ -53,9 +53,9 @@ def _started(physics: Physics, seed: int, path: str) -> Engine:
     if path == "few":
         for n in range(0, K, 2):  # two balls per call, as a ball-ball contact starts them
             s = slice(n, n + 2)
-            eng._set_few(b[s], i[s], t[s], p[s], v[s], w[s].copy())
+            eng.balls.set_few(b[s], i[s], t[s], p[s], v[s], w[s].copy())
     else:
-        eng._set_many(b, i, t, p, v, w.copy())
+        eng.balls.set_many(b, i, t, p, v, w.copy())
     return eng
 
 
@@ -72,12 +72,12 @@ def test_starting_one_ball_in_floats_matches_the_array_path_bit_for_bit(physics,
         many = _started(physics, seed, "many")
     assert np.array_equal(few.state, many.state)
     assert np.array_equal(few.t_trans, many.t_trans)
-    assert np.array_equal(few._motion, many._motion, equal_nan=True)
+    assert np.array_equal(few.balls.motion, many.balls.motion, equal_nan=True)
     # The cases are all there: every state, and (with cloth friction) tiny slips completed
     # at once, which move the ball's clock on.
     assert set(np.unique(many.state).tolist()) == {0, 1, 2, 3, 4}
     t = _inputs(seed)[0]
-    assert (many.t0[0] > t).any() == (physics.mu_slide > 0)
+    assert (many.balls.t0[0] > t).any() == (physics.mu_slide > 0)
 
 
 @pytest.mark.parametrize("seed", [4, 5])
@@ -87,9 +87,9 @@ def test_evaluating_one_ball_in_floats_matches_the_array_path_bit_for_bit(seed):
     rng = np.random.default_rng(seed)
     b, i = np.zeros(K, dtype=np.int64), np.arange(K)
     # Before a ball's clock (a completed tiny slide), inside its motion and beyond its end.
-    t = eng.t0[0] + rng.choice([-1e-4, 0.0, 0.3, 7.0], K)
-    p, v, w = eng._eval(b, i, t)
-    for n, row in enumerate(eng._motion[0].tolist()):
+    t = eng.balls.t0[0] + rng.choice([-1e-4, 0.0, 0.3, 7.0], K)
+    p, v, w = eng.balls.eval(b, i, t)
+    for n, row in enumerate(eng.balls.motion[0].tolist()):
         assert motion.at(row, float(t[n])) == (p[n].tolist(), v[n].tolist(), w[n].tolist())
 
 
@@ -115,7 +115,7 @@ def test_transitions_in_floats_match_the_array_path_bit_for_bit(physics, seed):
     assert i.size > K // 4  # transitions of every kind were run
     assert np.array_equal(few.state, many.state)
     assert np.array_equal(few.t_trans, many.t_trans)
-    assert np.array_equal(few._motion, many._motion, equal_nan=True)
+    assert np.array_equal(few.balls.motion, many.balls.motion, equal_nan=True)
 
 
 def _contacts(seed: int, k: int = 300):
@@ -169,8 +169,8 @@ def test_contacts_handled_one_by_one_match_a_batch_bit_for_bit(seed):
     one, together = engines
     assert np.array_equal(one.state, together.state)
     assert np.array_equal(one.t_trans, together.t_trans)
-    assert np.array_equal(one._motion, together._motion)
-    assert (one.v0[:, 0] != vi).any(axis=1).mean() > 0.7  # most contacts were fast ones
+    assert np.array_equal(one.balls.motion, together.balls.motion)
+    assert (one.balls.v0[:, 0] != vi).any(axis=1).mean() > 0.7  # most contacts were fast ones
 
 
 @pytest.mark.parametrize("seed", [12, 13])
@@ -256,7 +256,7 @@ def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed, model):
     assert (one.state[b, 0] == POCKETED).any() and (one.state[b, 0] != POCKETED).any()
     assert np.array_equal(one.state, together.state)
     assert np.array_equal(one.t_trans, together.t_trans)
-    assert np.array_equal(one._motion, together._motion)
+    assert np.array_equal(one.balls.motion, together.balls.motion)
 
 
 @pytest.mark.parametrize("field", ["radius", "mass"])

@@ -19,10 +19,11 @@ import numpy as np
 from termpool.physics import cushion, motion, pocket, transition
 from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.ball_ball import sink as ball_sink
+from termpool.physics.balls import FEW, Balls
 from termpool.physics.cushion import sink
 from termpool.physics.events import ENDS, BallState, Event, EventKind
 from termpool.physics.motion import Col
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.roots import (
     V_MIN,
     first_contact,
@@ -46,7 +47,6 @@ from termpool.physics.table import Table
 from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
 
-FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
 # The work limit (docs/limits.md): an engine that has done WORK_LIMIT units of work raises
 # WorkLimit at its next step or event pass, so that no input makes a run endless. The units
@@ -111,33 +111,18 @@ class Engine(SlowContacts):
         lead = (B, N) if self.batched else (N,)
         vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
         w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
-        self.radius = _batch(radius, lead, "radius").reshape(B, N)
-        self.mass = _batch(mass, lead, "mass").reshape(B, N)
-        for name, arr in (("radius", self.radius), ("mass", self.mass)):
+        radius = _batch(radius, lead, "radius").reshape(B, N)
+        mass = _batch(mass, lead, "mass").reshape(B, N)
+        for name, arr in (("radius", radius), ("mass", mass)):
             if not (arr > 0).all() or not np.isfinite(arr).all():
                 raise ValueError(f"{name}: must be positive and finite")
-        self.rc = nose_reach(self.radius, physics.cushion_height)  # centre to nose at contact
-        self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
-        # Each ball's motion since its clock t0, packed in one array so that evaluating balls
-        # takes one gather (the cost of a pass is the number of numpy calls, not the data):
-        # t0, p0 (2), v0 (2), acc (2), w0 (3), alpha (2, the rate of change of wx, wy), and
-        # the ball's side-spin decay rate, radius and mass. The named fields are views into it.
-        self._motion = np.zeros((B, N, Col.N))
-        self.t0 = self._motion[..., Col.T0]
-        self.p0 = self._motion[..., Col.P]
-        self.v0 = self._motion[..., Col.V]
-        self.acc = self._motion[..., Col.ACC]
-        self.w0 = self._motion[..., Col.W]
-        self.alpha = self._motion[..., Col.ALPHA]
-        self._motion[..., Col.RATE] = self.spin_rate
-        self._motion[..., Col.RADIUS] = self.radius
-        self._motion[..., Col.MASS] = self.mass
-        self.state = np.zeros((B, N), dtype=np.int8)
-        self.pocket = np.full((B, N), -1, dtype=np.int16)
         # Every prediction of a table in one row, in the order of the event codes, so that
         # finding the next event is one argmin: transitions, horizon checks, cushions, pairs.
         self._times = np.full((B, 3 * N + N * N), np.inf)
-        self.t_trans = self._times[:, :N]
+        self.balls = Balls(physics, radius, mass, self._times[:, :N])
+        b = self.balls  # the balls' arrays the engine's users read
+        self.radius, self.mass, self.rc, self.state, self.pocket, self.t_trans = (
+            b.radius, b.mass, b.rc, b.state, b.pocket, b.t_trans)
         self.t_check = self._times[:, N:2 * N]
         self.t_cush = self._times[:, 2 * N:3 * N]
         self.f_cush = np.zeros((B, N), dtype=np.int64)
@@ -171,44 +156,9 @@ class Engine(SlowContacts):
         self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
-            self._set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
+            self.balls.set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
             self._predict(b, i)
             self._refresh(np.arange(B))
-
-    # ----------------------------------------------------------------- motion between events
-    def _eval(self, b, i, t, spin: bool = True):
-        """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
-        return motion.at_many(self._motion[b, i], t, spin)
-
-    def _set(self, b, i, t, p, v, w) -> None:
-        """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
-        set accelerations and the time of the next transition."""
-        if b.size <= FEW:
-            self._set_few(b, i, t, p, v, w)
-        else:
-            self._set_many(b, i, t, p, v, w)
-
-    def _set_few(self, b, i, t, p, v, w) -> None:
-        """_set one ball at a time in plain floats (motion.start): bit-identical, and faster
-        than numpy calls on arrays of one or two balls."""
-        ph = self.physics
-        self._write_few(b, i, [motion.start(ph, *args) for args in zip(
-            t.tolist(), p.tolist(), v.tolist(), w.tolist(), self.radius[b, i].tolist(),
-            self.spin_rate[b, i].tolist(), (self.state[b, i] == POCKETED).tolist(),
-            strict=True)])
-
-    def _write_few(self, b, i, out: list) -> None:
-        """Store motion.start's results for balls (b, i)."""
-        state, t_trans, rows = zip(*out, strict=True)
-        self.state[b, i] = state
-        self.t_trans[b, i] = t_trans
-        self._motion[b, i, :Col.RATE] = rows
-
-    def _set_many(self, b, i, t, p, v, w) -> None:
-        state, self.t_trans[b, i], self._motion[b, i, :Col.RATE] = motion.start_many(
-            self.physics, t, p, v, w, self.radius[b, i], self.spin_rate[b, i],
-            self.state[b, i] == POCKETED)
-        self.state[b, i] = state
 
     # ----------------------------------------------------------------- predictions
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
@@ -233,8 +183,8 @@ class Engine(SlowContacts):
         M = b.size
         rows = np.arange(M)
         tc = t[:, None]
-        P, V, _ = self._eval(b[:, None], self._balls, tc, spin=False)
-        A = self.acc[b]
+        P, V, _ = self.balls.eval(b[:, None], self._balls, tc, spin=False)
+        A = self.balls.acc[b]
         p, v, a = P[rows, i], V[rows, i], A[rows, i]
         # Pairs: every other ball on the table, where at least one of the two moves.
         stk = self.state[b]
@@ -475,7 +425,7 @@ class Engine(SlowContacts):
                 if rest:
                     k = np.array(rest)
                     bb, tt = np.full(k.size, b), np.full(k.size, self.tb[b])
-                    self._set(bb, k, tt, *self._eval(bb, k, tt))
+                    self.balls.set(bb, k, tt, *self.balls.eval(bb, k, tt))
                     more_b.append(bb)
                     more_i.append(k)
         extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
@@ -516,8 +466,8 @@ class Engine(SlowContacts):
         if self.t_pair[b, i, j] > t:
             return
         k = np.array([i, j])
-        p, v, _ = self._eval(np.full(2, b), k, np.full(2, t), spin=False)
-        a = self.acc[b, k]
+        p, v, _ = self.balls.eval(np.full(2, b), k, np.full(2, t), spin=False)
+        a = self.balls.acc[b, k]
         end = np.minimum(self.t_trans[b, k], self.t_check[b, k]).min() - t
         found = first_contact((p[1] - p[0])[None], (v[1] - v[0])[None], (a[1] - a[0])[None],
                               self.radius[b, k].sum()[None], np.array([end]), pressed=False)
@@ -549,7 +499,7 @@ class Engine(SlowContacts):
             return
         # Both balls' states, once, for the closing speed and for whichever response.
         tb = self.tb[b]
-        p, v, w = self._eval(np.concatenate([b, b]), np.concatenate([i, j]),
+        p, v, w = self.balls.eval(np.concatenate([b, b]), np.concatenate([i, j]),
                              np.concatenate([tb, tb]))
         states = (p[:n], v[:n], w[:n], p[n:], v[n:], w[n:])
         d = states[3] - states[0]
@@ -588,21 +538,21 @@ class Engine(SlowContacts):
             self._transition_few(b, i)
             return
         t = self.tb[b]
-        p, v, w = self._eval(b, i, t)
+        p, v, w = self.balls.eval(b, i, t)
         v, w = transition.end(self.state[b, i], v, w, self.radius[b, i])
-        self._set(b, i, t, p, v, w)
+        self.balls.set(b, i, t, p, v, w)
 
     def _transition_few(self, b, i) -> None:
         """_transition in plain floats, ball by ball (bit-identical)."""
         ph = self.physics
         out = []
-        for t, row, st, R in zip(self.tb[b].tolist(), self._motion[b, i].tolist(),
+        for t, row, st, R in zip(self.tb[b].tolist(), self.balls.motion[b, i].tolist(),
                                  self.state[b, i].tolist(), self.radius[b, i].tolist(),
                                  strict=True):
             p, v, w = motion.at(row, t)
             v, w = transition.end_one(st, v, w, R)
             out.append(motion.start(ph, t, p, v, w, R, row[Col.RATE], st == POCKETED))
-        self._write_few(b, i, out)
+        self.balls.write_few(b, i, out)
 
     def _cushion(self, b, i) -> None:
         """Balls (b, i) meet the rail, jaw, jaw tip or pocket hole they were headed for."""
@@ -613,7 +563,7 @@ class Engine(SlowContacts):
             return
         t = self.tb[b]
         f = self.f_cush[b, i]
-        p, v, w = self._eval(b, i, t)
+        p, v, w = self.balls.eval(b, i, t)
         hole = f >= nseg + npt
         seg = f < nseg
         rc = self.rc[b, i]
@@ -632,21 +582,21 @@ class Engine(SlowContacts):
             vb, wb = cushion.MODELS[ph.cushion].bounce(nb, v[bounce], w[bounce],
                                                        self.radius[bb, ib], self.mass[bb, ib], ph)
             pb = sink.lift(p[bounce], ref[bounce], nb, rc[bounce])
-            self._set(bb, ib, t[bounce], pb, vb, wb)
+            self.balls.set(bb, ib, t[bounce], pb, vb, wb)
         hl = np.nonzero(hole)[0]
         if hl.size:
             bh, ih = b[hl], i[hl]
             k = f[hl] - nseg - npt
             self.state[bh, ih] = POCKETED
             self.pocket[bh, ih] = k
-            self._set(bh, ih, t[hl], *pocket.drop(tab.hole_c[k]))
+            self.balls.set(bh, ih, t[hl], *pocket.drop(tab.hole_c[k]))
 
     def _cushion_one(self, b: int, i: int) -> None:
         """_cushion for one ball in plain floats, bit-identical to it."""
         tab, ph = self.table, self.physics
         t = float(self.tb[b])
         f = int(self.f_cush[b, i])
-        row = self._motion[b, i].tolist()
+        row = self.balls.motion[b, i].tolist()
         r = row[Col.RADIUS]
         hole = f - self._nseg - self._npt
         if hole >= 0:
@@ -664,13 +614,13 @@ class Engine(SlowContacts):
                 n = [d0 / dist, d1 / dist]
             v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, row[Col.MASS], ph)
             p = sink.lift_one(p, ref, n, float(self.rc[b, i]))
-        self._write_few(np.array([b]), np.array([i]), [
+        self.balls.write_few(np.array([b]), np.array([i]), [
             motion.start(ph, t, p, v, w, r, row[Col.RATE], bool(self.state[b, i] == POCKETED))])
 
     def _sunk(self, b, i) -> np.ndarray:
         """True for balls (b, i) sunk deeper than CLUSTER_GAP into the rail, jaw or jaw tip
         they are about to meet."""
-        p, _, _ = self._eval(b, i, self.tb[b], spin=False)
+        p, _, _ = self.balls.eval(b, i, self.tb[b], spin=False)
         f = self.f_cush[b, i]
         seg = (f < self._nseg)[:, None]
         ref = np.where(seg, self.table.seg_a[np.minimum(f, self._nseg - 1)],
@@ -696,7 +646,7 @@ class Engine(SlowContacts):
         """One fast ball-ball contact in plain floats (the usual pass), bit-identical to the
         array path; False, doing nothing, if the contact is slow."""
         t = float(self.tb[b])
-        rows = self._motion[b, [i, j]].tolist()
+        rows = self.balls.motion[b, [i, j]].tolist()
         pi, vi, wi = motion.at(rows[0], t)
         pj, vj, wj = motion.at(rows[1], t)
         d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
@@ -713,7 +663,7 @@ class Engine(SlowContacts):
                                                              mi, mj, ph)
         pi, pj = ball_sink.undo_one(pi, pj, ri, rj, mi, mj)  # as _part
         pocketed = self.state[b, [i, j]] == POCKETED
-        self._write_few(np.array([b, b]), np.array([i, j]), [
+        self.balls.write_few(np.array([b, b]), np.array([i, j]), [
             motion.start(ph, t, pi, vi, wi, ri, rows[0][Col.RATE], bool(pocketed[0])),
             motion.start(ph, t, pj, vj, wj, rj, rows[1][Col.RATE], bool(pocketed[1]))])
         return True
@@ -733,14 +683,12 @@ class Engine(SlowContacts):
         contact's sub-micrometre sink."""
         pi, pj = ball_sink.undo(pi, pj, self.radius[b, i], self.radius[b, j], self.mass[b, i],
                            self.mass[b, j])
-        self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
+        self.balls.set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
                   np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
 
     def ball_state(self, b: int, i: int) -> BallState:
         """Ball i of table b as it is at the table's clock (for events and output)."""
-        p, v, w = self._eval(np.array([b]), np.array([i]), np.array([self.tb[b]]))
-        return BallState(float(p[0, 0]), float(p[0, 1]), float(v[0, 0]), float(v[0, 1]),
-                         (float(w[0, 0]), float(w[0, 1]), float(w[0, 2])), int(self.state[b, i]))
+        return self.balls.ball_state(b, i, self.tb[b])
 
     def _log(self, tabs, kind, i, j, old_state, labels, extra, also, quiet) -> None:
         """Record events; a contact solved with its cluster also names the other balls of the
@@ -797,10 +745,7 @@ class Engine(SlowContacts):
 
     # ----------------------------------------------------------------- public view and driving
     def _now(self):
-        B, N = self.B, self.N
-        b, i = np.divmod(np.arange(B * N), N)
-        p, v, w = self._eval(b, i, self.tb[b])
-        return p.reshape(B, N, 2), v.reshape(B, N, 2), w.reshape(B, N, 3)
+        return self.balls.now(self.tb)
 
     @property
     def pos(self) -> np.ndarray:

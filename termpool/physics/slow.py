@@ -44,7 +44,7 @@ class SlowContacts:
             f = int(self.f_cush[bb, ib])
             if f >= nseg + self._npt:
                 return np.array([math.inf])
-            row = self._motion[bb, ib].tolist()
+            row = self.balls.motion[bb, ib].tolist()
             d = float(self.tb[bb]) - row[Col.T0]
             vx, vy = row[Col.VX] + row[Col.AX] * d, row[Col.VY] + row[Col.AY] * d
             if f < nseg:
@@ -56,14 +56,14 @@ class SlowContacts:
                 r = math.hypot(px - tx, py - ty)
                 nx, ny = (px - tx) / r, (py - ty) / r
             return np.array([-(vx * nx + vy * ny)])
-        p, v, _ = self._eval(b, i, self.tb[b], spin=False)
+        p, v, _ = self.balls.eval(b, i, self.tb[b], spin=False)
         out = -(v * self._normals(b, i, p)).sum(axis=1)
         return np.where(self.f_cush[b, i] < nseg + self._npt, out, np.inf)
 
     def _crowded(self, b, i) -> np.ndarray:
         """True for balls (b, i) that touch another ball or belong to a group."""
         k = np.arange(self.N)[None, :]
-        p, _, _ = self._eval(b[:, None], k, self.tb[b][:, None], spin=False)
+        p, _, _ = self.balls.eval(b[:, None], k, self.tb[b][:, None], spin=False)
         own = p[np.arange(len(b)), i]
         gap = _norm(p - own[:, None]) - self.radius[b] - self.radius[b, i][:, None]
         other = (self.state[b] != POCKETED) & (k != i[:, None])
@@ -73,10 +73,10 @@ class SlowContacts:
         """True for balls (b, i), just bounced slowly off a cushion feature, that do not
         leave it: still moving into it (a tiny slide completed into it), or neither moving
         off nor into it but accelerating into it."""
-        p, v, _ = self._eval(b, i, self.tb[b], spin=False)
+        p, v, _ = self.balls.eval(b, i, self.tb[b], spin=False)
         n = self._normals(b, i, p)
         vn = (v * n).sum(axis=1)
-        an = (self.acc[b, i] * n).sum(axis=1)
+        an = (self.balls.acc[b, i] * n).sum(axis=1)
         tip = self.f_cush[b, i] >= self._nseg
         bend = np.where(tip, ((v - vn[:, None] * n) ** 2).sum(axis=1) / self.rc[b, i], 0.0)
         return (vn < 0) | ((vn <= V_MIN) & (an + bend < -A_MIN))
@@ -86,7 +86,7 @@ class SlowContacts:
         N = self.N
         t = self.tb[b]
         k = np.arange(N)[None, :]
-        p, _, _ = self._eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
+        p, _, _ = self.balls.eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
         R = self.radius[b]
         live = (self.state[b] != POCKETED) & (k != i[:, None]) & (k != j[:, None])
         crowded = np.zeros(len(b), dtype=bool)
@@ -129,9 +129,9 @@ class SlowContacts:
         """True for touching pairs (b, i, j) that, moving as now set, neither close nor part
         but accelerate into each other (as roots.first_contact finds them)."""
         t = np.concatenate([self.tb[b], self.tb[b]])
-        p, v, _ = self._eval(np.concatenate([b, b]), np.concatenate([i, j]), t, spin=False)
+        p, v, _ = self.balls.eval(np.concatenate([b, b]), np.concatenate([i, j]), t, spin=False)
         n = len(b)
-        a = self.acc[b, j] - self.acc[b, i]
+        a = self.balls.acc[b, j] - self.balls.acc[b, i]
         d, dv = p[n:] - p[:n], v[n:] - v[:n]
         r = _norm(d)
         pv = (d * dv).sum(axis=1)
@@ -156,7 +156,7 @@ class SlowContacts:
         N, tab = self.N, self.table
         t = self.tb[b]
         k = np.arange(N)
-        p, v, w = self._eval(np.full(N, b), k, np.full(N, t))
+        p, v, w = self.balls.eval(np.full(N, b), k, np.full(N, t))
         p0, v_in = p.copy(), v.copy()
         R, m = self.radius[b], self.mass[b]
         live = self.state[b] != POCKETED
@@ -244,7 +244,7 @@ class SlowContacts:
         self._join(b, mem, t, p, v, w, ra[rest], rc_[rest], rn[rest], bend[rest])
         # What the solves changed: velocities as the balls now start (a resting contact's
         # last rounding of speed taken out, a ball set at rest), and positions.
-        row = self._motion[b, mem]
+        row = self.balls.motion[b, mem]
         moved = (row[:, Col.V] != v_in[mem]).any(axis=1) | (row[:, Col.P] != p0[mem]).any(axis=1)
         return members, mem[moved].tolist()
 
@@ -256,7 +256,7 @@ class SlowContacts:
         free = mem[~np.isin(mem, held)]
         self.group[b, mem] = -1
         if free.size:
-            self._set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free],
+            self.balls.set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free],
                       w[free])
         if held.size:
             where = {int(x): n for n, x in enumerate(held.tolist())}
@@ -264,10 +264,10 @@ class SlowContacts:
                     for x, y, n, bb in zip(ra, rc_, rn, bend, strict=True)]
             vj, acc, alpha, state, duration, wj = push(
                 self.physics, v[held], w[held], self.radius[b, held],
-                self.mass[b, held], self.spin_rate[b, held], rows)
+                self.mass[b, held], self.balls.spin_rate[b, held], rows)
             self.state[b, held] = state
             self.t_trans[b, held] = t + duration
-            self._motion[b, held, :Col.RATE] = np.concatenate(
+            self.balls.motion[b, held, :Col.RATE] = np.concatenate(
                 [np.full((held.size, 1), t), p[held], vj, acc, wj, alpha], axis=1)
             self.group[b, held] = int(held.min())
         self._ngroup[b] = int((self.group[b] >= 0).sum())
