@@ -192,9 +192,10 @@ def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit
     reach = np.hypot(v[:, 0], v[:, 1]) * horizon + 0.5 * np.hypot(a[:, 0], a[:, 1]) * horizon ** 2
     reach += rc
     with np.errstate(all="ignore"):
-        many = eng._lines(p, v, a, rc, horizon)
-        few = np.concatenate([eng._lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2], rc[n:n + 2],
-                                             horizon[n:n + 2], reach[n:n + 2])
+        many = eng.features.lines(p, v, a, rc, horizon)
+        few = np.concatenate([eng.features.lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2],
+                                                     rc[n:n + 2], horizon[n:n + 2],
+                                                     reach[n:n + 2])
                               for n in range(0, k, 2)])
     assert np.array_equal(few, many)
     assert np.isfinite(many).sum() > k // 4  # many balls do meet a cushion
@@ -252,7 +253,7 @@ def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed, model):
         engines.append(eng)
     one, together = engines
     assert b.size > k // 5
-    assert (one.f_cush[b, 0] >= one._nseg).any()  # jaw tips too
+    assert (one.f_cush[b, 0] >= one.features.nseg).any()  # jaw tips too
     assert (one.state[b, 0] == POCKETED).any() and (one.state[b, 0] != POCKETED).any()
     assert np.array_equal(one.state, together.state)
     assert np.array_equal(one.t_trans, together.t_trans)

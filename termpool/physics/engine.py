@@ -22,13 +22,12 @@ from termpool.physics.ball_ball import sink as ball_sink
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.cushion import sink
 from termpool.physics.events import ENDS, BallState, Event, EventKind
+from termpool.physics.features import Features
 from termpool.physics.motion import Col
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.roots import (
     V_MIN,
     first_contact,
-    first_line_contact,
-    first_line_contact_one,
 )
 from termpool.physics.slow import SlowContacts
 from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
@@ -44,7 +43,6 @@ from termpool.physics.state import (  # noqa: F401  (state codes are part of the
     STATIONARY,
 )
 from termpool.physics.table import Table
-from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
 
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
@@ -145,15 +143,7 @@ class Engine(SlowContacts):
         self.log: list[list[Event]] = [[] for _ in range(B)]  # each table's events, typed
         self._json: list[list[dict]] = [[] for _ in range(B)]  # and as JSON (`events`)
         self._unsynced = False
-        self._nseg, self._npt = len(table.seg_a), len(table.points)
-        seg_d = table.seg_b - table.seg_a
-        self._seg_len = _norm(seg_d)
-        self._seg_dir = seg_d / self._seg_len[:, None]
-        self._seg_off = (table.seg_a * table.seg_n).sum(axis=1)
-        self._seg_start = (table.seg_a * self._seg_dir).sum(axis=1)
-        self._segs = list(zip(table.seg_a.tolist(), self._seg_dir.tolist(),
-                              self._seg_len.tolist(), strict=True))  # for _lines_few
-        self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+        self.features = Features(table)
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
             self.balls.set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
@@ -210,14 +200,15 @@ class Engine(SlowContacts):
             edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
             near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
         mv = np.flatnonzero(moving & near)
-        nc = len(self._circles)
+        feat = self.features
+        nc = len(feat.circles)
         if mv.size and nc:
             rc = self.rc[b[mv], i[mv]]
-            rel_p.append((self._circles[None] - p[mv, None]).reshape(-1, 2))
+            rel_p.append((feat.circles[None] - p[mv, None]).reshape(-1, 2))
             rel_v.append(np.repeat(-v[mv], nc, axis=0))
             rel_a.append(np.repeat(-a[mv], nc, axis=0))
-            holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))
-            dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1), holes],
+            holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - feat.npt))
+            dist.append(np.concatenate([np.repeat(rc[:, None], feat.npt, axis=1), holes],
                                        axis=1).ravel())
             horizon.append(np.repeat(T[mv], nc))
             found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
@@ -233,61 +224,12 @@ class Engine(SlowContacts):
             self.t_pair[bb, kk, ii] = tp
         if mv.size:
             tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            lines = self._lines_few if mv.size <= FEW else self._lines
+            lines = feat.lines_few if mv.size <= FEW else feat.lines
             tline = lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv], reach[mv])
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
-
-    def _lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
-        """(M, S) first contact times of M balls with the cushion segments."""
-        tab = self.table
-        n = tab.seg_n
-        s0 = dots(p, n) - self._seg_off
-        M, S = s0.shape
-        along0 = dots(p, self._seg_dir) - self._seg_start
-        beside = (along0 >= 0) & (along0 <= self._seg_len)
-        tl = first_line_contact(s0.ravel(), dots(v, n).ravel(), dots(a, n).ravel(),
-                                np.repeat(rc, S), np.repeat(horizon, S),
-                                beside.ravel()).reshape(M, S)
-        # The contact must fall on the segment itself; its ends are the jaw-tip points.
-        fin = np.isfinite(tl)
-        if fin.any():
-            tt = np.where(fin, tl, 0.0)[..., None]
-            pt = p[:, None] + v[:, None] * tt + 0.5 * a[:, None] * (tt * tt)
-            along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self._seg_dir)
-            tl = np.where(fin & (along >= 0) & (along <= self._seg_len[None]), tl, np.inf)
-        return tl
-
-    def _lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
-        """_lines for a few balls in plain floats, bit-identical. A ball whose centre is
-        further from a cushion segment than its reach (travel in the window plus the nose
-        distance, with a micrometre to spare) cannot meet it and skips it: the array path
-        finds no contact there either."""
-        tab = self.table
-        n = tab.seg_n
-        out = np.full((len(p), self._nseg), np.inf)
-        rows = zip((dots(p, n) - self._seg_off).tolist(),
-                   (dots(p, self._seg_dir) - self._seg_start).tolist(), dots(v, n).tolist(),
-                   dots(a, n).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
-                   horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
-        for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
-            for k, (ak, dk, length) in enumerate(self._segs):
-                # The ball's distance from the segment is at least each of these.
-                if s0[k] > far or -s0[k] > far or -along0[k] > far or along0[k] - length > far:
-                    continue
-                beside = along0[k] >= 0 and along0[k] <= length
-                tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
-                if tl < math.inf:
-                    # The contact must fall on the segment itself (as in _lines).
-                    tt = tl * tl
-                    qx = (pm[0] + vm[0] * tl + 0.5 * am[0] * tt) - ak[0]
-                    qy = (pm[1] + vm[1] * tl + 0.5 * am[1] * tt) - ak[1]
-                    along = qx * dk[0] + qy * dk[1]
-                    if along >= 0 and along <= length:
-                        out[m, k] = tl
-        return out
 
     def _refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
@@ -380,7 +322,7 @@ class Engine(SlowContacts):
             if slow.any():
                 crowd[slow] = self._crowded(tabs[cu[slow]], i[cu[slow]])
             if any_busy:
-                crowd |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self._nseg + self._npt)
+                crowd |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self.features.first_hole)
             if crowd.any():
                 # A cluster's solve leaves out a contact sunk deeper than CLUSTER_GAP, and
                 # the ball would meet it again at once, for ever: it bounces (and is lifted).
@@ -388,7 +330,7 @@ class Engine(SlowContacts):
                 crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
             if self.record:
                 f = self.f_cush[tabs[cu], i[cu]]
-                labels = dict(zip(cu.tolist(), zip(f.tolist(), self._features(f), strict=True),
+                labels = dict(zip(cu.tolist(), zip(f.tolist(), self.features.names(f), strict=True),
                                   strict=True))
             for n in cu[crowd].tolist():
                 clusters.append((n, [int(i[n])], bool(busy[n]), True))
@@ -556,25 +498,16 @@ class Engine(SlowContacts):
 
     def _cushion(self, b, i) -> None:
         """Balls (b, i) meet the rail, jaw, jaw tip or pocket hole they were headed for."""
-        tab, ph = self.table, self.physics
-        nseg, npt = self._nseg, self._npt
+        tab, ph, feat = self.table, self.physics, self.features
         if b.size == 1:
             self._cushion_one(int(b[0]), int(i[0]))
             return
         t = self.tb[b]
         f = self.f_cush[b, i]
         p, v, w = self.balls.eval(b, i, t)
-        hole = f >= nseg + npt
-        seg = f < nseg
+        hole = f >= feat.first_hole
         rc = self.rc[b, i]
-        # Normal (into the table) and a point on the contact feature.
-        ref = np.where(seg[:, None], tab.seg_a[np.minimum(f, nseg - 1)], 0.0)
-        n = np.where(seg[:, None], tab.seg_n[np.minimum(f, nseg - 1)], 0.0)
-        tip = ~hole & ~seg
-        if tip.any():
-            ref[tip] = tab.points[f[tip] - nseg]
-            d = p[tip] - ref[tip]
-            n[tip] = d / _norm(d)[:, None]
+        ref, n = feat.points(f), feat.normals(f, p)  # of the rails, jaws and tips met
         bounce = np.nonzero(~hole)[0]
         if bounce.size:
             bb, ib = b[bounce], i[bounce]
@@ -586,7 +519,7 @@ class Engine(SlowContacts):
         hl = np.nonzero(hole)[0]
         if hl.size:
             bh, ih = b[hl], i[hl]
-            k = f[hl] - nseg - npt
+            k = f[hl] - feat.first_hole
             self.state[bh, ih] = POCKETED
             self.pocket[bh, ih] = k
             self.balls.set(bh, ih, t[hl], *pocket.drop(tab.hole_c[k]))
@@ -598,20 +531,14 @@ class Engine(SlowContacts):
         f = int(self.f_cush[b, i])
         row = self.balls.motion[b, i].tolist()
         r = row[Col.RADIUS]
-        hole = f - self._nseg - self._npt
+        hole = f - self.features.first_hole
         if hole >= 0:
             self.state[b, i] = POCKETED
             self.pocket[b, i] = hole
             p, v, w = pocket.drop_one(tab.hole_c[hole].tolist())
         else:
             p, v, w = motion.at(row, t)
-            if f < self._nseg:
-                ref, n = tab.seg_a[f].tolist(), tab.seg_n[f].tolist()
-            else:
-                ref = tab.points[f - self._nseg].tolist()
-                d0, d1 = p[0] - ref[0], p[1] - ref[1]
-                dist = float(np.hypot(d0, d1))
-                n = [d0 / dist, d1 / dist]
+            ref, n = self.features.contact_one(f, p)
             v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, row[Col.MASS], ph)
             p = sink.lift_one(p, ref, n, float(self.rc[b, i]))
         self.balls.write_few(np.array([b]), np.array([i]), [
@@ -622,25 +549,9 @@ class Engine(SlowContacts):
         they are about to meet."""
         p, _, _ = self.balls.eval(b, i, self.tb[b], spin=False)
         f = self.f_cush[b, i]
-        seg = (f < self._nseg)[:, None]
-        ref = np.where(seg, self.table.seg_a[np.minimum(f, self._nseg - 1)],
-                       self.table.points[np.clip(f - self._nseg, 0, max(self._npt - 1, 0))]
-                       if self._npt else 0.0)
-        depth = self.rc[b, i] - ((p - ref) * self._normals(b, i, p)).sum(axis=1)
+        n = self.features.normals(f, p)
+        depth = self.rc[b, i] - ((p - self.features.points(f)) * n).sum(axis=1)
         return depth > CLUSTER_GAP
-
-    def _features(self, f) -> list[str]:
-        """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
-        tab, nseg, npt = self.table, self._nseg, self._npt
-        names = []
-        for fi in f.tolist():
-            if fi < nseg:
-                names.append(tab.seg_kind[fi])
-            elif fi < nseg + npt:
-                names.append("tip")
-            else:
-                names.append(tab.hole_names[fi - nseg - npt])
-        return names
 
     def _pair_one(self, b: int, i: int, j: int) -> bool:
         """One fast ball-ball contact in plain floats (the usual pass), bit-identical to the

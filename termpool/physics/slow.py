@@ -23,42 +23,25 @@ from termpool.physics.vec import perp as _perp
 
 
 class SlowContacts:
-    def _normals(self, b, i, p):
-        """Unit normals (into the table) of the cushion features balls (b, i) at p are about
-        to meet: a rail's or jaw's, or from a jaw tip to the ball (not for pocket holes)."""
-        nseg = self._nseg
-        f = self.f_cush[b, i]
-        n = self.table.seg_n[np.minimum(f, nseg - 1)]
-        tip = (f >= nseg) & (f < nseg + self._npt)
-        if tip.any():
-            d = p[tip] - self.table.points[f[tip] - nseg]
-            n[tip] = d / _norm(d)[:, None]
-        return n
-
     def _approach(self, b, i) -> np.ndarray:
         """Speeds into the cushion, jaw or tip that balls (b, i) are about to meet (inf for
         a pocket's hole: never a slow contact)."""
-        nseg = self._nseg
+        feat = self.features
         if b.size == 1:  # one ball (the usual case), in plain floats
             bb, ib = int(b[0]), int(i[0])
             f = int(self.f_cush[bb, ib])
-            if f >= nseg + self._npt:
+            if f >= feat.first_hole:
                 return np.array([math.inf])
             row = self.balls.motion[bb, ib].tolist()
             d = float(self.tb[bb]) - row[Col.T0]
             vx, vy = row[Col.VX] + row[Col.AX] * d, row[Col.VY] + row[Col.AY] * d
-            if f < nseg:
-                nx, ny = self.table.seg_n[f].tolist()
-            else:
-                px = row[Col.PX] + (row[Col.VX] + 0.5 * row[Col.AX] * d) * d
-                py = row[Col.PY] + (row[Col.VY] + 0.5 * row[Col.AY] * d) * d
-                tx, ty = self.table.points[f - nseg].tolist()
-                r = math.hypot(px - tx, py - ty)
-                nx, ny = (px - tx) / r, (py - ty) / r
+            px = row[Col.PX] + (row[Col.VX] + 0.5 * row[Col.AX] * d) * d
+            py = row[Col.PY] + (row[Col.VY] + 0.5 * row[Col.AY] * d) * d
+            _, (nx, ny) = feat.contact_one(f, [px, py])
             return np.array([-(vx * nx + vy * ny)])
         p, v, _ = self.balls.eval(b, i, self.tb[b], spin=False)
-        out = -(v * self._normals(b, i, p)).sum(axis=1)
-        return np.where(self.f_cush[b, i] < nseg + self._npt, out, np.inf)
+        out = -(v * feat.normals(self.f_cush[b, i], p)).sum(axis=1)
+        return np.where(self.f_cush[b, i] < feat.first_hole, out, np.inf)
 
     def _crowded(self, b, i) -> np.ndarray:
         """True for balls (b, i) that touch another ball or belong to a group."""
@@ -74,10 +57,10 @@ class SlowContacts:
         leave it: still moving into it (a tiny slide completed into it), or neither moving
         off nor into it but accelerating into it."""
         p, v, _ = self.balls.eval(b, i, self.tb[b], spin=False)
-        n = self._normals(b, i, p)
+        n = self.features.normals(self.f_cush[b, i], p)
         vn = (v * n).sum(axis=1)
         an = (self.balls.acc[b, i] * n).sum(axis=1)
-        tip = self.f_cush[b, i] >= self._nseg
+        tip = self.f_cush[b, i] >= self.features.nseg
         bend = np.where(tip, ((v - vn[:, None] * n) ** 2).sum(axis=1) / self.rc[b, i], 0.0)
         return (vn < 0) | ((vn <= V_MIN) & (an + bend < -A_MIN))
 
@@ -94,7 +77,7 @@ class SlowContacts:
             px = p[np.arange(len(b)), x]
             gap = _norm(p - px[:, None]) - R - R[np.arange(len(b)), x][:, None]
             crowded |= (live & (gap < CLUSTER_GAP)).any(axis=1)
-            seg_gap, beside, tip_gap, _ = self._cushion_gaps(px, self.rc[b, x])
+            seg_gap, beside, tip_gap, _ = self.features.gaps(px, self.rc[b, x])
             crowded |= ((seg_gap < CLUSTER_GAP) & beside).any(axis=1)
             crowded |= (tip_gap < CLUSTER_GAP).any(axis=1)
         return ~crowded
@@ -138,18 +121,6 @@ class SlowContacts:
         acc = ((dv * dv).sum(axis=1) + (d * a).sum(axis=1)) / r - pv * pv / r ** 3
         return (np.abs(pv) <= V_MIN * r) & (acc < -A_MIN)
 
-    def _cushion_gaps(self, p, rc):
-        """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
-        whether each ball is beside the segment, and to the jaw tips, with the direction from
-        each tip: (seg_gap (M, S), beside (M, S), tip_gap (M, P), tip_dir (M, P, 2))."""
-        tab = self.table
-        seg_gap = dots(p, tab.seg_n) - self._seg_off - rc[:, None]
-        along = dots(p, self._seg_dir) - self._seg_start
-        beside = (along >= 0) & (along <= self._seg_len)
-        dp = p[:, None] - tab.points[None]
-        dd = _norm(dp)
-        return seg_gap, beside, dd - rc[:, None], dp / dd[..., None]
-
     def _cluster(self, b: int, seeds: list[int], every: bool = False):
         """Resolve a slow contact together with every ball and cushion touching its cluster
         (with `every`, fast contacts too: the work bound's inelastic fallback)."""
@@ -192,7 +163,7 @@ class SlowContacts:
             rg.append(gaps)
             rkind.append(np.full(x.size, kind))
 
-        seg_gap, beside, tip_gap, tip_dir = self._cushion_gaps(pm, rcm)
+        seg_gap, beside, tip_gap, tip_dir = self.features.gaps(pm, rcm)
         slow = dots(v[mem], tab.seg_n) >= -cap
         x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
         cushion_rows(x, tab.seg_n[f], seg_gap[x, f], 1)
