@@ -27,8 +27,8 @@ from termpool.physics.motion import Col
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.roots import (
     V_MIN,
-    first_contact,
 )
+from termpool.physics.schedule import Due, Schedule
 from termpool.physics.slow import SlowContacts
 from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
     CLUSTER_GAP,
@@ -64,8 +64,6 @@ WINDOW = 1 / 60
 
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
-_MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
-_LIVE = np.array([s != POCKETED for s in range(5)])
 
 
 class WorkLimit(RuntimeError):
@@ -104,7 +102,6 @@ class Engine(SlowContacts):
             pos = pos[None]
         B, N = pos.shape[:2]
         self.B, self.N = B, N
-        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
         self.table, self.physics, self.record, self.horizon = table, physics, record, horizon
         lead = (B, N) if self.batched else (N,)
         vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
@@ -114,20 +111,11 @@ class Engine(SlowContacts):
         for name, arr in (("radius", radius), ("mass", mass)):
             if not (arr > 0).all() or not np.isfinite(arr).all():
                 raise ValueError(f"{name}: must be positive and finite")
-        # Every prediction of a table in one row, in the order of the event codes, so that
-        # finding the next event is one argmin: transitions, horizon checks, cushions, pairs.
-        self._times = np.full((B, 3 * N + N * N), np.inf)
-        self.balls = Balls(physics, radius, mass, self._times[:, :N])
+        times = Schedule.new_times(B, N)
+        self.balls = Balls(physics, radius, mass, times[:, :N])
         b = self.balls  # the balls' arrays the engine's users read
         self.radius, self.mass, self.rc, self.state, self.pocket, self.t_trans = (
             b.radius, b.mass, b.rc, b.state, b.pocket, b.t_trans)
-        self.t_check = self._times[:, N:2 * N]
-        self.t_cush = self._times[:, 2 * N:3 * N]
-        self.f_cush = np.zeros((B, N), dtype=np.int64)
-        self.t_pair = self._times[:, 3 * N:].reshape(B, N, N)
-        assert np.shares_memory(self.t_pair, self._times)  # a view, not a copy
-        self.t_next = np.full(B, np.inf)  # each table's next event time and its code
-        self.c_next = np.zeros(B, dtype=np.int64)
         self.tb = np.zeros(B)  # each table's own clock inside a step
         self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
         self._count = np.zeros(B, dtype=np.int64)
@@ -144,99 +132,20 @@ class Engine(SlowContacts):
         self._json: list[list[dict]] = [[] for _ in range(B)]  # and as JSON (`events`)
         self._unsynced = False
         self.features = Features(table)
+        self.schedule = sc = Schedule(times, self.balls, self.features, self.tb, horizon)
+        # The predictions the engine's users read.
+        self.t_cush, self.f_cush, self.t_next = sc.t_cush, sc.f_cush, sc.t_next
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
             self.balls.set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
             self._predict(b, i)
-            self._refresh(np.arange(B))
+            self.schedule.refresh(np.arange(B))
 
     # ----------------------------------------------------------------- predictions
     def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
-        """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
+        """Renew the contact predictions of balls (b, i), counting the work."""
         self.work += b.size * self.N
-        t = self.tb[b]
-        st = self.state[b, i]
-        moving = _MOVING[st]
-        t_check = np.where(moving, t + self.horizon, np.inf)
-        self.t_check[b, i] = t_check
-        end = np.minimum(self.t_trans[b, i], t_check)
-        self.t_cush[b, i] = np.inf
-        self.t_pair[b, i, :] = np.inf
-        self.t_pair[b, :, i] = np.inf
-        live = st != POCKETED
-        if not live.all():
-            m = np.flatnonzero(live)
-            if m.size == 0:
-                return
-            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
-        # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
-        M = b.size
-        rows = np.arange(M)
-        tc = t[:, None]
-        P, V, _ = self.balls.eval(b[:, None], self._balls, tc, spin=False)
-        A = self.balls.acc[b]
-        p, v, a = P[rows, i], V[rows, i], A[rows, i]
-        # Pairs: every other ball on the table, where at least one of the two moves.
-        stk = self.state[b]
-        valid = _LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
-        mi = np.nonzero(valid)[0]
-        R = self.radius[b]
-        end_k = np.minimum(self.t_trans[b], self.t_check[b])
-        rel_p = [(P - p[:, None])[valid]]
-        rel_v = [(V - v[:, None])[valid]]
-        rel_a = [(A - a[:, None])[valid]]
-        dist = [(R + R[rows, i][:, None])[valid]]
-        horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
-        # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
-        # noses or a hole within their window (a ball in open felt costs nothing here); tips
-        # and holes are the same quartic as a pair. A corner hole may reach into the table
-        # past the rail lines, up to its mouth.
-        T = end - t
-        reach = _norm(v) * T + 0.5 * _norm(a) * T * T + self.rc[b, i]
-        tab = self.table
-        x, y = p[:, 0], p[:, 1]
-        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        if len(tab.hole_r):
-            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
-            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
-        mv = np.flatnonzero(moving & near)
-        feat = self.features
-        nc = len(feat.circles)
-        if mv.size and nc:
-            rc = self.rc[b[mv], i[mv]]
-            rel_p.append((feat.circles[None] - p[mv, None]).reshape(-1, 2))
-            rel_v.append(np.repeat(-v[mv], nc, axis=0))
-            rel_a.append(np.repeat(-a[mv], nc, axis=0))
-            holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - feat.npt))
-            dist.append(np.concatenate([np.repeat(rc[:, None], feat.npt, axis=1), holes],
-                                       axis=1).ravel())
-            horizon.append(np.repeat(T[mv], nc))
-            found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
-                                  np.concatenate(rel_a), np.concatenate(dist),
-                                  np.concatenate(horizon))
-        else:
-            found = first_contact(rel_p[0], rel_v[0], rel_a[0], dist[0], horizon[0])
-        npair = mi.size
-        if npair:
-            tp = t[mi] + found[:npair]
-            bb, ii, kk = b[mi], i[mi], np.nonzero(valid)[1]
-            self.t_pair[bb, ii, kk] = tp
-            self.t_pair[bb, kk, ii] = tp
-        if mv.size:
-            tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            lines = feat.lines_few if mv.size <= FEW else feat.lines
-            tline = lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv], reach[mv])
-            allt = np.concatenate([tline, tcirc], axis=1)
-            f = allt.argmin(axis=1)
-            self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
-            self.f_cush[b[mv], i[mv]] = f
-
-    def _refresh(self, tabs: np.ndarray) -> None:
-        """Recompute the next event of tables `tabs` from their predictions."""
-        allt = self._times[tabs]
-        code = allt.argmin(axis=1)
-        self.t_next[tabs] = allt[np.arange(len(tabs)), code]
-        self.c_next[tabs] = code
+        self.schedule.predict(b, i)
 
     # ----------------------------------------------------------------- events
     def _run_until(self, t_end: float) -> None:
@@ -256,8 +165,8 @@ class Engine(SlowContacts):
             self._spend(PASS_WORK)
             self.passes += 1
             self.tb[tabs] = self.t_next[tabs]
-            self._handle(tabs, self.c_next[tabs])
-            self._refresh(tabs)
+            self._handle(tabs, self.schedule.c_next[tabs])
+            self.schedule.refresh(tabs)
 
     def _spend(self, units: int) -> None:
         """Count work before a step or a pass; raise WorkLimit past the limit (between
@@ -268,12 +177,7 @@ class Engine(SlowContacts):
                             f"at {float(self.tb.max()):.6g} s of simulated time (docs/limits.md)")
 
     def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
-        N = self.N
-        # code: N transitions, N checks, N cushions, then N * N pairs (i, j).
-        q, r = np.divmod(code, N)
-        kind = np.minimum(q, 3)
-        i = np.where(q < 3, r, q - 3)
-        j = np.where(q < 3, -1, r)
+        kind, i, j = self.schedule.decode(code)
         old_state = self.state[tabs, i] if self.record else None
         t = self.tb[tabs]
         win = np.floor(t / WINDOW).astype(np.int64)
@@ -286,16 +190,16 @@ class Engine(SlowContacts):
             which = _ONE
             tr = cu = pr = _NONE
             k0 = int(kind[0])
-            if k0 == 0:
+            if k0 == Due.TRANSITION:
                 tr = which
-            elif k0 == 2:
+            elif k0 == Due.CUSHION:
                 cu = which
-            elif k0 == 3:
+            elif k0 == Due.PAIR:
                 pr = which
         else:
-            tr = np.flatnonzero(kind == 0)
-            cu = np.flatnonzero(kind == 2)
-            pr = np.flatnonzero(kind == 3)
+            tr = np.flatnonzero(kind == Due.TRANSITION)
+            cu = np.flatnonzero(kind == Due.CUSHION)
+            pr = np.flatnonzero(kind == Due.PAIR)
         labels: dict = {}
         # (event, seed balls, every contact inelastic, the event's own slow contact)
         clusters: list[tuple[int, list[int], bool, bool]] = []
@@ -357,7 +261,7 @@ class Engine(SlowContacts):
             # A fast contact or bounce of a grouped ball breaks its group: the others move
             # freely again, and those still pressed together are joined again as their
             # predictions find them (a cheap step where a break's impacts cross a group).
-            for n in np.flatnonzero(grouped & (kind >= 2)).tolist():
+            for n in np.flatnonzero(grouped & (kind >= Due.CUSHION)).tolist():
                 b = int(tabs[n])
                 own = {int(x) for x in (i[n], j[n]) if x >= 0}
                 members = {k for x in own for k in self._group_of(b, x)}
@@ -385,43 +289,27 @@ class Engine(SlowContacts):
             if self.record:
                 # A group renewed when one of its balls stops may stop the others with it:
                 # each such end is an event of its own.
-                self_ = int(i[n]) if kind[n] == 0 else -1  # a transition's own ball
+                self_ = int(i[n]) if kind[n] == Due.TRANSITION else -1  # a transition's own ball
                 ends = [(k, int(before[k]), int(self.state[b, k])) for k in members if k != self_]
                 ends = [e for e in ends if e[1:] in ENDS]
                 also.setdefault(n, []).extend(ends)
-            if kind[n] != 0:  # a group renewed by a transition moves others by rounding only
+            if kind[n] != Due.TRANSITION:  # a transition renews a group: others move by rounding
                 skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(extra.get(n, ()))
                 extra.setdefault(n, []).extend(k for k in moved if k not in skip)
         self._predict(np.concatenate(more_b), np.concatenate(more_i))
         for n in quiet:
-            if kind[n] == 3:
-                self._unstick(int(tabs[n]), int(i[n]), int(j[n]))
+            if kind[n] == Due.PAIR:
+                self.schedule.unstick(int(tabs[n]), int(i[n]), int(j[n]))
         if self.record:
             self._log(tabs, kind, i, j, old_state, labels, extra, also, quiet)
-
-    def _unstick(self, b: int, i: int, j: int) -> None:
-        """A pressed pair whose solve changed nothing, found pressed again at the same
-        instant, would be met there for ever (a ball slowing to a stop as it parts, a group
-        whose push leaves it pressed): it is looked for again as a pair that is not pressed,
-        when it has sunk SINK."""
-        t = self.tb[b]
-        if self.t_pair[b, i, j] > t:
-            return
-        k = np.array([i, j])
-        p, v, _ = self.balls.eval(np.full(2, b), k, np.full(2, t), spin=False)
-        a = self.balls.acc[b, k]
-        end = np.minimum(self.t_trans[b, k], self.t_check[b, k]).min() - t
-        found = first_contact((p[1] - p[0])[None], (v[1] - v[0])[None], (a[1] - a[0])[None],
-                              self.radius[b, k].sum()[None], np.array([end]), pressed=False)
-        self.t_pair[b, i, j] = self.t_pair[b, j, i] = t + found[0]
 
     def _grouped(self, tabs, i, j, kind):
         """Events (by position in the pass) that involve a grouped ball, or None if no table
         of the pass has a group (the usual case, decided without array work)."""
         if (not self._ngroup[int(tabs[0])]) if tabs.size == 1 else not self._ngroup[tabs].any():
             return None
-        out = (self.group[tabs, i] >= 0) & (kind != 1)
-        pair = kind == 3
+        out = (self.group[tabs, i] >= 0) & (kind != Due.CHECK)
+        pair = kind == Due.PAIR
         out[pair] |= self.group[tabs[pair], j[pair]] >= 0
         return out
 
@@ -609,19 +497,19 @@ class Engine(SlowContacts):
         collision and is not recorded."""
         for n, b in enumerate(tabs.tolist()):
             k = int(kind[n])
-            if k == 1 or n in quiet:
+            if k == Due.CHECK or n in quiet:
                 self._log_also(b, also.get(n, ()))
                 continue
             ib = int(i[n])
             where: dict = {}
-            if k == 0:
+            if k == Due.TRANSITION:
                 pair = (int(old_state[n]), int(self.state[b, ib]))
                 if pair[0] == pair[1]:  # a group's motion renewed, nothing ended
                     self._log_also(b, also.get(n, ()))
                     continue
                 what = ENDS.get(pair, EventKind.TRANSITION)
                 balls = [ib]
-            elif k == 2:
+            elif k == Due.CUSHION:
                 f, name = labels[n]
                 if self.state[b, ib] == POCKETED:
                     what, where["pocket"] = EventKind.POCKET, name
