@@ -6,8 +6,6 @@ is one argmin. An event renews only the predictions of the balls it touched.
 
 from __future__ import annotations
 
-from enum import IntEnum
-
 import numpy as np
 
 from termpool.physics.balls import FEW, Balls
@@ -20,9 +18,10 @@ _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 
 
-class Due(IntEnum):
+class Due:
     """What a prediction is of, in the order of a table's row of times: N transitions, N
-    horizon checks, N cushion contacts, then N x N ball pairs."""
+    horizon checks, N cushion contacts, then N x N ball pairs. (Plain ints, not an enum:
+    numpy takes an enum member through a slow path.)"""
 
     TRANSITION = 0
     CHECK = 1  # a moving ball's predictions looked HORIZON ahead: renew them
