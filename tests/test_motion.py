@@ -13,8 +13,9 @@ import pytest
 
 from termpool.physics import motion
 from termpool.physics.ball_ball import MODELS as BALL_BALL
+from termpool.physics.balls import FEW
 from termpool.physics.cushion import MODELS
-from termpool.physics.engine import FEW, Engine
+from termpool.physics.engine import Engine
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.state import EPS_U, POCKETED
 from termpool.physics.table import Table
@@ -107,9 +108,9 @@ def test_transitions_in_floats_match_the_array_path_bit_for_bit(physics, seed):
                 eng.tb[0] = eng.t_trans[0, i[n]]
                 one = slice(n, n + 1)
                 if path == "few":
-                    eng._transition_few(b[one], i[one])
+                    eng.respond.transition_few(b[one], i[one])
                 else:
-                    eng._transition(np.repeat(b[one], FEW + 1), np.repeat(i[one], FEW + 1))
+                    eng.respond.transition(np.repeat(b[one], FEW + 1), np.repeat(i[one], FEW + 1))
         engines.append(eng)
     few, many = engines
     assert i.size > K // 4  # transitions of every kind were run
@@ -162,9 +163,9 @@ def test_contacts_handled_one_by_one_match_a_batch_bit_for_bit(seed):
         with np.errstate(all="ignore"):
             if path == "one by one":
                 for n in range(k):
-                    eng._pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None, [], set())
+                    eng.slow.pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None)
             else:
-                eng._pairs(b, i, j, b, None, [], set())
+                eng.slow.pairs(b, i, j, b, None)
         engines.append(eng)
     one, together = engines
     assert np.array_equal(one.state, together.state)
@@ -247,9 +248,9 @@ def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed, model):
         with np.errstate(all="ignore"):
             if path == "one by one":
                 for n in range(b.size):
-                    eng._cushion(b[n:n + 1], i[n:n + 1])
+                    eng.respond.cushion(b[n:n + 1], i[n:n + 1])
             else:
-                eng._cushion(b, i)
+                eng.respond.cushion(b, i)
         engines.append(eng)
     one, together = engines
     assert b.size > k // 5
