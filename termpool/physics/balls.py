@@ -20,6 +20,37 @@ from termpool.physics.state import POCKETED
 FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 
 
+def _batch(x, shape: tuple, name: str) -> np.ndarray:
+    arr = np.asarray(x, dtype=float)
+    try:
+        return np.broadcast_to(arr, shape).copy()
+    except ValueError:
+        raise ValueError(f"{name}: shape {arr.shape} does not fit {shape}") from None
+
+
+def ball_arrays(pos, vel, w, radius, mass) -> tuple:
+    """The engine's ball arguments as (batched, pos (B, N, 2), vel (B, N, 2), w (B, N, 3),
+    radius (B, N), mass (B, N)), checked: pos (N, 2) or (B, N, 2), batched when it has the
+    table axis; the others broadcast to it (vel and w None: at rest); radius and mass
+    positive and finite. Raises ValueError naming the argument."""
+    pos = np.asarray(pos, dtype=float)
+    if pos.ndim not in (2, 3) or pos.shape[-1] != 2:
+        raise ValueError(f"pos: shape {pos.shape} is not (N, 2) or (B, N, 2)")
+    batched = pos.ndim == 3
+    if not batched:
+        pos = pos[None]
+    B, N = pos.shape[:2]
+    lead = (B, N) if batched else (N,)
+    vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
+    w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
+    radius = _batch(radius, lead, "radius").reshape(B, N)
+    mass = _batch(mass, lead, "mass").reshape(B, N)
+    for name, arr in (("radius", radius), ("mass", mass)):
+        if not (arr > 0).all() or not np.isfinite(arr).all():
+            raise ValueError(f"{name}: must be positive and finite")
+    return batched, pos, vel, w, radius, mass
+
+
 class Balls:
     """B tables of N balls. `t_trans` (B, N) receives each ball's time of its next motion
     transition (the engine keeps it among its predictions)."""

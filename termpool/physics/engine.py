@@ -1,13 +1,15 @@
 """The engine: a batch of tables advanced by fixed steps, exact inside each step.
 
 State lives in arrays with a leading table axis (B) and a ball axis (N). Between events every
-ball moves on a closed-form quadratic from its own reference time t0, so a ball nobody touches
-is never updated: its position at any time is evaluated from (t0, p0, v0, acc) when needed.
-For every ball the engine keeps the time of its next motion transition and of its next cushion
-or pocket contact, and for every pair the time of their next contact; an event renews only the
-predictions of the balls it touched. A step runs the events inside it in time order, one per
-table per pass and all tables at once; a step without events costs one comparison, and tables
-at rest cost nothing.
+ball moves on a closed-form quadratic from its own reference time t0 (balls.py), so a ball
+nobody touches is never updated. For every ball the schedule keeps the time of its next
+motion transition and of its next cushion or pocket contact, and for every pair the time of
+their next contact (schedule.py); an event renews only the predictions of the balls it
+touched. A step runs the events inside it in time order, one per table per pass and all
+tables at once; a step without events costs one comparison, and tables at rest cost nothing.
+The engine is the scheduler: the event loop, the work limit and the dispatch of each pass to
+the responses (respond.py: fast events; slow.py: slow contacts and clusters; joined.py:
+groups), whose models live one per unit (physics/models.py lists them).
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ import math
 
 import numpy as np
 
-from termpool.physics.balls import Balls
+from termpool.physics.balls import Balls, ball_arrays
 from termpool.physics.events import BallState
 from termpool.physics.features import Features
 from termpool.physics.joined import Groups
@@ -25,18 +27,7 @@ from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.respond import Responses
 from termpool.physics.schedule import Due, Schedule
 from termpool.physics.slow import SlowContacts
-from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
-    CLUSTER_GAP,
-    EPS_U,
-    EPS_V,
-    EPS_W,
-    POCKETED,
-    ROLLING,
-    SLIDING,
-    SPINNING,
-    STATE_NAMES,
-    STATIONARY,
-)
+from termpool.physics.state import POCKETED, SPINNING, STATE_NAMES, STATIONARY  # noqa: F401
 from termpool.physics.table import Table
 
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
@@ -74,14 +65,6 @@ def _split(due: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]
             np.flatnonzero(due == Due.PAIR))
 
 
-def _batch(x, shape: tuple, name: str) -> np.ndarray:
-    arr = np.asarray(x, dtype=float)
-    try:
-        return np.broadcast_to(arr, shape).copy()
-    except ValueError:
-        raise ValueError(f"{name}: shape {arr.shape} does not fit {shape}") from None
-
-
 class Engine:
     """Advance B independent tables of N balls each (arrays may omit the table axis)."""
 
@@ -98,23 +81,10 @@ class Engine:
         horizon: float = HORIZON,
         max_work: float | None = None,
     ) -> None:
-        pos = np.asarray(pos, dtype=float)
-        if pos.ndim not in (2, 3) or pos.shape[-1] != 2:
-            raise ValueError(f"pos: shape {pos.shape} is not (N, 2) or (B, N, 2)")
-        self.batched = pos.ndim == 3
-        if not self.batched:
-            pos = pos[None]
-        B, N = pos.shape[:2]
+        self.batched, pos, vel, w, radius, mass = ball_arrays(pos, vel, w, radius, mass)
+        B, N = radius.shape
         self.B, self.N = B, N
         self.table, self.physics, self.record = table, physics, record
-        lead = (B, N) if self.batched else (N,)
-        vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
-        w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
-        radius = _batch(radius, lead, "radius").reshape(B, N)
-        mass = _batch(mass, lead, "mass").reshape(B, N)
-        for name, arr in (("radius", radius), ("mass", mass)):
-            if not (arr > 0).all() or not np.isfinite(arr).all():
-                raise ValueError(f"{name}: must be positive and finite")
         self.tb = np.zeros(B)  # each table's own clock inside a step
         self.time = 0.0
         self.steps = 0
@@ -133,7 +103,7 @@ class Engine:
         self.groups = Groups(physics, self.balls, self.tb)
         self.slow = SlowContacts(physics, self.balls, self.features, self.schedule, self.groups,
                                  self.respond, self.tb)
-        self.recorder = EventLog(self.balls, self.tb)
+        self.recorder = EventLog(self.balls, self.features, self.tb)
         self.log = self.recorder.tables  # each table's events, typed
         # The arrays the engine's users read, as the collaborators hold them.
         bl, sc = self.balls, self.schedule
@@ -211,9 +181,7 @@ class Engine:
         cushions: dict = {}  # cushion event -> its feature (index, name), for the log
         if cu.size:
             if self.record:
-                f = self.f_cush[tabs[cu], i[cu]]
-                cushions = dict(zip(cu.tolist(), zip(f.tolist(), self.features.names(f),
-                                                     strict=True), strict=True))
+                cushions = self.recorder.met(cu, self.f_cush[tabs[cu], i[cu]])
             more, still = self.slow.cushions(tabs, i, cu, busy, any_busy)
             clusters += more
             quiet |= still
@@ -250,21 +218,18 @@ class Engine:
         """Each table's events in the JSON form (`Event.to_json`) of records and output."""
         return self.recorder.json()
 
-    def _now(self):
-        return self.balls.now(self.tb)
-
     @property
     def pos(self) -> np.ndarray:
         """(B, N, 2) positions now (pocketed balls sit at their pocket's centre)."""
-        return self._now()[0]
+        return self.balls.now(self.tb)[0]
 
     @property
     def vel(self) -> np.ndarray:
-        return self._now()[1]
+        return self.balls.now(self.tb)[1]
 
     @property
     def w(self) -> np.ndarray:
-        return self._now()[2]
+        return self.balls.now(self.tb)[2]
 
     def at_rest(self) -> np.ndarray:
         """(B,) True where every ball is stationary or pocketed."""

@@ -6,6 +6,7 @@ import numpy as np
 
 from termpool.physics.balls import Balls
 from termpool.physics.events import ENDS, BallState, Event, EventKind
+from termpool.physics.features import Features
 from termpool.physics.schedule import Due
 from termpool.physics.state import POCKETED
 
@@ -14,11 +15,17 @@ class EventLog:
     """Every table's events in time order: `tables` (typed) and `json()` (`Event.to_json`).
     `tb` is the tables' clocks, at which the balls' states are taken."""
 
-    def __init__(self, balls: Balls, tb: np.ndarray) -> None:
-        self.balls, self.tb = balls, tb
+    def __init__(self, balls: Balls, features: Features, tb: np.ndarray) -> None:
+        self.balls, self.features, self.tb = balls, features, tb
         self.tables: list[list[Event]] = [[] for _ in range(balls.B)]
         self._json: list[list[dict]] = [[] for _ in range(balls.B)]
         self._unsynced = False  # events were added since json() was last brought up to date
+
+    def met(self, events: np.ndarray, f: np.ndarray) -> dict[int, tuple[int, str]]:
+        """Cushion events (by place in a pass) -> the feature each met, (index, name): taken
+        before the features' predictions are renewed."""
+        return dict(zip(events.tolist(), zip(f.tolist(), self.features.names(f), strict=True),
+                        strict=True))
 
     def record(self, tabs, due, i, j, old_state, cushions, extra, also, quiet) -> None:
         """Record the events of a pass: tables `tabs`, what was due, balls i and j, the
