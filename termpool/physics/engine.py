@@ -26,7 +26,7 @@ from termpool.physics.log import EventLog
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.respond import Responses
 from termpool.physics.schedule import Due, Schedule
-from termpool.physics.slow import SlowContacts
+from termpool.physics.slow import Cluster, SlowContacts
 from termpool.physics.state import POCKETED, SPINNING, STATE_NAMES, STATIONARY  # noqa: F401
 from termpool.physics.table import Table
 
@@ -165,7 +165,7 @@ class Engine:
         busy = self._busy(tabs)
         any_busy = bool(busy.any())
         tr, cu, pr = _split(due, tabs.size)
-        clusters: list = []  # (event, seed balls, every contact inelastic, its own contact)
+        clusters: list[Cluster] = []
         quiet: set[int] = set()  # events that changed nothing: resting contacts that began
         # Balls held in a group by resting contacts (joined.py): any event of one of them
         # renews the whole group's motion, since its contact forces change with it.
@@ -174,7 +174,7 @@ class Engine:
             if involved is not None:
                 for n in tr[involved[tr]].tolist():
                     members = self.groups.members(int(tabs[n]), int(i[n]))
-                    clusters.append((n, members, False, False))
+                    clusters.append(Cluster(n, members, False, False))
                 tr = tr[~involved[tr]]
             if tr.size:
                 self.respond.transition(tabs[tr], i[tr])

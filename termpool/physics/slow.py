@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -28,6 +29,17 @@ from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
 from termpool.physics.vec import perp as _perp
+
+
+class Cluster(NamedTuple):
+    """A contact to solve with its cluster: the event (its place in the pass), the balls it
+    starts from, whether every contact is inelastic (over the work bound), and whether the
+    contact is the event's own (else the event renews a group's motion)."""
+
+    event: int
+    seeds: list[int]
+    every: bool
+    own: bool
 
 
 @dataclass
@@ -54,7 +66,7 @@ class SlowContacts:
         self.physics, self.balls, self.features, self.schedule = physics, balls, features, schedule
         self.groups, self.respond, self.tb = groups, respond, tb
 
-    def cushions(self, tabs, i, cu, busy, any_busy: bool) -> tuple[list, set]:
+    def cushions(self, tabs, i, cu, busy, any_busy: bool) -> tuple[list[Cluster], set[int]]:
         """Balls i[cu] of tables tabs[cu] meeting a cushion feature or a hole (busy: over the
         work bound, over the whole pass). A slow bounce (or any bounce over the work bound)
         is solved with its cluster: the ball settles on the cushion, and stays pressed to it
@@ -78,7 +90,7 @@ class SlowContacts:
             k = np.flatnonzero(crowd)
             crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
         for n in cu[crowd].tolist():
-            clusters.append((n, [int(i[n])], bool(busy[n]), True))
+            clusters.append(Cluster(n, [int(i[n])], bool(busy[n]), True))
         alone = ~crowd
         if alone.any():
             self.respond.cushion(tabs[cu[alone]], i[cu[alone]])
@@ -90,23 +102,23 @@ class SlowContacts:
                 pressed = np.zeros(cu.size, dtype=bool)
                 pressed[calm] = self._pressed_on(tabs[cu[calm]], i[cu[calm]])
                 for n in cu[pressed].tolist():
-                    clusters.append((n, [int(i[n])], False, True))
+                    clusters.append(Cluster(n, [int(i[n])], False, True))
                 quiet.update(cu[calm & ~pressed & (approach <= V_MIN)].tolist())
         return clusters, quiet
 
-    def pairs(self, b, i, j, pr, busy) -> tuple[list, set]:
+    def pairs(self, b, i, j, pr, busy) -> tuple[list[Cluster], set[int]]:
         """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
         None for none): fast ones collide; slow ones of a pair that touches nothing else
         settle here. Returns (clusters to solve, events that changed nothing, as `cushions`)."""
         n = b.size
         if n == 1 and busy is None and self.respond.pair_one(int(b[0]), int(i[0]), int(j[0])):
             return [], set()
-        clusters: list = []
+        clusters: list[Cluster] = []
         quiet: set[int] = set()
         # Both balls' states, once, for the closing speed and for whichever response.
         tb = self.tb[b]
         p, v, w = self.balls.eval(np.concatenate([b, b]), np.concatenate([i, j]),
-                             np.concatenate([tb, tb]))
+                                  np.concatenate([tb, tb]))
         states = (p[:n], v[:n], w[:n], p[n:], v[n:], w[n:])
         d = states[3] - states[0]
         closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
@@ -137,10 +149,10 @@ class SlowContacts:
         late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
         for k in late:
             every = busy is not None and bool(busy[k])
-            clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every, True))
+            clusters.append(Cluster(int(pr[k]), [int(i[k]), int(j[k])], every, True))
         return clusters, quiet
 
-    def solve(self, tabs, i, j, due, clusters: list, record: bool) -> Solved:
+    def solve(self, tabs, i, j, due, clusters: list[Cluster], record: bool) -> Solved:
         """Solve the pass's clusters (as `cushions` and `pairs` return them; events by their
         place in the pass, whose tables, balls and what was due are tabs, i, j, due)."""
         out = Solved()

@@ -11,7 +11,7 @@ Each model is one module with two functions of the same signature:
 
 and two numbers, E_CUSHION and MU_CUSHION: the restitution and nose friction a scene gets when
 it gives none (each model means its own thing by them). The two functions must agree bit for
-bit (`tests/test_motion.py` holds them to it), must never add energy, and must leave the ball
+bit (`tests/test_models.py` holds them to it), must never add energy, and must leave the ball
 not moving into the cushion (`tests/test_cushion.py`). To add a model, write its module and
 list it in MODELS.
 """
