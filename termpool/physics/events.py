@@ -45,7 +45,7 @@ ENDS = {
 }
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True)
 class BallState:
     """One ball's position, velocity, spin and motion state (a `state` code) at an instant."""
 
@@ -61,7 +61,7 @@ class BallState:
                 "state": STATE_NAMES[self.state]}
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True)
 class Event:
     """One event of one table: its kind, time, the balls it concerns (indices) with their
     states just after it, and for a cushion the feature met (`cushion`: its index among the

@@ -57,6 +57,9 @@ class Solved:
     also: dict[int, list[tuple[int, int, int]]] = field(default_factory=dict)
 
 
+_NOTHING = Solved()  # what solving no cluster does (only ever read)
+
+
 class SlowContacts:
     """Slow contacts of B tables at their clocks `tb`: the balls, their groups and the table's
     features; fast contacts go to `respond`."""
@@ -155,6 +158,8 @@ class SlowContacts:
     def solve(self, tabs, i, j, due, clusters: list[Cluster], record: bool) -> Solved:
         """Solve the pass's clusters (as `cushions` and `pairs` return them; events by their
         place in the pass, whose tables, balls and what was due are tabs, i, j, due)."""
+        if not clusters:  # the usual pass
+            return _NOTHING
         out = Solved()
         for n, seeds, every, own in clusters:
             b = int(tabs[n])
