@@ -18,7 +18,7 @@ all schemes with one loop.
   mouth. With ``substeps=k`` every frame is run as k frames of dt / k (the "substep" scheme).
 - `EulerSim` is the engine's own model stepped the naive way: sliding, rolling and spinning
   friction (a slip that would reverse within a frame is completed to rolling), the engine's
-  contact laws (`contact.ball_ball`, the scene's cushion model with spin), the table's real rails,
+  contact laws (the ball-ball model, the scene's cushion model with spin), the table's real rails,
   jaws, jaw tips and pocket holes. Its error is the stepping error alone.
 
 Events are dicts like the engine's: ``{"t", "type", "i"}`` plus ``"feature"`` for cushions
@@ -31,12 +31,13 @@ import math
 
 import numpy as np
 
-from termpool.physics import contact, cushion
+from termpool.physics import cushion
+from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.state import POCKETED, ROLLING, SPINNING, STATIONARY
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
 from termpool.physics.table import POCKET_NAMES, Table
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
 
 TINY = 1e-300  # keeps 0 / 0 out of speed updates
 EPS_SLIP = 1e-9  # m/s: a slip below this is rounding error of a rolling ball
@@ -260,9 +261,9 @@ class EulerSim(_FrameSim):
             n = d / dist
             if float((v[i] - v[j]) @ n) > 0:
                 ii, jj = np.array([i]), np.array([j])
-                vi, vj, wi, wj = contact.ball_ball(
+                vi, vj, wi, wj = BALL_BALL[ph.ball_ball].collide(
                     p[ii], p[jj], v[ii], v[jj], w[ii], w[jj], R[ii], R[jj], self.m[ii],
-                    self.m[jj], ph.e_ball, ph.v_inelastic, ph.ball_ball == "frictional")
+                    self.m[jj], ph)
                 v[i], v[j], w[i], w[j] = vi[0], vj[0], wi[0], wj[0]
                 self._log(t, "ball_ball", [i, j])
             self._separate(i, j, n, R[i] + R[j] - dist)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from termpool.physics.roots import SINK, TOUCH
+from termpool.physics.schedule import Due
 
 # A contact is applied where the gap is at most TOUCH and the overlap at most 2 SINK (the
 # engine's documented bounds, docs/physics.md), give or take rounding.
@@ -30,20 +31,19 @@ def _fail(what: str, t: float, gap: float) -> None:
 
 def _where(eng, b: int, i: int) -> np.ndarray:
     s = eng.ball_state(b, i)  # at the table's clock, which the engine has set to the event
-    return np.array([s["x"], s["y"]])
+    return np.array([s.x, s.y])
 
 
 def check_events(eng, tabs: np.ndarray, code: np.ndarray) -> None:
-    """Check the contacts about to be handled: tables `tabs`, event codes `code` (the layout
-    of Engine._times: N transitions, N horizon checks, N cushions, then N x N pairs)."""
-    N = eng.N
+    """Check the contacts about to be handled: tables `tabs`, event codes `code` (places in
+    the engine's row of predictions, schedule.Due)."""
     tab = eng.table
     nseg, npt = len(tab.seg_a), len(tab.points)
-    for b, c in zip(tabs.tolist(), code.tolist(), strict=True):
-        q, r = divmod(c, N)
+    due, ball_i, ball_j = eng.schedule.decode(code)
+    for b, q, i, j in zip(tabs.tolist(), due.tolist(), ball_i.tolist(), ball_j.tolist(),
+                          strict=True):
         t = float(eng.tb[b])
-        if q == 2:
-            i = r
+        if q == Due.CUSHION:
             f = int(eng.f_cush[b, i])
             p = _where(eng, b, i)
             rc = float(eng.rc[b, i])
@@ -62,8 +62,7 @@ def check_events(eng, tabs: np.ndarray, code: np.ndarray) -> None:
                 gap = float(np.hypot(*(p - tab.hole_c[k]))) - float(tab.hole_r[k])
             if not DEEPEST <= gap <= TOUCH + SLACK:
                 _fail(f"cushion feature {f} of ball {i}", t, gap)
-        elif q >= 3:
-            i, j = q - 3, r
+        elif q == Due.PAIR:
             reach = float(eng.radius[b, i] + eng.radius[b, j])
             gap = float(np.hypot(*(_where(eng, b, j) - _where(eng, b, i)))) - reach
             if not DEEPEST <= gap <= TOUCH + SLACK:

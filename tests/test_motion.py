@@ -11,9 +11,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from termpool.physics import contact, motion
+from termpool.physics import motion
+from termpool.physics.ball_ball import MODELS as BALL_BALL
+from termpool.physics.balls import FEW
 from termpool.physics.cushion import MODELS
-from termpool.physics.engine import FEW, Engine
+from termpool.physics.engine import Engine
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.state import EPS_U, POCKETED
 from termpool.physics.table import Table
@@ -52,9 +54,9 @@ def _started(physics: Physics, seed: int, path: str) -> Engine:
     if path == "few":
         for n in range(0, K, 2):  # two balls per call, as a ball-ball contact starts them
             s = slice(n, n + 2)
-            eng._set_few(b[s], i[s], t[s], p[s], v[s], w[s].copy())
+            eng.balls.set_few(b[s], i[s], t[s], p[s], v[s], w[s].copy())
     else:
-        eng._set_many(b, i, t, p, v, w.copy())
+        eng.balls.set_many(b, i, t, p, v, w.copy())
     return eng
 
 
@@ -71,12 +73,12 @@ def test_starting_one_ball_in_floats_matches_the_array_path_bit_for_bit(physics,
         many = _started(physics, seed, "many")
     assert np.array_equal(few.state, many.state)
     assert np.array_equal(few.t_trans, many.t_trans)
-    assert np.array_equal(few._motion, many._motion, equal_nan=True)
+    assert np.array_equal(few.balls.motion, many.balls.motion, equal_nan=True)
     # The cases are all there: every state, and (with cloth friction) tiny slips completed
     # at once, which move the ball's clock on.
     assert set(np.unique(many.state).tolist()) == {0, 1, 2, 3, 4}
     t = _inputs(seed)[0]
-    assert (many.t0[0] > t).any() == (physics.mu_slide > 0)
+    assert (many.balls.t0[0] > t).any() == (physics.mu_slide > 0)
 
 
 @pytest.mark.parametrize("seed", [4, 5])
@@ -86,9 +88,9 @@ def test_evaluating_one_ball_in_floats_matches_the_array_path_bit_for_bit(seed):
     rng = np.random.default_rng(seed)
     b, i = np.zeros(K, dtype=np.int64), np.arange(K)
     # Before a ball's clock (a completed tiny slide), inside its motion and beyond its end.
-    t = eng.t0[0] + rng.choice([-1e-4, 0.0, 0.3, 7.0], K)
-    p, v, w = eng._eval(b, i, t)
-    for n, row in enumerate(eng._motion[0].tolist()):
+    t = eng.balls.t0[0] + rng.choice([-1e-4, 0.0, 0.3, 7.0], K)
+    p, v, w = eng.balls.eval(b, i, t)
+    for n, row in enumerate(eng.balls.motion[0].tolist()):
         assert motion.at(row, float(t[n])) == (p[n].tolist(), v[n].tolist(), w[n].tolist())
 
 
@@ -106,15 +108,15 @@ def test_transitions_in_floats_match_the_array_path_bit_for_bit(physics, seed):
                 eng.tb[0] = eng.t_trans[0, i[n]]
                 one = slice(n, n + 1)
                 if path == "few":
-                    eng._transition_few(b[one], i[one])
+                    eng.respond.transition_few(b[one], i[one])
                 else:
-                    eng._transition(np.repeat(b[one], FEW + 1), np.repeat(i[one], FEW + 1))
+                    eng.respond.transition(np.repeat(b[one], FEW + 1), np.repeat(i[one], FEW + 1))
         engines.append(eng)
     few, many = engines
     assert i.size > K // 4  # transitions of every kind were run
     assert np.array_equal(few.state, many.state)
     assert np.array_equal(few.t_trans, many.t_trans)
-    assert np.array_equal(few._motion, many._motion, equal_nan=True)
+    assert np.array_equal(few.balls.motion, many.balls.motion, equal_nan=True)
 
 
 def _contacts(seed: int, k: int = 300):
@@ -139,9 +141,12 @@ def _contacts(seed: int, k: int = 300):
 @pytest.mark.parametrize("seed", [8, 9])
 def test_one_collision_in_floats_matches_the_array_path_bit_for_bit(frictional, seed):
     args = _contacts(seed)
-    many = contact.ball_ball(*args, 0.95, 0.005, frictional)
+    ph = Physics(e_ball=0.95, v_inelastic=0.005,
+                 ball_ball="frictional" if frictional else "frictionless")
+    model = BALL_BALL[ph.ball_ball]
+    many = model.collide(*args, ph)
     for n in range(len(args[0])):
-        one = contact.ball_ball_one(*(x[n].tolist() for x in args), 0.95, 0.005, frictional)
+        one = model.collide_one(*(x[n].tolist() for x in args), ph)
         assert one == tuple(x[n].tolist() for x in many)
 
 
@@ -158,15 +163,15 @@ def test_contacts_handled_one_by_one_match_a_batch_bit_for_bit(seed):
         with np.errstate(all="ignore"):
             if path == "one by one":
                 for n in range(k):
-                    eng._pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None, [], set())
+                    eng.slow.pairs(b[n:n + 1], i[n:n + 1], j[n:n + 1], b[n:n + 1], None)
             else:
-                eng._pairs(b, i, j, b, None, [], set())
+                eng.slow.pairs(b, i, j, b, None)
         engines.append(eng)
     one, together = engines
     assert np.array_equal(one.state, together.state)
     assert np.array_equal(one.t_trans, together.t_trans)
-    assert np.array_equal(one._motion, together._motion)
-    assert (one.v0[:, 0] != vi).any(axis=1).mean() > 0.7  # most contacts were fast ones
+    assert np.array_equal(one.balls.motion, together.balls.motion)
+    assert (one.balls.v0[:, 0] != vi).any(axis=1).mean() > 0.7  # most contacts were fast ones
 
 
 @pytest.mark.parametrize("seed", [12, 13])
@@ -188,9 +193,10 @@ def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit
     reach = np.hypot(v[:, 0], v[:, 1]) * horizon + 0.5 * np.hypot(a[:, 0], a[:, 1]) * horizon ** 2
     reach += rc
     with np.errstate(all="ignore"):
-        many = eng._lines(p, v, a, rc, horizon)
-        few = np.concatenate([eng._lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2], rc[n:n + 2],
-                                             horizon[n:n + 2], reach[n:n + 2])
+        many = eng.features.lines(p, v, a, rc, horizon)
+        few = np.concatenate([eng.features.lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2],
+                                                     rc[n:n + 2], horizon[n:n + 2],
+                                                     reach[n:n + 2])
                               for n in range(0, k, 2)])
     assert np.array_equal(few, many)
     assert np.isfinite(many).sum() > k // 4  # many balls do meet a cushion
@@ -236,23 +242,23 @@ def test_cushion_bounces_one_by_one_match_a_batch_bit_for_bit(seed, model):
     engines = []
     for path in ("one by one", "together"):
         eng = Engine(table, Physics(cushion=model), pos, vel, w)
-        b = np.flatnonzero(np.isfinite(eng.t_cush[:, 0]))
-        b = b[eng.f_cush[b, 0] < eng._nseg + eng._npt]  # bounces (not pockets)
+        b = np.flatnonzero(np.isfinite(eng.t_cush[:, 0]))  # bounces, and balls pocketed
         eng.tb[b] = eng.t_cush[b, 0]
         i = np.zeros(b.size, dtype=np.int64)
         with np.errstate(all="ignore"):
             if path == "one by one":
                 for n in range(b.size):
-                    eng._cushion(b[n:n + 1], i[n:n + 1])
+                    eng.respond.cushion(b[n:n + 1], i[n:n + 1])
             else:
-                eng._cushion(b, i)
+                eng.respond.cushion(b, i)
         engines.append(eng)
     one, together = engines
     assert b.size > k // 5
-    assert (one.f_cush[b, 0] >= one._nseg).any()  # jaw tips too
+    assert (one.f_cush[b, 0] >= one.features.nseg).any()  # jaw tips too
+    assert (one.state[b, 0] == POCKETED).any() and (one.state[b, 0] != POCKETED).any()
     assert np.array_equal(one.state, together.state)
     assert np.array_equal(one.t_trans, together.t_trans)
-    assert np.array_equal(one._motion, together._motion)
+    assert np.array_equal(one.balls.motion, together.balls.motion)
 
 
 @pytest.mark.parametrize("field", ["radius", "mass"])

@@ -474,6 +474,6 @@ def test_a_completed_slip_stays_on_its_slide_at_the_lowest_allowed_friction(spee
     a = mu * g
     ts = u / (3.5 * a)
     for tau in np.linspace(0.0, ts, 9):
-        p, _, _ = eng._eval(np.array([0]), np.array([0]), np.array([tau]), spin=False)
+        p, _, _ = eng.balls.eval(np.array([0]), np.array([0]), np.array([tau]), spin=False)
         slide = 2.0 + (speed + u) * tau - 0.5 * a * tau * tau  # the exact slide
         assert abs(float(p[0, 0]) - slide) < SINK, f"strays {float(p[0, 0]) - slide:.3g} m"

@@ -26,7 +26,7 @@ from physics_laws import (
     seg_distance,
 )
 
-from termpool.physics import contact
+from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.engine import POCKETED, SPINNING, STATIONARY, Engine
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.table import Table
@@ -173,7 +173,8 @@ def test_ball_ball_impulse_conserves_momentum(sc, frictional):
     sc["physics"] = Physics(ball_ball="frictional" if frictional else "frictionless",
                             e_ball=sc["physics"].e_ball)
     seen = []
-    real = contact.ball_ball
+    model = BALL_BALL[sc["physics"].ball_ball]
+    real = model.collide
 
     def spy(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, *rest):
         out = real(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, *rest)
@@ -181,12 +182,12 @@ def test_ball_ball_impulse_conserves_momentum(sc, frictional):
                      out[0].copy(), out[1].copy()))
         return out
 
-    contact.ball_ball = spy
+    model.collide = spy
     try:
         eng = make(sc, record=False)
         eng.run(1 / 60, max_steps=20000)
     finally:
-        contact.ball_ball = real
+        model.collide = real
     for pi, pj, vi, vj, mi, mj, vi2, vj2 in seen:
         before = mi[:, None] * vi + mj[:, None] * vj
         after = mi[:, None] * vi2 + mj[:, None] * vj2

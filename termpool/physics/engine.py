@@ -1,13 +1,15 @@
 """The engine: a batch of tables advanced by fixed steps, exact inside each step.
 
 State lives in arrays with a leading table axis (B) and a ball axis (N). Between events every
-ball moves on a closed-form quadratic from its own reference time t0, so a ball nobody touches
-is never updated: its position at any time is evaluated from (t0, p0, v0, acc) when needed.
-For every ball the engine keeps the time of its next motion transition and of its next cushion
-or pocket contact, and for every pair the time of their next contact; an event renews only the
-predictions of the balls it touched. A step runs the events inside it in time order, one per
-table per pass and all tables at once; a step without events costs one comparison, and tables
-at rest cost nothing.
+ball moves on a closed-form quadratic from its own reference time t0 (balls.py), so a ball
+nobody touches is never updated. For every ball the schedule keeps the time of its next
+motion transition and of its next cushion or pocket contact, and for every pair the time of
+their next contact (schedule.py); an event renews only the predictions of the balls it
+touched. A step runs the events inside it in time order, one per table per pass and all
+tables at once; a step without events costs one comparison, and tables at rest cost nothing.
+The engine is the scheduler: the event loop, the work limit and the dispatch of each pass to
+the responses (respond.py: fast events; slow.py: slow contacts and clusters; joined.py:
+groups), whose models live one per unit (physics/models.py lists them).
 """
 
 from __future__ import annotations
@@ -16,34 +18,18 @@ import math
 
 import numpy as np
 
-from termpool.physics import contact, cushion, motion
-from termpool.physics.motion import max0
-from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics, nose_reach
-from termpool.physics.roots import (
-    V_MIN,
-    first_contact,
-    first_line_contact,
-    first_line_contact_one,
-)
-from termpool.physics.slow import SlowContacts
-from termpool.physics.state import (  # noqa: F401  (state codes are part of the engine's API)
-    CLUSTER_GAP,
-    EPS_U,
-    EPS_V,
-    EPS_W,
-    POCKETED,
-    ROLLING,
-    SLIDING,
-    SPINNING,
-    STATE_NAMES,
-    STATIONARY,
-    dots,
-)
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
+from termpool.physics.balls import Balls, ball_arrays
+from termpool.physics.events import BallState
+from termpool.physics.features import Features
+from termpool.physics.joined import Groups
+from termpool.physics.log import EventLog
+from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
+from termpool.physics.respond import Responses
+from termpool.physics.schedule import Due, Schedule
+from termpool.physics.slow import Cluster, SlowContacts
+from termpool.physics.state import POCKETED, SPINNING, STATE_NAMES, STATIONARY  # noqa: F401
 from termpool.physics.table import Table
 
-FEW = 4  # up to this many balls, events work in plain floats (most events move one or two)
 HORIZON = 2.0  # s; contact predictions look this far ahead, then are renewed
 # The work limit (docs/limits.md): an engine that has done WORK_LIMIT units of work raises
 # WorkLimit at its next step or event pass, so that no input makes a run endless. The units
@@ -61,34 +47,25 @@ CLUSTER_WORK = 32
 BUDGET = 200
 WINDOW = 1 / 60
 
-_TRANSITION_NAMES = {
-    (SLIDING, ROLLING): "slide_to_roll",
-    (SLIDING, SPINNING): "slide_to_spin",
-    (SLIDING, STATIONARY): "slide_to_stop",
-    (ROLLING, SPINNING): "roll_to_spin",
-    (ROLLING, STATIONARY): "roll_to_stop",
-    (SPINNING, STATIONARY): "spin_to_stop",
-}
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
-_NCOL, _RATE, _RADIUS, _MASS = 15, 12, 13, 14  # Engine._motion: columns, and constants' places
-_MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
-_LIVE = np.array([s != POCKETED for s in range(5)])
 
 
 class WorkLimit(RuntimeError):
     """A run that met the work limit; the message is one line naming it."""
 
 
-def _batch(x, shape: tuple, name: str) -> np.ndarray:
-    arr = np.asarray(x, dtype=float)
-    try:
-        return np.broadcast_to(arr, shape).copy()
-    except ValueError:
-        raise ValueError(f"{name}: shape {arr.shape} does not fit {shape}") from None
+def _split(due: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The events of a pass of n tables that are transitions, cushion contacts and pairs."""
+    if n == 1:  # one table (the usual case): pick its kind without array scans
+        k = int(due[0])
+        return (_ONE if k == Due.TRANSITION else _NONE, _ONE if k == Due.CUSHION else _NONE,
+                _ONE if k == Due.PAIR else _NONE)
+    return (np.flatnonzero(due == Due.TRANSITION), np.flatnonzero(due == Due.CUSHION),
+            np.flatnonzero(due == Due.PAIR))
 
 
-class Engine(SlowContacts):
+class Engine:
     """Advance B independent tables of N balls each (arrays may omit the table axis)."""
 
     def __init__(
@@ -104,327 +81,42 @@ class Engine(SlowContacts):
         horizon: float = HORIZON,
         max_work: float | None = None,
     ) -> None:
-        pos = np.asarray(pos, dtype=float)
-        if pos.ndim not in (2, 3) or pos.shape[-1] != 2:
-            raise ValueError(f"pos: shape {pos.shape} is not (N, 2) or (B, N, 2)")
-        self.batched = pos.ndim == 3
-        if not self.batched:
-            pos = pos[None]
-        B, N = pos.shape[:2]
+        self.batched, pos, vel, w, radius, mass = ball_arrays(pos, vel, w, radius, mass)
+        B, N = radius.shape
         self.B, self.N = B, N
-        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
-        self.table, self.physics, self.record, self.horizon = table, physics, record, horizon
-        lead = (B, N) if self.batched else (N,)
-        vel = _batch(np.zeros(2) if vel is None else vel, lead + (2,), "vel").reshape(B, N, 2)
-        w = _batch(np.zeros(3) if w is None else w, lead + (3,), "w").reshape(B, N, 3)
-        self.radius = _batch(radius, lead, "radius").reshape(B, N)
-        self.mass = _batch(mass, lead, "mass").reshape(B, N)
-        for name, arr in (("radius", self.radius), ("mass", self.mass)):
-            if not (arr > 0).all() or not np.isfinite(arr).all():
-                raise ValueError(f"{name}: must be positive and finite")
-        self.rc = nose_reach(self.radius, physics.cushion_height)  # centre to nose at contact
-        self.spin_rate = 2.5 * physics.mu_spin * physics.g / self.radius
-        # Each ball's motion since its clock t0, packed in one array so that evaluating balls
-        # takes one gather (the cost of a pass is the number of numpy calls, not the data):
-        # t0, p0 (2), v0 (2), acc (2), w0 (3), alpha (2, the rate of change of wx, wy), and
-        # the ball's side-spin decay rate, radius and mass. The named fields are views into it.
-        self._motion = np.zeros((B, N, _NCOL))
-        self.t0 = self._motion[..., 0]
-        self.p0 = self._motion[..., 1:3]
-        self.v0 = self._motion[..., 3:5]
-        self.acc = self._motion[..., 5:7]
-        self.w0 = self._motion[..., 7:10]
-        self.alpha = self._motion[..., 10:12]
-        self._motion[..., _RATE] = self.spin_rate
-        self._motion[..., _RADIUS] = self.radius
-        self._motion[..., _MASS] = self.mass
-        self.state = np.zeros((B, N), dtype=np.int8)
-        self.pocket = np.full((B, N), -1, dtype=np.int16)
-        # Every prediction of a table in one row, in the order of the event codes, so that
-        # finding the next event is one argmin: transitions, horizon checks, cushions, pairs.
-        self._times = np.full((B, 3 * N + N * N), np.inf)
-        self.t_trans = self._times[:, :N]
-        self.t_check = self._times[:, N:2 * N]
-        self.t_cush = self._times[:, 2 * N:3 * N]
-        self.f_cush = np.zeros((B, N), dtype=np.int64)
-        self.t_pair = self._times[:, 3 * N:].reshape(B, N, N)
-        assert np.shares_memory(self.t_pair, self._times)  # a view, not a copy
-        self.t_next = np.full(B, np.inf)  # each table's next event time and its code
-        self.c_next = np.zeros(B, dtype=np.int64)
+        self.table, self.physics, self.record = table, physics, record
         self.tb = np.zeros(B)  # each table's own clock inside a step
-        self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
-        self._count = np.zeros(B, dtype=np.int64)
-        # Groups of balls held by resting contacts (joined.py): a label per ball (-1: none)
-        # and, per table, how many balls are grouped, so that tables without any pay nothing.
-        self.group = np.full((B, N), -1, dtype=np.int64)
-        self._ngroup = np.zeros(B, dtype=np.int64)
         self.time = 0.0
         self.steps = 0
         self.passes = 0  # event passes run
         self.work = 0  # units of work done, and the limit (see WORK_LIMIT)
         self.max_work = WORK_LIMIT if max_work is None else max_work
-        self.events: list[list[dict]] = [[] for _ in range(B)]
-        self._nseg, self._npt = len(table.seg_a), len(table.points)
-        seg_d = table.seg_b - table.seg_a
-        self._seg_len = _norm(seg_d)
-        self._seg_dir = seg_d / self._seg_len[:, None]
-        self._seg_off = (table.seg_a * table.seg_n).sum(axis=1)
-        self._seg_start = (table.seg_a * self._seg_dir).sum(axis=1)
-        self._segs = list(zip(table.seg_a.tolist(), self._seg_dir.tolist(),
-                              self._seg_len.tolist(), strict=True))  # for _lines_few
-        self._circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+        self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
+        self._count = np.zeros(B, dtype=np.int64)
+        # The collaborators: the balls and their motions, the table's features, the
+        # predictions, the responses to fast events, groups, slow contacts, the event log.
+        times = Schedule.new_times(B, N)
+        self.balls = Balls(physics, radius, mass, times[:, :N])
+        self.features = Features(table)
+        self.schedule = Schedule(times, self.balls, self.features, self.tb, horizon)
+        self.respond = Responses(physics, self.balls, self.features, self.schedule, self.tb)
+        self.groups = Groups(physics, self.balls, self.tb)
+        self.slow = SlowContacts(physics, self.balls, self.features, self.schedule, self.groups,
+                                 self.respond, self.tb)
+        self.recorder = EventLog(self.balls, self.features, self.tb)
+        self.log = self.recorder.tables  # each table's events, typed
+        # The arrays the engine's users read, as the collaborators hold them.
+        bl, sc = self.balls, self.schedule
+        self.radius, self.mass, self.rc, self.state, self.pocket, self.t_trans = (
+            bl.radius, bl.mass, bl.rc, bl.state, bl.pocket, bl.t_trans)
+        self.t_cush, self.f_cush, self.t_next = sc.t_cush, sc.f_cush, sc.t_next
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
-            self._set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
+            self.balls.set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
             self._predict(b, i)
-            self._refresh(np.arange(B))
+            self.schedule.refresh(np.arange(B))
 
-    # ----------------------------------------------------------------- motion between events
-    def _eval(self, b, i, t, spin: bool = True):
-        """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
-        m = self._motion[b, i]  # a fancy-indexed copy: its w0 columns may be changed in place
-        d = (t - m[..., 0])[..., None]
-        v0 = m[..., 3:5]
-        acc = m[..., 5:7]
-        p = m[..., 1:3] + (v0 + 0.5 * acc * d) * d
-        v = v0 + acc * d
-        if not spin:
-            return p, v, None
-        w = m[..., 7:10]
-        w[..., :2] += m[..., 10:12] * d
-        wz = w[..., 2]
-        # Before t0 (a ball whose tiny slide was completed ahead, see _snap) spin is held.
-        decay = m[..., _RATE] * np.maximum(d[..., 0], 0.0)
-        w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
-        return p, v, w
-
-    def _snap(self, p, v, w, R, rate, only=None, move=True):
-        """Complete tiny slides at once: returns (p, v, w, t_s), t_s = 0 where nothing changed.
-
-        A slip u with |u| <= EPS_U ends after t_s = |u| / (3.5 mu_s g) with v -= u / 3.5 and
-        the ball rolling. With `move`, the returned p is where the slide ends,
-        p + v t_s - mu_s g t_s^2 u/2|u|, and side spin has decayed (at `rate`) for t_s: a ball
-        started rolling from there at t + t_s follows the exact path from then on, and before
-        then (extrapolated back) strays from the slide by under 20 nm at 1 mm/s. Without it
-        only the velocities change (the solves of slow contacts, whose clocks stay put).
-        No snap on frictionless cloth, where a slide never ends.
-        """
-        ph = self.physics
-        u = v + R[:, None] * _perp(w[:, :2])
-        us = _norm(u)
-        small = (us <= EPS_U) & (us > 0) & (ph.mu_slide > 0)
-        if only is not None:
-            small &= only
-        ts = np.where(small, us / (3.5 * ph.mu_slide * ph.g), 0.0)
-        if not small.any():
-            return p, v, w, ts
-        s = small[:, None]
-        if move:
-            uhat = u / np.where(us > 0, us, 1.0)[:, None]
-            p = np.where(s, p + (v - 0.5 * ph.mu_slide * ph.g * ts[:, None] * uhat) * ts[:, None],
-                         p)
-            wz = w[:, 2]
-            w[:, 2] = np.copysign(np.maximum(np.abs(wz) - rate * ts, 0.0), wz)
-        v = np.where(s, v - u / 3.5, v)
-        w[:, :2] = np.where(s, _perp(v) / R[:, None], w[:, :2])
-        return p, v, w, ts
-
-    def _set(self, b, i, t, p, v, w) -> None:
-        """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
-        set accelerations and the time of the next transition."""
-        if b.size <= FEW:
-            self._set_few(b, i, t, p, v, w)
-        else:
-            self._set_many(b, i, t, p, v, w)
-
-    def _set_few(self, b, i, t, p, v, w) -> None:
-        """_set one ball at a time in plain floats (motion.start): bit-identical, and faster
-        than numpy calls on arrays of one or two balls."""
-        ph = self.physics
-        self._write_few(b, i, [motion.start(ph, *args) for args in zip(
-            t.tolist(), p.tolist(), v.tolist(), w.tolist(), self.radius[b, i].tolist(),
-            self.spin_rate[b, i].tolist(), (self.state[b, i] == POCKETED).tolist(),
-            strict=True)])
-
-    def _write_few(self, b, i, out: list) -> None:
-        """Store motion.start's results for balls (b, i)."""
-        state, t_trans, rows = zip(*out, strict=True)
-        self.state[b, i] = state
-        self.t_trans[b, i] = t_trans
-        self._motion[b, i, :_RATE] = rows
-
-    def _set_many(self, b, i, t, p, v, w) -> None:
-        ph = self.physics
-        g = ph.g
-        R = self.radius[b, i]
-        # A tiny slide is completed at once: the ball starts rolling where and when it ends.
-        p, v, w, ts = self._snap(p, v, w, R, self.spin_rate[b, i])
-        t = t + ts
-        u = v + R[:, None] * _perp(w[:, :2])  # contact-point slip
-        us = _norm(u)
-        vs, wz = _norm(v), np.abs(w[:, 2])
-        pocketed = self.state[b, i] == POCKETED
-        sliding = (us > (EPS_U if ph.mu_slide > 0 else 0.0)) & ~pocketed
-        rolling = ~sliding & (vs > EPS_V) & ~pocketed
-        spinning = ~sliding & ~rolling & (wz > EPS_W) & ~pocketed
-        still = ~(sliding | rolling)
-        v = np.where(still[:, None], 0.0, v)
-        # Rolling is kept exact (slip zero); still balls keep only their side spin.
-        w[:, :2] = np.where(rolling[:, None], _perp(v) / R[:, None],
-                            np.where(still[:, None], 0.0, w[:, :2]))
-        w[:, 2] = np.where(spinning | ~still, w[:, 2], 0.0)
-        uhat = np.where(sliding[:, None], u / us[:, None], 0.0)
-        vhat = np.where(rolling[:, None], v / vs[:, None], 0.0)
-        acc = -ph.mu_slide * g * uhat - ph.mu_roll * g * vhat
-        alpha = np.where(sliding[:, None], (2.5 * ph.mu_slide * g / R)[:, None] * _perp(uhat),
-                         _perp(acc) / R[:, None])
-        dt = np.where(sliding, us / (3.5 * ph.mu_slide * g),
-                      np.where(rolling, vs / (ph.mu_roll * g),
-                               np.where(spinning, wz / self.spin_rate[b, i], np.inf)))
-        dt = np.where(np.isnan(dt) | pocketed, np.inf, dt)
-        state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
-                                                     np.where(spinning, SPINNING, STATIONARY)))
-        self.state[b, i] = np.where(pocketed, POCKETED, state)
-        self._motion[b, i, :_RATE] = np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
-        self.t_trans[b, i] = t + dt
-
-    # ----------------------------------------------------------------- predictions
-    def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
-        """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
-        self.work += b.size * self.N
-        t = self.tb[b]
-        st = self.state[b, i]
-        moving = _MOVING[st]
-        t_check = np.where(moving, t + self.horizon, np.inf)
-        self.t_check[b, i] = t_check
-        end = np.minimum(self.t_trans[b, i], t_check)
-        self.t_cush[b, i] = np.inf
-        self.t_pair[b, i, :] = np.inf
-        self.t_pair[b, :, i] = np.inf
-        live = st != POCKETED
-        if not live.all():
-            m = np.flatnonzero(live)
-            if m.size == 0:
-                return
-            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
-        # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
-        M = b.size
-        rows = np.arange(M)
-        tc = t[:, None]
-        P, V, _ = self._eval(b[:, None], self._balls, tc, spin=False)
-        A = self.acc[b]
-        p, v, a = P[rows, i], V[rows, i], A[rows, i]
-        # Pairs: every other ball on the table, where at least one of the two moves.
-        stk = self.state[b]
-        valid = _LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
-        mi = np.nonzero(valid)[0]
-        R = self.radius[b]
-        end_k = np.minimum(self.t_trans[b], self.t_check[b])
-        rel_p = [(P - p[:, None])[valid]]
-        rel_v = [(V - v[:, None])[valid]]
-        rel_a = [(A - a[:, None])[valid]]
-        dist = [(R + R[rows, i][:, None])[valid]]
-        horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
-        # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
-        # noses or a hole within their window (a ball in open felt costs nothing here); tips
-        # and holes are the same quartic as a pair. A corner hole may reach into the table
-        # past the rail lines, up to its mouth.
-        T = end - t
-        reach = _norm(v) * T + 0.5 * _norm(a) * T * T + self.rc[b, i]
-        tab = self.table
-        x, y = p[:, 0], p[:, 1]
-        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        if len(tab.hole_r):
-            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
-            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
-        mv = np.flatnonzero(moving & near)
-        nc = len(self._circles)
-        if mv.size and nc:
-            rc = self.rc[b[mv], i[mv]]
-            rel_p.append((self._circles[None] - p[mv, None]).reshape(-1, 2))
-            rel_v.append(np.repeat(-v[mv], nc, axis=0))
-            rel_a.append(np.repeat(-a[mv], nc, axis=0))
-            holes = np.broadcast_to(self.table.hole_r, (mv.size, nc - self._npt))
-            dist.append(np.concatenate([np.repeat(rc[:, None], self._npt, axis=1), holes],
-                                       axis=1).ravel())
-            horizon.append(np.repeat(T[mv], nc))
-            found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
-                                  np.concatenate(rel_a), np.concatenate(dist),
-                                  np.concatenate(horizon))
-        else:
-            found = first_contact(rel_p[0], rel_v[0], rel_a[0], dist[0], horizon[0])
-        npair = mi.size
-        if npair:
-            tp = t[mi] + found[:npair]
-            bb, ii, kk = b[mi], i[mi], np.nonzero(valid)[1]
-            self.t_pair[bb, ii, kk] = tp
-            self.t_pair[bb, kk, ii] = tp
-        if mv.size:
-            tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            lines = self._lines_few if mv.size <= FEW else self._lines
-            tline = lines(p[mv], v[mv], a[mv], self.rc[b[mv], i[mv]], T[mv], reach[mv])
-            allt = np.concatenate([tline, tcirc], axis=1)
-            f = allt.argmin(axis=1)
-            self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
-            self.f_cush[b[mv], i[mv]] = f
-
-    def _lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
-        """(M, S) first contact times of M balls with the cushion segments."""
-        tab = self.table
-        n = tab.seg_n
-        s0 = dots(p, n) - self._seg_off
-        M, S = s0.shape
-        along0 = dots(p, self._seg_dir) - self._seg_start
-        beside = (along0 >= 0) & (along0 <= self._seg_len)
-        tl = first_line_contact(s0.ravel(), dots(v, n).ravel(), dots(a, n).ravel(),
-                                np.repeat(rc, S), np.repeat(horizon, S),
-                                beside.ravel()).reshape(M, S)
-        # The contact must fall on the segment itself; its ends are the jaw-tip points.
-        fin = np.isfinite(tl)
-        if fin.any():
-            tt = np.where(fin, tl, 0.0)[..., None]
-            pt = p[:, None] + v[:, None] * tt + 0.5 * a[:, None] * (tt * tt)
-            along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self._seg_dir)
-            tl = np.where(fin & (along >= 0) & (along <= self._seg_len[None]), tl, np.inf)
-        return tl
-
-    def _lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
-        """_lines for a few balls in plain floats, bit-identical. A ball whose centre is
-        further from a cushion segment than its reach (travel in the window plus the nose
-        distance, with a micrometre to spare) cannot meet it and skips it: the array path
-        finds no contact there either."""
-        tab = self.table
-        n = tab.seg_n
-        out = np.full((len(p), self._nseg), np.inf)
-        rows = zip((dots(p, n) - self._seg_off).tolist(),
-                   (dots(p, self._seg_dir) - self._seg_start).tolist(), dots(v, n).tolist(),
-                   dots(a, n).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
-                   horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
-        for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
-            for k, (ak, dk, length) in enumerate(self._segs):
-                # The ball's distance from the segment is at least each of these.
-                if s0[k] > far or -s0[k] > far or -along0[k] > far or along0[k] - length > far:
-                    continue
-                beside = along0[k] >= 0 and along0[k] <= length
-                tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
-                if tl < math.inf:
-                    # The contact must fall on the segment itself (as in _lines).
-                    tt = tl * tl
-                    qx = (pm[0] + vm[0] * tl + 0.5 * am[0] * tt) - ak[0]
-                    qy = (pm[1] + vm[1] * tl + 0.5 * am[1] * tt) - ak[1]
-                    along = qx * dk[0] + qy * dk[1]
-                    if along >= 0 and along <= length:
-                        out[m, k] = tl
-        return out
-
-    def _refresh(self, tabs: np.ndarray) -> None:
-        """Recompute the next event of tables `tabs` from their predictions."""
-        allt = self._times[tabs]
-        code = allt.argmin(axis=1)
-        self.t_next[tabs] = allt[np.arange(len(tabs)), code]
-        self.c_next[tabs] = code
-
-    # ----------------------------------------------------------------- events
+    # ----------------------------------------------------------------- the event loop
     def _run_until(self, t_end: float) -> None:
         """Run every table's events up to t_end in time order; clocks end at t_end."""
         self._spend(1)
@@ -442,8 +134,8 @@ class Engine(SlowContacts):
             self._spend(PASS_WORK)
             self.passes += 1
             self.tb[tabs] = self.t_next[tabs]
-            self._handle(tabs, self.c_next[tabs])
-            self._refresh(tabs)
+            self._handle(tabs, self.schedule.c_next[tabs])
+            self.schedule.refresh(tabs)
 
     def _spend(self, units: int) -> None:
         """Count work before a step or a pass; raise WorkLimit past the limit (between
@@ -453,458 +145,91 @@ class Engine(SlowContacts):
             raise WorkLimit(f"engine: the run met its work limit of {self.max_work:,.0f} units "
                             f"at {float(self.tb.max()):.6g} s of simulated time (docs/limits.md)")
 
-    def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
-        N = self.N
-        # code: N transitions, N checks, N cushions, then N * N pairs (i, j).
-        q, r = np.divmod(code, N)
-        kind = np.minimum(q, 3)
-        i = np.where(q < 3, r, q - 3)
-        j = np.where(q < 3, -1, r)
-        old_state = self.state[tabs, i] if self.record else None
-        t = self.tb[tabs]
-        win = np.floor(t / WINDOW).astype(np.int64)
+    def _predict(self, b: np.ndarray, i: np.ndarray) -> None:
+        """Renew the contact predictions of balls (b, i), counting the work."""
+        self.work += b.size * self.N
+        self.schedule.predict(b, i)
+
+    def _busy(self, tabs: np.ndarray) -> np.ndarray:
+        """Count an event of each of tables `tabs` in its window: True where over BUDGET."""
+        win = np.floor(self.tb[tabs] / WINDOW).astype(np.int64)
         count = np.where(win != self._win[tabs], 1, self._count[tabs] + 1)
         self._win[tabs] = win
         self._count[tabs] = count
-        busy = count > BUDGET
-        any_busy = busy.any()
-        if tabs.size == 1:  # one table (the usual case): pick its kind without array scans
-            which = _ONE
-            tr = cu = pr = _NONE
-            k0 = int(kind[0])
-            if k0 == 0:
-                tr = which
-            elif k0 == 2:
-                cu = which
-            elif k0 == 3:
-                pr = which
-        else:
-            tr = np.flatnonzero(kind == 0)
-            cu = np.flatnonzero(kind == 2)
-            pr = np.flatnonzero(kind == 3)
-        labels: dict = {}
-        # (event, seed balls, every contact inelastic, the event's own slow contact)
-        clusters: list[tuple[int, list[int], bool, bool]] = []
-        quiet: set[int] = set()  # resting contacts that began: no impulse, no event
+        return count > BUDGET
+
+    def _handle(self, tabs: np.ndarray, code: np.ndarray) -> None:
+        """Run the next event of each of tables `tabs` (event codes `code`), at its clock."""
+        due, i, j = self.schedule.decode(code)
+        old_state = self.state[tabs, i] if self.record else None
+        busy = self._busy(tabs)
+        any_busy = bool(busy.any())
+        tr, cu, pr = _split(due, tabs.size)
+        clusters: list[Cluster] = []
+        quiet: set[int] = set()  # events that changed nothing: resting contacts that began
         # Balls held in a group by resting contacts (joined.py): any event of one of them
         # renews the whole group's motion, since its contact forces change with it.
-        grouped = self._grouped(tabs, i, j, kind)
+        involved = self.groups.involved(tabs, i, j, due)
         if tr.size:
-            if grouped is not None:
-                for n in tr[grouped[tr]].tolist():
-                    clusters.append((n, self._group_of(int(tabs[n]), int(i[n])), False, False))
-                tr = tr[~grouped[tr]]
+            if involved is not None:
+                for n in tr[involved[tr]].tolist():
+                    members = self.groups.members(int(tabs[n]), int(i[n]))
+                    clusters.append(Cluster(n, members, False, False))
+                tr = tr[~involved[tr]]
             if tr.size:
-                self._transition(tabs[tr], i[tr])
+                self.respond.transition(tabs[tr], i[tr])
+        cushions: dict = {}  # cushion event -> its feature (index, name), for the log
         if cu.size:
-            # A slow bounce (or any bounce over the work bound) is solved with its cluster:
-            # the ball settles on the cushion, and stays pressed to it while friction drives
-            # it there.
-            approach = self._approach(tabs[cu], i[cu])
-            slow = approach < self.physics.v_inelastic
-            # Slowly, touching a ball (pressed into the rail by it) or grouped: with the
-            # cluster; over the work bound: with the cluster, inelastically.
-            crowd = np.zeros(cu.size, dtype=bool)
-            if slow.any():
-                crowd[slow] = self._crowded(tabs[cu[slow]], i[cu[slow]])
-            if any_busy:
-                crowd |= busy[cu] & (self.f_cush[tabs[cu], i[cu]] < self._nseg + self._npt)
-            if crowd.any():
-                # A cluster's solve leaves out a contact sunk deeper than CLUSTER_GAP, and
-                # the ball would meet it again at once, for ever: it bounces (and is lifted).
-                k = np.flatnonzero(crowd)
-                crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
             if self.record:
-                labels = dict(zip(cu.tolist(), self._features(self.f_cush[tabs[cu], i[cu]]),
-                                  strict=True))
-            for n in cu[crowd].tolist():
-                clusters.append((n, [int(i[n])], bool(busy[n]), True))
-            alone = ~crowd
-            if alone.any():
-                self._cushion(tabs[cu[alone]], i[cu[alone]])
-                # A slow ball left pressed to the cushion by its friction stays on it, held
-                # by the cushion's force (a group); one that met it with no speed at all was
-                # no impact.
-                calm = alone & slow
-                if calm.any():
-                    pressed = np.zeros(cu.size, dtype=bool)
-                    pressed[calm] = self._pressed_on(tabs[cu[calm]], i[cu[calm]])
-                    for n in cu[pressed].tolist():
-                        clusters.append((n, [int(i[n])], False, True))
-                    quiet.update(cu[calm & ~pressed & (approach <= V_MIN)].tolist())
+                cushions = self.recorder.met(cu, self.f_cush[tabs[cu], i[cu]])
+            more, still = self.slow.cushions(tabs, i, cu, busy, any_busy)
+            clusters += more
+            quiet |= still
         more_b, more_i = [tabs], [i]
         if pr.size:
             more_b.append(tabs[pr])
             more_i.append(j[pr])
-            self._pairs(tabs[pr], i[pr], j[pr], pr, busy[pr] if any_busy else None, clusters,
-                        quiet)
-        if grouped is not None:
-            # A fast contact or bounce of a grouped ball breaks its group: the others move
-            # freely again, and those still pressed together are joined again as their
-            # predictions find them (a cheap step where a break's impacts cross a group).
-            for n in np.flatnonzero(grouped & (kind >= 2)).tolist():
-                b = int(tabs[n])
-                own = {int(x) for x in (i[n], j[n]) if x >= 0}
-                members = {k for x in own for k in self._group_of(b, x)}
-                rest = sorted(members - own)
-                self.group[b, sorted(members)] = -1
-                self._ngroup[b] = int((self.group[b] >= 0).sum())
-                if rest:
-                    k = np.array(rest)
-                    bb, tt = np.full(k.size, b), np.full(k.size, self.tb[b])
-                    self._set(bb, k, tt, *self._eval(bb, k, tt))
-                    more_b.append(bb)
-                    more_i.append(k)
-        extra: dict[int, list[int]] = {}  # event -> other balls its cluster solve moved
-        also: dict[int, list[tuple[int, int, int]]] = {}  # event -> other balls' transitions
-        for n, seeds, every, own in clusters:
-            b = int(tabs[n])
-            before = self.state[b].copy()
-            members, moved = self._cluster(b, seeds, every)
-            self.work += len(members) ** 3 // CLUSTER_WORK
-            if own and not moved:
-                quiet.add(n)
-            more_b.append(np.full(len(members), b))
-            more_i.append(np.array(members, dtype=np.int64))
-            ends = []
-            if self.record:
-                # A group renewed when one of its balls stops may stop the others with it:
-                # each such end is an event of its own.
-                self_ = int(i[n]) if kind[n] == 0 else -1  # a transition's own ball
-                ends = [(k, int(before[k]), int(self.state[b, k])) for k in members if k != self_]
-                ends = [e for e in ends if e[1:] in _TRANSITION_NAMES]
-                also.setdefault(n, []).extend(ends)
-            if kind[n] != 0:  # a group renewed by a transition moves others by rounding only
-                skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(extra.get(n, ()))
-                extra.setdefault(n, []).extend(k for k in moved if k not in skip)
-        self._predict(np.concatenate(more_b), np.concatenate(more_i))
+            more, still = self.slow.pairs(tabs[pr], i[pr], j[pr], pr,
+                                          busy[pr] if any_busy else None)
+            clusters += more
+            quiet |= still
+        if involved is not None:
+            bb, ii = self.groups.break_up(tabs, i, j, due, involved)
+            more_b += bb
+            more_i += ii
+        solved = self.slow.solve(tabs, i, j, due, clusters, self.record)
+        self.work += sum(k ** 3 // CLUSTER_WORK for k in solved.sizes)
+        quiet |= solved.quiet
+        self._predict(np.concatenate(more_b + solved.tables), np.concatenate(more_i + solved.balls))
         for n in quiet:
-            if kind[n] == 3:
-                self._unstick(int(tabs[n]), int(i[n]), int(j[n]))
+            if due[n] == Due.PAIR:
+                self.schedule.unstick(int(tabs[n]), int(i[n]), int(j[n]))
         if self.record:
-            self._log(tabs, kind, i, j, old_state, labels, extra, also, quiet)
-
-    def _unstick(self, b: int, i: int, j: int) -> None:
-        """A pressed pair whose solve changed nothing, found pressed again at the same
-        instant, would be met there for ever (a ball slowing to a stop as it parts, a group
-        whose push leaves it pressed): it is looked for again as a pair that is not pressed,
-        when it has sunk SINK."""
-        t = self.tb[b]
-        if self.t_pair[b, i, j] > t:
-            return
-        k = np.array([i, j])
-        p, v, _ = self._eval(np.full(2, b), k, np.full(2, t), spin=False)
-        a = self.acc[b, k]
-        end = np.minimum(self.t_trans[b, k], self.t_check[b, k]).min() - t
-        found = first_contact((p[1] - p[0])[None], (v[1] - v[0])[None], (a[1] - a[0])[None],
-                              self.radius[b, k].sum()[None], np.array([end]), pressed=False)
-        self.t_pair[b, i, j] = self.t_pair[b, j, i] = t + found[0]
-
-    def _grouped(self, tabs, i, j, kind):
-        """Events (by position in the pass) that involve a grouped ball, or None if no table
-        of the pass has a group (the usual case, decided without array work)."""
-        if (not self._ngroup[int(tabs[0])]) if tabs.size == 1 else not self._ngroup[tabs].any():
-            return None
-        out = (self.group[tabs, i] >= 0) & (kind != 1)
-        pair = kind == 3
-        out[pair] |= self.group[tabs[pair], j[pair]] >= 0
-        return out
-
-    def _group_of(self, b: int, i: int) -> list[int]:
-        """The balls of ball i's group (itself alone if it has none)."""
-        g = int(self.group[b, i])
-        if g < 0:
-            return [i]
-        return np.flatnonzero(self.group[b] == g).tolist()
-
-    def _pairs(self, b, i, j, pr, busy, clusters, quiet) -> None:
-        """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
-        None for none): fast ones collide; slow ones of a pair that touches nothing else
-        settle here (events that change nothing go to `quiet`), the rest go to `clusters`."""
-        n = b.size
-        if n == 1 and busy is None and self._pair_one(int(b[0]), int(i[0]), int(j[0])):
-            return
-        # Both balls' states, once, for the closing speed and for whichever response.
-        tb = self.tb[b]
-        p, v, w = self._eval(np.concatenate([b, b]), np.concatenate([i, j]),
-                             np.concatenate([tb, tb]))
-        states = (p[:n], v[:n], w[:n], p[n:], v[n:], w[n:])
-        d = states[3] - states[0]
-        closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
-        slow = closing < self.physics.v_inelastic
-        if busy is not None:
-            slow |= busy
-        if not slow.any():
-            self._collide(b, i, j, *states)
-            return
-        fast = ~slow
-        if fast.any():
-            self._collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
-        calm = slow if busy is None else slow & ~busy
-        sl = np.flatnonzero(calm)
-        if sl.size:
-            # A pair alone, neither ball grouped: settled here, unless it stays pressed
-            # together, which the cluster's solve makes a group.
-            bs, is_, js = b[sl], i[sl], j[sl]
-            alone = self._alone(bs, is_, js) & (self.group[bs, is_] < 0) & (self.group[bs, js] < 0)
-            if alone.any():
-                a = sl[alone]
-                changed = self._settle(b[a], i[a], j[a], *(x[a] for x in states))
-                pressed = self._pressed(b[a], i[a], j[a])
-                quiet.update(int(pr[k]) for k in a[~changed & ~pressed].tolist())
-                alone[alone] = ~pressed
-            sl = sl[~alone]
-        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
-        for k in late:
-            every = busy is not None and bool(busy[k])
-            clusters.append((int(pr[k]), [int(i[k]), int(j[k])], every, True))
-
-    def _transition(self, b, i) -> None:
-        if b.size <= FEW:
-            self._transition_few(b, i)
-            return
-        t = self.tb[b]
-        st = self.state[b, i]
-        p, v, w = self._eval(b, i, t)
-        R = self.radius[b, i]
-        # End of sliding: slip exactly zero; end of rolling: no translation; end of spin.
-        w[:, :2] = np.where((st == SLIDING)[:, None], _perp(v) / R[:, None], w[:, :2])
-        rl = (st == ROLLING)[:, None]
-        v = np.where(rl, 0.0, v)
-        w[:, :2] = np.where(rl, 0.0, w[:, :2])
-        w[:, 2] = np.where(st == SPINNING, 0.0, w[:, 2])
-        self._set(b, i, t, p, v, w)
-
-    def _transition_few(self, b, i) -> None:
-        """_transition in plain floats, ball by ball (bit-identical)."""
-        ph = self.physics
-        out = []
-        for t, row, st, R in zip(self.tb[b].tolist(), self._motion[b, i].tolist(),
-                                 self.state[b, i].tolist(), self.radius[b, i].tolist(),
-                                 strict=True):
-            p, v, w = motion.at(row, t)
-            if st == SLIDING:
-                w[0], w[1] = (v[1] * -1.0) / R, (v[0] * 1.0) / R
-            elif st == ROLLING:
-                v = [0.0, 0.0]
-                w[0] = w[1] = 0.0
-            elif st == SPINNING:
-                w[2] = 0.0
-            out.append(motion.start(ph, t, p, v, w, R, row[_RATE], st == POCKETED))
-        self._write_few(b, i, out)
-
-    def _cushion(self, b, i) -> None:
-        tab, ph = self.table, self.physics
-        nseg, npt = self._nseg, self._npt
-        if b.size == 1 and self.f_cush[b[0], i[0]] < nseg + npt:
-            self._cushion_one(int(b[0]), int(i[0]))
-            return
-        t = self.tb[b]
-        f = self.f_cush[b, i]
-        p, v, w = self._eval(b, i, t)
-        hole = f >= nseg + npt
-        seg = f < nseg
-        rc = self.rc[b, i]
-        # Normal (into the table) and a point on the contact feature.
-        ref = np.where(seg[:, None], tab.seg_a[np.minimum(f, nseg - 1)], 0.0)
-        n = np.where(seg[:, None], tab.seg_n[np.minimum(f, nseg - 1)], 0.0)
-        tip = ~hole & ~seg
-        if tip.any():
-            ref[tip] = tab.points[f[tip] - nseg]
-            d = p[tip] - ref[tip]
-            n[tip] = d / _norm(d)[:, None]
-        bounce = np.nonzero(~hole)[0]
-        if bounce.size:
-            bb, ib = b[bounce], i[bounce]
-            nb, pb = n[bounce], p[bounce]
-            vb, wb = cushion.MODELS[ph.cushion].bounce(nb, v[bounce], w[bounce],
-                                                       self.radius[bb, ib], self.mass[bb, ib], ph)
-            # Undo a resting contact's sub-micrometre sink.
-            depth = rc[bounce] - np.einsum("ij,ij->i", pb - ref[bounce], nb)
-            pb = pb + np.maximum(depth, 0.0)[:, None] * nb
-            self._set(bb, ib, t[bounce], pb, vb, wb)
-        hl = np.nonzero(hole)[0]
-        if hl.size:
-            bh, ih = b[hl], i[hl]
-            k = f[hl] - nseg - npt
-            self.state[bh, ih] = POCKETED
-            self.pocket[bh, ih] = k
-            self._set(bh, ih, t[hl], tab.hole_c[k], np.zeros((hl.size, 2)), np.zeros((hl.size, 3)))
-
-    def _cushion_one(self, b: int, i: int) -> None:
-        """One bounce off a rail, jaw or jaw tip in plain floats, bit-identical to _cushion."""
-        tab, ph = self.table, self.physics
-        t = float(self.tb[b])
-        f = int(self.f_cush[b, i])
-        row = self._motion[b, i].tolist()
-        p, v, w = motion.at(row, t)
-        if f < self._nseg:
-            ref, n = tab.seg_a[f].tolist(), tab.seg_n[f].tolist()
-        else:
-            ref = tab.points[f - self._nseg].tolist()
-            d0, d1 = p[0] - ref[0], p[1] - ref[1]
-            dist = float(np.hypot(d0, d1))
-            n = [d0 / dist, d1 / dist]
-        r, m = row[_RADIUS], row[_MASS]
-        v, w = cushion.MODELS[ph.cushion].bounce_one(n, v, w, r, m, ph)
-        # As _cushion: undo a sink.
-        depth = float(self.rc[b, i]) - ((p[0] - ref[0]) * n[0] + (p[1] - ref[1]) * n[1])
-        lift = max0(depth)
-        p = [p[0] + lift * n[0], p[1] + lift * n[1]]
-        self._write_few(np.array([b]), np.array([i]), [
-            motion.start(ph, t, p, v, w, r, row[_RATE], bool(self.state[b, i] == POCKETED))])
-
-    def _sunk(self, b, i) -> np.ndarray:
-        """True for balls (b, i) sunk deeper than CLUSTER_GAP into the rail, jaw or jaw tip
-        they are about to meet."""
-        p, _, _ = self._eval(b, i, self.tb[b], spin=False)
-        f = self.f_cush[b, i]
-        seg = (f < self._nseg)[:, None]
-        ref = np.where(seg, self.table.seg_a[np.minimum(f, self._nseg - 1)],
-                       self.table.points[np.clip(f - self._nseg, 0, max(self._npt - 1, 0))]
-                       if self._npt else 0.0)
-        depth = self.rc[b, i] - ((p - ref) * self._normals(b, i, p)).sum(axis=1)
-        return depth > CLUSTER_GAP
-
-    def _features(self, f) -> list[str]:
-        """Names of cushion features by index: rail, jaw, tip, or the pocket's name."""
-        tab, nseg, npt = self.table, self._nseg, self._npt
-        names = []
-        for fi in f.tolist():
-            if fi < nseg:
-                names.append(tab.seg_kind[fi])
-            elif fi < nseg + npt:
-                names.append("tip")
-            else:
-                names.append(tab.hole_names[fi - nseg - npt])
-        return names
-
-    def _pair_one(self, b: int, i: int, j: int) -> bool:
-        """One fast ball-ball contact in plain floats (the usual pass), bit-identical to the
-        array path; False, doing nothing, if the contact is slow."""
-        t = float(self.tb[b])
-        rows = self._motion[b, [i, j]].tolist()
-        pi, vi, wi = motion.at(rows[0], t)
-        pj, vj, wj = motion.at(rows[1], t)
-        d0, d1 = pj[0] - pi[0], pj[1] - pi[1]
-        dist = float(np.hypot(d0, d1))
-        if not dist > 0:  # centres together: leave it to the array path's nan handling
-            return False
-        closing = ((vi[0] - vj[0]) * d0 + (vi[1] - vj[1]) * d1) / dist
-        ph = self.physics
-        if closing < ph.v_inelastic:
-            return False
-        ri, rj = rows[0][_RADIUS], rows[1][_RADIUS]
-        mi, mj = rows[0][_MASS], rows[1][_MASS]
-        vi, vj, wi, wj = contact.ball_ball_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj,
-                                               ph.e_ball, ph.v_inelastic,
-                                               ph.ball_ball == "frictional")
-        # As _part: undo a resting contact's sub-micrometre sink, shared by inverse mass.
-        n0, n1 = d0 / dist, d1 / dist
-        depth = max0(ri + rj - dist)
-        share = mj / (mi + mj)
-        ki, kj = depth * share, depth * (1.0 - share)
-        pi = [pi[0] - ki * n0, pi[1] - ki * n1]
-        pj = [pj[0] + kj * n0, pj[1] + kj * n1]
-        pocketed = self.state[b, [i, j]] == POCKETED
-        self._write_few(np.array([b, b]), np.array([i, j]), [
-            motion.start(ph, t, pi, vi, wi, ri, rows[0][_RATE], bool(pocketed[0])),
-            motion.start(ph, t, pj, vj, wj, rj, rows[1][_RATE], bool(pocketed[1]))])
-        return True
-
-    def _collide(self, b, i, j, pi, vi, wi, pj, vj, wj) -> None:
-        """Fast contacts (b, i, j), balls i and j now at (pi, vi, wi) and (pj, vj, wj)."""
-        ph = self.physics
-        t = self.tb[b]
-        ri, rj = self.radius[b, i], self.radius[b, j]
-        mi, mj = self.mass[b, i], self.mass[b, j]
-        vi, vj, wi, wj = contact.ball_ball(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph.e_ball,
-                                           ph.v_inelastic, ph.ball_ball == "frictional")
-        self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
-
-    def _part(self, b, i, j, t, pi, pj, vi, vj, wi, wj) -> None:
-        """Start both balls of contacts (b, i, j) on their new motion, first undoing a resting
-        contact's sub-micrometre sink (shared by inverse mass)."""
-        ri, rj = self.radius[b, i], self.radius[b, j]
-        mi, mj = self.mass[b, i], self.mass[b, j]
-        d = pj - pi
-        dist = _norm(d)
-        n = d / dist[:, None]
-        depth = np.maximum(ri + rj - dist, 0.0)
-        share = mj / (mi + mj)
-        pi = pi - (depth * share)[:, None] * n
-        pj = pj + (depth * (1.0 - share))[:, None] * n
-        self._set(np.concatenate([b, b]), np.concatenate([i, j]), np.concatenate([t, t]),
-                  np.concatenate([pi, pj]), np.concatenate([vi, vj]), np.concatenate([wi, wj]))
-
-    def ball_state(self, b: int, i: int) -> dict:
-        """One ball's state now, as plain numbers (for events and output)."""
-        p, v, w = self._eval(np.array([b]), np.array([i]), np.array([self.tb[b]]))
-        return {
-            "x": float(p[0, 0]), "y": float(p[0, 1]), "vx": float(v[0, 0]), "vy": float(v[0, 1]),
-            "w": [float(x) for x in w[0]], "state": STATE_NAMES[self.state[b, i]],
-        }
-
-    def _log(self, tabs, kind, i, j, old_state, labels, extra, also, quiet) -> None:
-        """Record events; a contact solved with its cluster also names the other balls of the
-        cluster it set moving (after the contact's own one or two), and transitions of other
-        balls of a group renewed by the event follow it as events of their own. A resting
-        contact that begins (`quiet`: balls start pressing together, no impulse) is not a
-        collision and is not recorded."""
-        for n, b in enumerate(tabs.tolist()):
-            k = int(kind[n])
-            if k == 1 or n in quiet:
-                self._log_also(b, also.get(n, ()))
-                continue
-            ib = int(i[n])
-            ev: dict = {"t": float(self.tb[b])}
-            if k == 0:
-                pair = (int(old_state[n]), int(self.state[b, ib]))
-                if pair[0] == pair[1]:  # a group's motion renewed, nothing ended
-                    self._log_also(b, also.get(n, ()))
-                    continue
-                ev["type"] = _TRANSITION_NAMES.get(pair, "transition")
-                ev["i"] = [ib]
-            elif k == 2:
-                if self.state[b, ib] == POCKETED:
-                    ev["type"] = "pocket"
-                    ev["pocket"] = labels[n]
-                else:
-                    ev["type"] = "cushion"
-                    ev["feature"] = labels[n]
-                ev["i"] = [ib]
-            else:
-                ev["type"] = "ball_ball"
-                ev["i"] = [ib, int(j[n])]
-            ev["i"] += extra.get(n, [])
-            ev["balls"] = [self.ball_state(b, x) for x in ev["i"]]
-            self.events[b].append(ev)
-            self._log_also(b, also.get(n, ()))
-
-    def _log_also(self, b: int, changes) -> None:
-        for x, old, new in changes:
-            self.events[b].append({"t": float(self.tb[b]), "type": _TRANSITION_NAMES[(old, new)],
-                                   "i": [x], "balls": [self.ball_state(b, x)]})
+            self.recorder.record(tabs, due, i, j, old_state, cushions, solved.extra, solved.also,
+                                 quiet)
 
     # ----------------------------------------------------------------- public view and driving
-    def _now(self):
-        B, N = self.B, self.N
-        b, i = np.divmod(np.arange(B * N), N)
-        p, v, w = self._eval(b, i, self.tb[b])
-        return p.reshape(B, N, 2), v.reshape(B, N, 2), w.reshape(B, N, 3)
+    def ball_state(self, b: int, i: int) -> BallState:
+        """Ball i of table b as it is at the table's clock (for events and output)."""
+        return self.balls.ball_state(b, i, self.tb[b])
+
+    @property
+    def events(self) -> list[list[dict]]:
+        """Each table's events in the JSON form (`Event.to_json`) of records and output."""
+        return self.recorder.json()
 
     @property
     def pos(self) -> np.ndarray:
         """(B, N, 2) positions now (pocketed balls sit at their pocket's centre)."""
-        return self._now()[0]
+        return self.balls.now(self.tb)[0]
 
     @property
     def vel(self) -> np.ndarray:
-        return self._now()[1]
+        return self.balls.now(self.tb)[1]
 
     @property
     def w(self) -> np.ndarray:
-        return self._now()[2]
+        return self.balls.now(self.tb)[2]
 
     def at_rest(self) -> np.ndarray:
         """(B,) True where every ball is stationary or pocketed."""

@@ -17,18 +17,24 @@ and the motion is renewed after it has turned by TURN radians (or when the slip 
 its smallest), which bounds the error. A push along the slip, as in a straight line of balls,
 never turns it: then the motion is exact and ends at the exact time the slip or the speed
 runs out.
+
+`Groups` keeps which balls of each table move so: any event of a grouped ball renews the whole
+group's motion, since its contact forces change with it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from termpool.physics.balls import Balls
 from termpool.physics.cluster import Rows, solve_inelastic, solve_psd
+from termpool.physics.motion import Col
 from termpool.physics.params import Physics
 from termpool.physics.roots import A_MIN
+from termpool.physics.schedule import Due
 from termpool.physics.state import EPS_V, EPS_W, ROLLING, SLIDING, SPINNING, STATIONARY
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
 
 TURN = 0.01  # rad: a fixed friction direction is renewed after the true one turns this far
 TURN_ROLL = 0.2  # rad: the same for a rolling ball's resistance, 20 times weaker
@@ -80,7 +86,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
     bend = np.array([r[3] for r in rows], dtype=float)
     J = Rows(a_idx, c_idx, normal, M)
-    # A slip too small to slide on (state.EPS_U) is completed at once, as Engine._snap does:
+    # A slip too small to slide on (state.EPS_U) is completed at once, as motion.snap does:
     # the ball rolls on with the speed the slide would have left it.
     u = v + R[:, None] * _perp(w[:, :2])
     us = _norm(u)
@@ -197,3 +203,75 @@ def _solve(free, k, J: Rows, bend):
     if live.any():
         lam[live] = solve_inelastic(A[np.ix_(live, live)], b[live])
     return free + J.spread(lam, k)
+
+
+class Groups:
+    """The groups of B tables: a label per ball (-1: in no group) and, per table, how many balls
+    are grouped, so that tables without any pay nothing. `tb` is the tables' clocks."""
+
+    def __init__(self, physics: Physics, balls: Balls, tb: np.ndarray) -> None:
+        self.physics, self.balls, self.tb = physics, balls, tb
+        self.label = np.full((balls.B, balls.N), -1, dtype=np.int64)
+        self.count = np.zeros(balls.B, dtype=np.int64)
+
+    def involved(self, tabs, i, j, due):
+        """Events (by position in the pass) that involve a grouped ball, or None if no table
+        of the pass has a group (the usual case, decided without array work)."""
+        if (not self.count[int(tabs[0])]) if tabs.size == 1 else not self.count[tabs].any():
+            return None
+        out = (self.label[tabs, i] >= 0) & (due != Due.CHECK)
+        pair = due == Due.PAIR
+        out[pair] |= self.label[tabs[pair], j[pair]] >= 0
+        return out
+
+    def members(self, b: int, i: int) -> list[int]:
+        """The balls of ball i's group (itself alone if it has none)."""
+        g = int(self.label[b, i])
+        if g < 0:
+            return [i]
+        return np.flatnonzero(self.label[b] == g).tolist()
+
+    def break_up(self, tabs, i, j, due, involved) -> tuple[list, list]:
+        """A fast contact or bounce of a grouped ball breaks its group: the others move freely
+        again (those still pressed together are joined again as their predictions find them:
+        a cheap step where a break's impacts cross a group). Returns the balls set moving
+        anew, (tables, balls) arrays, for their predictions."""
+        out_b, out_i = [], []
+        for n in np.flatnonzero(involved & (due >= Due.CUSHION)).tolist():
+            b = int(tabs[n])
+            own = {int(x) for x in (i[n], j[n]) if x >= 0}
+            members = {k for x in own for k in self.members(b, x)}
+            rest = sorted(members - own)
+            self.label[b, sorted(members)] = -1
+            self.count[b] = int((self.label[b] >= 0).sum())
+            if rest:
+                k = np.array(rest)
+                bb, tt = np.full(k.size, b), np.full(k.size, self.tb[b])
+                self.balls.set(bb, k, tt, *self.balls.eval(bb, k, tt))
+                out_b.append(bb)
+                out_i.append(k)
+        return out_b, out_i
+
+    def join(self, b: int, mem, t: float, p, v, w, ra, rc_, rn, bend) -> None:
+        """Start the motion of balls `mem` of table b at time t from (p, v, w) (all N balls):
+        balls in resting contacts (rows ra, rc_, rn, bend as in slow.SlowContacts' cluster
+        solve) move as a group held by the contacts' forces; the others move freely."""
+        balls = self.balls
+        held = np.unique(np.concatenate([ra, rc_[rc_ >= 0]]))
+        free = mem[~np.isin(mem, held)]
+        self.label[b, mem] = -1
+        if free.size:
+            balls.set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free], w[free])
+        if held.size:
+            where = {int(x): n for n, x in enumerate(held.tolist())}
+            rows = [(where[int(x)], where.get(int(y), -1), n, bb)
+                    for x, y, n, bb in zip(ra, rc_, rn, bend, strict=True)]
+            vj, acc, alpha, state, duration, wj = push(
+                self.physics, v[held], w[held], balls.radius[b, held], balls.mass[b, held],
+                balls.spin_rate[b, held], rows)
+            balls.state[b, held] = state
+            balls.t_trans[b, held] = t + duration
+            balls.motion[b, held, :Col.RATE] = np.concatenate(
+                [np.full((held.size, 1), t), p[held], vj, acc, wj, alpha], axis=1)
+            self.label[b, held] = int(held.min())
+        self.count[b] = int((self.label[b] >= 0).sum())

@@ -1,11 +1,14 @@
-"""Starting one ball's motion in plain Python floats: the engine's path for one or two balls.
+"""A ball's motion on the cloth between events: starting it (its state, accelerations and the
+time of its next transition) and evaluating it, in array and plain-float forms.
 
-An event usually starts the motion of one or two balls, and on arrays that small the cost is
-the number of numpy calls (about a microsecond each), not the arithmetic. `start` does for
-one ball what `Engine._set` does for many, operation for operation in the same order, so the
-results are bit-identical (IEEE +, -, *, / and sqrt round the same in Python and numpy;
-hypot goes through numpy, since the C library's and Python's own can differ in the last bit).
-`tests/test_motion.py` holds the two paths to that.
+Within a state a ball moves on a quadratic from its clock t0 (physics-notes: sliding,
+rolling, spinning), packed in one row (`Col`). An event usually starts the motion of one or
+two balls, and on arrays that small the cost is the number of numpy calls (about a
+microsecond each), not the arithmetic: `start` and `at` do for one ball what `start_many`
+and `at_many` do for many, operation for operation in the same order, so the results are
+bit-identical (IEEE +, -, *, / and sqrt round the same in Python and numpy; hypot goes
+through numpy, since the C library's and Python's own can differ in the last bit).
+`tests/test_models.py` and `tests/test_motion.py` hold the two forms to that.
 """
 
 from __future__ import annotations
@@ -25,9 +28,21 @@ from termpool.physics.state import (
     SPINNING,
     STATIONARY,
 )
+from termpool.physics.vec import max_one, norm, perp
 
 _hypot = np.hypot
 INF = math.inf
+
+
+class Col:
+    """The columns of a ball's packed motion, a row of the engine's motion array: its clock
+    t0; its position, velocity and acceleration at t0; its spin at t0 and the rate of change
+    of (wx, wy); then the ball's constants: side-spin decay rate, radius and mass. A new
+    motion (`start`) writes the columns before RATE."""
+
+    T0, PX, PY, VX, VY, AX, AY, WX, WY, WZ, ALX, ALY, RATE, RADIUS, MASS = range(15)
+    N = 15
+    P, V, ACC, W, ALPHA = slice(1, 3), slice(3, 5), slice(5, 7), slice(7, 10), slice(10, 12)
 
 
 def _over(x: float, d: float) -> float:
@@ -39,15 +54,76 @@ def _over(x: float, d: float) -> float:
     return math.copysign(INF, x) * math.copysign(1.0, d)
 
 
-def max0(x: float) -> float:
-    """np.maximum(x, 0.0) for one float (nan and -0.0 kept as numpy keeps them)."""
-    return 0.0 if x < 0.0 else x
+def snap(ph: Physics, p, v, w, R, rate, only=None, move: bool = True) -> tuple:
+    """Complete tiny slides at once: returns (p, v, w, t_s), t_s = 0 where nothing changed.
+
+    A slip u with |u| <= EPS_U ends after t_s = |u| / (3.5 mu_s g) with v -= u / 3.5 and
+    the ball rolling. With `move`, the returned p is where the slide ends,
+    p + v t_s - mu_s g t_s^2 u/2|u|, and side spin has decayed (at `rate`) for t_s: a ball
+    started rolling from there at t + t_s follows the exact path from then on, and before
+    then (extrapolated back) strays from the slide by under 20 nm at 1 mm/s. Without it
+    only the velocities change (the solves of slow contacts, whose clocks stay put). w is
+    changed in place. No snap on frictionless cloth, where a slide never ends.
+    """
+    u = v + R[:, None] * perp(w[:, :2])
+    us = norm(u)
+    small = (us <= EPS_U) & (us > 0) & (ph.mu_slide > 0)
+    if only is not None:
+        small &= only
+    ts = np.where(small, us / (3.5 * ph.mu_slide * ph.g), 0.0)
+    if not small.any():
+        return p, v, w, ts
+    s = small[:, None]
+    if move:
+        uhat = u / np.where(us > 0, us, 1.0)[:, None]
+        p = np.where(s, p + (v - 0.5 * ph.mu_slide * ph.g * ts[:, None] * uhat) * ts[:, None],
+                     p)
+        wz = w[:, 2]
+        w[:, 2] = np.copysign(np.maximum(np.abs(wz) - rate * ts, 0.0), wz)
+    v = np.where(s, v - u / 3.5, v)
+    w[:, :2] = np.where(s, perp(v) / R[:, None], w[:, :2])
+    return p, v, w, ts
+
+
+def start_many(ph: Physics, t, p, v, w, R, rate, pocketed) -> tuple:
+    """New motions of K balls from times t at (p, v, w), radii R, side-spin decay rates `rate`,
+    `pocketed` (K,) bools: returns (state, t_trans, rows), rows (K, Col.RATE) the packed
+    motions. w is changed in place."""
+    g = ph.g
+    # A tiny slide is completed at once: the ball starts rolling where and when it ends.
+    p, v, w, ts = snap(ph, p, v, w, R, rate)
+    t = t + ts
+    u = v + R[:, None] * perp(w[:, :2])  # contact-point slip
+    us = norm(u)
+    vs, wz = norm(v), np.abs(w[:, 2])
+    sliding = (us > (EPS_U if ph.mu_slide > 0 else 0.0)) & ~pocketed
+    rolling = ~sliding & (vs > EPS_V) & ~pocketed
+    spinning = ~sliding & ~rolling & (wz > EPS_W) & ~pocketed
+    still = ~(sliding | rolling)
+    v = np.where(still[:, None], 0.0, v)
+    # Rolling is kept exact (slip zero); still balls keep only their side spin.
+    w[:, :2] = np.where(rolling[:, None], perp(v) / R[:, None],
+                        np.where(still[:, None], 0.0, w[:, :2]))
+    w[:, 2] = np.where(spinning | ~still, w[:, 2], 0.0)
+    uhat = np.where(sliding[:, None], u / us[:, None], 0.0)
+    vhat = np.where(rolling[:, None], v / vs[:, None], 0.0)
+    acc = -ph.mu_slide * g * uhat - ph.mu_roll * g * vhat
+    alpha = np.where(sliding[:, None], (2.5 * ph.mu_slide * g / R)[:, None] * perp(uhat),
+                     perp(acc) / R[:, None])
+    dt = np.where(sliding, us / (3.5 * ph.mu_slide * g),
+                  np.where(rolling, vs / (ph.mu_roll * g),
+                           np.where(spinning, wz / rate, np.inf)))
+    dt = np.where(np.isnan(dt) | pocketed, np.inf, dt)
+    state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
+                                                 np.where(spinning, SPINNING, STATIONARY)))
+    state = np.where(pocketed, POCKETED, state)
+    return state, t + dt, np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
 
 
 def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: float,
           pocketed: bool) -> tuple[int, float, list]:
-    """One ball's new motion from time t at (p, v, w): returns (state, t_trans, row), row the
-    ball's packed motion (t0, p0, v0, acc, w0, alpha) as Engine._motion holds it."""
+    """`start_many` for one ball in plain floats: returns (state, t_trans, row), row the
+    ball's packed motion up to Col.RATE (t0, p0, v0, acc, w0, alpha)."""
     g, mu_s, mu_r = ph.g, ph.mu_slide, ph.mu_roll
     px, py = p
     vx, vy = v
@@ -62,7 +138,7 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
         k = 0.5 * mu_s * g * ts
         px = px + (vx - k * uhx) * ts
         py = py + (vy - k * uhy) * ts
-        wz = math.copysign(max0(abs(wz) - rate * ts), wz)
+        wz = math.copysign(max_one(abs(wz) - rate * ts, 0.0), wz)
         vx = vx - ux / 3.5
         vy = vy - uy / 3.5
         wx = (vy * -1.0) / R
@@ -108,14 +184,32 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
     return state, t + dt, [t, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly]
 
 
+def at_many(rows: np.ndarray, t, spin: bool = True) -> tuple:
+    """Position, velocity and (if `spin`, else None) spin at times t of balls whose packed
+    motions are `rows` (..., Col.N), a copy: its spin columns are changed in place."""
+    d = (t - rows[..., Col.T0])[..., None]
+    v0 = rows[..., Col.V]
+    acc = rows[..., Col.ACC]
+    p = rows[..., Col.P] + (v0 + 0.5 * acc * d) * d
+    v = v0 + acc * d
+    if not spin:
+        return p, v, None
+    w = rows[..., Col.W]
+    w[..., :2] += rows[..., Col.ALPHA] * d
+    wz = w[..., 2]
+    # Before t0 (a ball whose tiny slide was completed ahead, see snap) spin is held.
+    decay = rows[..., Col.RATE] * np.maximum(d[..., 0], 0.0)
+    w[..., 2] = np.copysign(np.maximum(np.abs(wz) - decay, 0.0), wz)
+    return p, v, w
+
+
 def at(row: list, t: float) -> tuple[list, list, list]:
-    """Position, velocity and spin at time t of a ball whose packed motion is `row` (a row of
-    Engine._motion): Engine._eval for one ball."""
-    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row[:13]
+    """`at_many` for one ball in plain floats: its position, velocity and spin at time t."""
+    t0, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly, rate = row[:Col.RADIUS]  # Col's order
     d = t - t0
     p = [px + (vx + 0.5 * ax * d) * d, py + (vy + 0.5 * ay * d) * d]
     v = [vx + ax * d, vy + ay * d]
     # Before t0 (a ball whose tiny slide was completed ahead) spin is held.
-    decay = rate * max0(d)
-    w = [wx + alx * d, wy + aly * d, math.copysign(max0(abs(wz) - decay), wz)]
+    decay = rate * max_one(d, 0.0)
+    w = [wx + alx * d, wy + aly * d, math.copysign(max_one(abs(wz) - decay, 0.0), wz)]
     return p, v, w

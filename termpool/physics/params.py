@@ -6,6 +6,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.cushion import MODELS as CUSHIONS
 
 BALL_RADIUS = 0.028575  # 2.25 in diameter
@@ -70,7 +71,7 @@ class Physics:
     mu_cushion: float | None = None
     cushion_height: float = 0.0366  # nose height above the slate (0.64 ball diameters)
     g: float = 9.81
-    ball_ball: str = "frictional"  # or "frictionless"
+    ball_ball: str = "frictional"  # the ball-ball model, a name in ball_ball.MODELS
     cushion: str = "mathavan"  # the cushion response model, a name in cushion.MODELS (why this
     # one: docs/physics.md, Cushions)
     # Closing speeds below this are treated as perfectly inelastic: touching balls then settle
@@ -97,8 +98,9 @@ class Physics:
             if key not in names:
                 raise ValueError(f"physics: unknown key '{key}'")
             if key == "ball_ball":
-                if val not in ("frictional", "frictionless"):
-                    raise ValueError("physics.ball_ball: must be 'frictional' or 'frictionless'")
+                if not isinstance(val, str) or val not in BALL_BALL:
+                    names = " or ".join(f"'{k}'" for k in BALL_BALL)
+                    raise ValueError(f"physics.ball_ball: must be {names}")
                 kw[key] = val
                 continue
             if key == "cushion":

@@ -2,108 +2,254 @@
 
 Below `v_inelastic` a contact is perfectly inelastic. An isolated pair is settled at once;
 a contact inside a cluster of touching balls and cushions is solved with the whole cluster as
-one complementarity problem (cluster.py), on velocities and then on positions. A mixin of
-Engine: it works on the engine's arrays.
+one complementarity problem (cluster.py), on velocities and then on positions, and contacts
+left resting join their balls into a group (joined.py). `SlowContacts` decides, for the
+cushion and ball-ball events of a pass, which are fast (`respond.Responses`) and which slow.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
+from termpool.physics.balls import Balls
 from termpool.physics.cluster import Rows, solve_inelastic
-from termpool.physics.joined import push
+from termpool.physics.events import ENDS
+from termpool.physics.features import Features
+from termpool.physics.joined import Groups
+from termpool.physics.motion import Col, snap
+from termpool.physics.params import Physics
+from termpool.physics.respond import Responses
 from termpool.physics.roots import A_MIN, V_MIN
-from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED, dots
-from termpool.physics.state import norm as _norm
-from termpool.physics.state import perp as _perp
+from termpool.physics.schedule import Due, Schedule
+from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
+from termpool.physics.vec import dots
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
+
+
+class Cluster(NamedTuple):
+    """A contact to solve with its cluster: the event (its place in the pass), the balls it
+    starts from, whether every contact is inelastic (over the work bound), and whether the
+    contact is the event's own (else the event renews a group's motion)."""
+
+    event: int
+    seeds: list[int]
+    every: bool
+    own: bool
+
+
+@dataclass
+class Solved:
+    """What solving a pass's clusters did: the balls it set moving, (tables, balls) arrays for
+    their predictions; each cluster's size; events that changed nothing; per event, the other
+    balls its cluster set moving (`extra`) and other balls' state changes (`also`: ball,
+    state before, state after)."""
+
+    tables: list = field(default_factory=list)
+    balls: list = field(default_factory=list)
+    sizes: list[int] = field(default_factory=list)
+    quiet: set[int] = field(default_factory=set)
+    extra: dict[int, list[int]] = field(default_factory=dict)
+    also: dict[int, list[tuple[int, int, int]]] = field(default_factory=dict)
+
+
+_NOTHING = Solved()  # what solving no cluster does (only ever read)
 
 
 class SlowContacts:
-    def _normals(self, b, i, p):
-        """Unit normals (into the table) of the cushion features balls (b, i) at p are about
-        to meet: a rail's or jaw's, or from a jaw tip to the ball (not for pocket holes)."""
-        nseg = self._nseg
-        f = self.f_cush[b, i]
-        n = self.table.seg_n[np.minimum(f, nseg - 1)]
-        tip = (f >= nseg) & (f < nseg + self._npt)
-        if tip.any():
-            d = p[tip] - self.table.points[f[tip] - nseg]
-            n[tip] = d / _norm(d)[:, None]
-        return n
+    """Slow contacts of B tables at their clocks `tb`: the balls, their groups and the table's
+    features; fast contacts go to `respond`."""
+
+    def __init__(self, physics: Physics, balls: Balls, features: Features, schedule: Schedule,
+                 groups: Groups, respond: Responses, tb: np.ndarray) -> None:
+        self.physics, self.balls, self.features, self.schedule = physics, balls, features, schedule
+        self.groups, self.respond, self.tb = groups, respond, tb
+
+    def cushions(self, tabs, i, cu, busy, any_busy: bool) -> tuple[list[Cluster], set[int]]:
+        """Balls i[cu] of tables tabs[cu] meeting a cushion feature or a hole (busy: over the
+        work bound, over the whole pass). A slow bounce (or any bounce over the work bound)
+        is solved with its cluster: the ball settles on the cushion, and stays pressed to it
+        while friction drives it there; the others bounce or drop. Returns (clusters to
+        solve: (event, seed balls, every contact inelastic, the event's own slow contact),
+        events that changed nothing: a resting contact that began, no impulse)."""
+        clusters: list = []
+        quiet: set[int] = set()
+        approach = self._approach(tabs[cu], i[cu])
+        slow = approach < self.physics.v_inelastic
+        # Slowly, touching a ball (pressed into the rail by it) or grouped: with the
+        # cluster; over the work bound: with the cluster, inelastically.
+        crowd = np.zeros(cu.size, dtype=bool)
+        if slow.any():
+            crowd[slow] = self._crowded(tabs[cu[slow]], i[cu[slow]])
+        if any_busy:
+            crowd |= busy[cu] & (self.schedule.f_cush[tabs[cu], i[cu]] < self.features.first_hole)
+        if crowd.any():
+            # A cluster's solve leaves out a contact sunk deeper than CLUSTER_GAP, and the
+            # ball would meet it again at once, for ever: it bounces (and is lifted).
+            k = np.flatnonzero(crowd)
+            crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
+        for n in cu[crowd].tolist():
+            clusters.append(Cluster(n, [int(i[n])], bool(busy[n]), True))
+        alone = ~crowd
+        if alone.any():
+            self.respond.cushion(tabs[cu[alone]], i[cu[alone]])
+            # A slow ball left pressed to the cushion by its friction stays on it, held by
+            # the cushion's force (a group); one that met it with no speed at all was no
+            # impact.
+            calm = alone & slow
+            if calm.any():
+                pressed = np.zeros(cu.size, dtype=bool)
+                pressed[calm] = self._pressed_on(tabs[cu[calm]], i[cu[calm]])
+                for n in cu[pressed].tolist():
+                    clusters.append(Cluster(n, [int(i[n])], False, True))
+                quiet.update(cu[calm & ~pressed & (approach <= V_MIN)].tolist())
+        return clusters, quiet
+
+    def pairs(self, b, i, j, pr, busy) -> tuple[list[Cluster], set[int]]:
+        """Ball-ball contacts (b, i, j), events pr of the pass (busy: over the work bound, or
+        None for none): fast ones collide; slow ones of a pair that touches nothing else
+        settle here. Returns (clusters to solve, events that changed nothing, as `cushions`)."""
+        n = b.size
+        if n == 1 and busy is None and self.respond.pair_one(int(b[0]), int(i[0]), int(j[0])):
+            return [], set()
+        clusters: list[Cluster] = []
+        quiet: set[int] = set()
+        # Both balls' states, once, for the closing speed and for whichever response.
+        tb = self.tb[b]
+        p, v, w = self.balls.eval(np.concatenate([b, b]), np.concatenate([i, j]),
+                                  np.concatenate([tb, tb]))
+        states = (p[:n], v[:n], w[:n], p[n:], v[n:], w[n:])
+        d = states[3] - states[0]
+        closing = ((states[1] - states[4]) * d).sum(axis=1) / _norm(d)
+        slow = closing < self.physics.v_inelastic
+        if busy is not None:
+            slow |= busy
+        if not slow.any():
+            self.respond.collide(b, i, j, *states)
+            return clusters, quiet
+        fast = ~slow
+        if fast.any():
+            self.respond.collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
+        calm = slow if busy is None else slow & ~busy
+        sl = np.flatnonzero(calm)
+        if sl.size:
+            # A pair alone, neither ball grouped: settled here, unless it stays pressed
+            # together, which the cluster's solve makes a group.
+            bs, is_, js = b[sl], i[sl], j[sl]
+            group = self.groups.label
+            alone = self._alone(bs, is_, js) & (group[bs, is_] < 0) & (group[bs, js] < 0)
+            if alone.any():
+                a = sl[alone]
+                changed = self._settle(b[a], i[a], j[a], *(x[a] for x in states))
+                pressed = self._pressed(b[a], i[a], j[a])
+                quiet.update(int(pr[k]) for k in a[~changed & ~pressed].tolist())
+                alone[alone] = ~pressed
+            sl = sl[~alone]
+        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
+        for k in late:
+            every = busy is not None and bool(busy[k])
+            clusters.append(Cluster(int(pr[k]), [int(i[k]), int(j[k])], every, True))
+        return clusters, quiet
+
+    def solve(self, tabs, i, j, due, clusters: list[Cluster], record: bool) -> Solved:
+        """Solve the pass's clusters (as `cushions` and `pairs` return them; events by their
+        place in the pass, whose tables, balls and what was due are tabs, i, j, due)."""
+        if not clusters:  # the usual pass
+            return _NOTHING
+        out = Solved()
+        for n, seeds, every, own in clusters:
+            b = int(tabs[n])
+            before = self.balls.state[b].copy()
+            members, moved = self._cluster(b, seeds, every)
+            out.sizes.append(len(members))
+            if own and not moved:
+                out.quiet.add(n)
+            out.tables.append(np.full(len(members), b))
+            out.balls.append(np.array(members, dtype=np.int64))
+            ends = []
+            if record:
+                # A group renewed when one of its balls stops may stop the others with it:
+                # each such end is an event of its own.
+                self_ = int(i[n]) if due[n] == Due.TRANSITION else -1  # a transition's ball
+                ends = [(k, int(before[k]), int(self.balls.state[b, k])) for k in members
+                        if k != self_]
+                ends = [e for e in ends if e[1:] in ENDS]
+                out.also.setdefault(n, []).extend(ends)
+            if due[n] != Due.TRANSITION:  # a transition renews a group: others move by rounding
+                skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(out.extra.get(n, ()))
+                out.extra.setdefault(n, []).extend(k for k in moved if k not in skip)
+        return out
 
     def _approach(self, b, i) -> np.ndarray:
         """Speeds into the cushion, jaw or tip that balls (b, i) are about to meet (inf for
         a pocket's hole: never a slow contact)."""
-        nseg = self._nseg
+        feat = self.features
         if b.size == 1:  # one ball (the usual case), in plain floats
             bb, ib = int(b[0]), int(i[0])
-            f = int(self.f_cush[bb, ib])
-            if f >= nseg + self._npt:
+            f = int(self.schedule.f_cush[bb, ib])
+            if f >= feat.first_hole:
                 return np.array([math.inf])
-            row = self._motion[bb, ib].tolist()
-            d = float(self.tb[bb]) - row[0]
-            vx, vy = row[3] + row[5] * d, row[4] + row[6] * d
-            if f < nseg:
-                nx, ny = self.table.seg_n[f].tolist()
-            else:
-                px = row[1] + (row[3] + 0.5 * row[5] * d) * d
-                py = row[2] + (row[4] + 0.5 * row[6] * d) * d
-                tx, ty = self.table.points[f - nseg].tolist()
-                r = math.hypot(px - tx, py - ty)
-                nx, ny = (px - tx) / r, (py - ty) / r
+            row = self.balls.motion[bb, ib].tolist()
+            d = float(self.tb[bb]) - row[Col.T0]
+            vx, vy = row[Col.VX] + row[Col.AX] * d, row[Col.VY] + row[Col.AY] * d
+            px = row[Col.PX] + (row[Col.VX] + 0.5 * row[Col.AX] * d) * d
+            py = row[Col.PY] + (row[Col.VY] + 0.5 * row[Col.AY] * d) * d
+            _, (nx, ny) = feat.contact_one(f, [px, py])
             return np.array([-(vx * nx + vy * ny)])
-        p, v, _ = self._eval(b, i, self.tb[b], spin=False)
-        out = -(v * self._normals(b, i, p)).sum(axis=1)
-        return np.where(self.f_cush[b, i] < nseg + self._npt, out, np.inf)
+        p, v, _ = self.balls.eval(b, i, self.tb[b], spin=False)
+        out = -(v * feat.normals(self.schedule.f_cush[b, i], p)).sum(axis=1)
+        return np.where(self.schedule.f_cush[b, i] < feat.first_hole, out, np.inf)
 
     def _crowded(self, b, i) -> np.ndarray:
         """True for balls (b, i) that touch another ball or belong to a group."""
-        k = np.arange(self.N)[None, :]
-        p, _, _ = self._eval(b[:, None], k, self.tb[b][:, None], spin=False)
+        k = np.arange(self.balls.N)[None, :]
+        p, _, _ = self.balls.eval(b[:, None], k, self.tb[b][:, None], spin=False)
         own = p[np.arange(len(b)), i]
-        gap = _norm(p - own[:, None]) - self.radius[b] - self.radius[b, i][:, None]
-        other = (self.state[b] != POCKETED) & (k != i[:, None])
-        return (other & (gap < CLUSTER_GAP)).any(axis=1) | (self.group[b, i] >= 0)
+        gap = _norm(p - own[:, None]) - self.balls.radius[b] - self.balls.radius[b, i][:, None]
+        other = (self.balls.state[b] != POCKETED) & (k != i[:, None])
+        return (other & (gap < CLUSTER_GAP)).any(axis=1) | (self.groups.label[b, i] >= 0)
 
     def _pressed_on(self, b, i) -> np.ndarray:
         """True for balls (b, i), just bounced slowly off a cushion feature, that do not
         leave it: still moving into it (a tiny slide completed into it), or neither moving
         off nor into it but accelerating into it."""
-        p, v, _ = self._eval(b, i, self.tb[b], spin=False)
-        n = self._normals(b, i, p)
+        p, v, _ = self.balls.eval(b, i, self.tb[b], spin=False)
+        n = self.features.normals(self.schedule.f_cush[b, i], p)
         vn = (v * n).sum(axis=1)
-        an = (self.acc[b, i] * n).sum(axis=1)
-        tip = self.f_cush[b, i] >= self._nseg
-        bend = np.where(tip, ((v - vn[:, None] * n) ** 2).sum(axis=1) / self.rc[b, i], 0.0)
+        an = (self.balls.acc[b, i] * n).sum(axis=1)
+        tip = self.schedule.f_cush[b, i] >= self.features.nseg
+        bend = np.where(tip, ((v - vn[:, None] * n) ** 2).sum(axis=1) / self.balls.rc[b, i], 0.0)
         return (vn < 0) | ((vn <= V_MIN) & (an + bend < -A_MIN))
 
     def _alone(self, b, i, j) -> np.ndarray:
         """True for pairs (b, i, j) that touch no third ball and no cushion."""
-        N = self.N
+        N = self.balls.N
         t = self.tb[b]
         k = np.arange(N)[None, :]
-        p, _, _ = self._eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
-        R = self.radius[b]
-        live = (self.state[b] != POCKETED) & (k != i[:, None]) & (k != j[:, None])
+        p, _, _ = self.balls.eval(b[:, None], k, t[:, None], spin=False)  # (M, N, 2)
+        R = self.balls.radius[b]
+        live = (self.balls.state[b] != POCKETED) & (k != i[:, None]) & (k != j[:, None])
         crowded = np.zeros(len(b), dtype=bool)
         for x in (i, j):
             px = p[np.arange(len(b)), x]
             gap = _norm(p - px[:, None]) - R - R[np.arange(len(b)), x][:, None]
             crowded |= (live & (gap < CLUSTER_GAP)).any(axis=1)
-            seg_gap, beside, tip_gap, _ = self._cushion_gaps(px, self.rc[b, x])
+            seg_gap, beside, tip_gap, _ = self.features.gaps(px, self.balls.rc[b, x])
             crowded |= ((seg_gap < CLUSTER_GAP) & beside).any(axis=1)
             crowded |= (tip_gap < CLUSTER_GAP).any(axis=1)
         return ~crowded
 
     def _settle(self, b, i, j, pi, vi, wi, pj, vj, wj) -> np.ndarray:
         """Slow contact of an isolated pair, balls now at (pi, vi, wi) and (pj, vj, wj):
-        perfectly inelastic along the normal, repeated with the slip completion of _set
+        perfectly inelastic along the normal, repeated with the slip completion of motion.snap
         until the pair no longer closes. Returns which pairs it changed."""
         t = self.tb[b]
-        ri, rj = self.radius[b, i], self.radius[b, j]
-        mi, mj = self.mass[b, i], self.mass[b, j]
+        ri, rj = self.balls.radius[b, i], self.balls.radius[b, j]
+        mi, mj = self.balls.mass[b, i], self.balls.mass[b, j]
         d = pj - pi
         dist = _norm(d)
         n = d / dist[:, None]
@@ -118,46 +264,34 @@ class SlowContacts:
             jn = np.where(live, closing, 0.0) / (1.0 / mi + 1.0 / mj)
             vi = vi - (jn / mi)[:, None] * n
             vj = vj + (jn / mj)[:, None] * n
-            _, vi, wi, _ = self._snap(pi, vi, wi, ri, None, live, move=False)
-            _, vj, wj, _ = self._snap(pj, vj, wj, rj, None, live, move=False)
-        self._part(b, i, j, t, pi, pj, vi, vj, wi, wj)
+            _, vi, wi, _ = snap(self.physics, pi, vi, wi, ri, None, live, move=False)
+            _, vj, wj, _ = snap(self.physics, pj, vj, wj, rj, None, live, move=False)
+        self.respond.part(b, i, j, t, pi, pj, vi, vj, wi, wj)
         return changed
 
     def _pressed(self, b, i, j) -> np.ndarray:
         """True for touching pairs (b, i, j) that, moving as now set, neither close nor part
         but accelerate into each other (as roots.first_contact finds them)."""
         t = np.concatenate([self.tb[b], self.tb[b]])
-        p, v, _ = self._eval(np.concatenate([b, b]), np.concatenate([i, j]), t, spin=False)
+        p, v, _ = self.balls.eval(np.concatenate([b, b]), np.concatenate([i, j]), t, spin=False)
         n = len(b)
-        a = self.acc[b, j] - self.acc[b, i]
+        a = self.balls.acc[b, j] - self.balls.acc[b, i]
         d, dv = p[n:] - p[:n], v[n:] - v[:n]
         r = _norm(d)
         pv = (d * dv).sum(axis=1)
         acc = ((dv * dv).sum(axis=1) + (d * a).sum(axis=1)) / r - pv * pv / r ** 3
         return (np.abs(pv) <= V_MIN * r) & (acc < -A_MIN)
 
-    def _cushion_gaps(self, p, rc):
-        """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
-        whether each ball is beside the segment, and to the jaw tips, with the direction from
-        each tip: (seg_gap (M, S), beside (M, S), tip_gap (M, P), tip_dir (M, P, 2))."""
-        tab = self.table
-        seg_gap = dots(p, tab.seg_n) - self._seg_off - rc[:, None]
-        along = dots(p, self._seg_dir) - self._seg_start
-        beside = (along >= 0) & (along <= self._seg_len)
-        dp = p[:, None] - tab.points[None]
-        dd = _norm(dp)
-        return seg_gap, beside, dd - rc[:, None], dp / dd[..., None]
-
     def _cluster(self, b: int, seeds: list[int], every: bool = False):
         """Resolve a slow contact together with every ball and cushion touching its cluster
         (with `every`, fast contacts too: the work bound's inelastic fallback)."""
-        N, tab = self.N, self.table
+        N, tab = self.balls.N, self.features.table
         t = self.tb[b]
         k = np.arange(N)
-        p, v, w = self._eval(np.full(N, b), k, np.full(N, t))
+        p, v, w = self.balls.eval(np.full(N, b), k, np.full(N, t))
         p0, v_in = p.copy(), v.copy()
-        R, m = self.radius[b], self.mass[b]
-        live = self.state[b] != POCKETED
+        R, m = self.balls.radius[b], self.balls.mass[b]
+        live = self.balls.state[b] != POCKETED
         d = p[None, :, :] - p[:, None, :]
         dist = _norm(d)
         touch = (dist - (R[:, None] + R[None, :]) < CLUSTER_GAP) & live[:, None] & live[None, :]
@@ -181,7 +315,7 @@ class SlowContacts:
         a, c = mem[ia], mem[ic]
         ra, rc_, rn, rg = [a], [c], [-d[a, c] / dist[a, c][:, None]], [np.zeros(a.size)]
         rkind = [np.zeros(a.size, dtype=np.int64)]  # 0 ball, 1 rail or jaw, 2 jaw tip
-        pm, rcm = p[mem], self.rc[b, mem]
+        pm, rcm = p[mem], self.balls.rc[b, mem]
 
         def cushion_rows(x, normals, gaps, kind):
             ra.append(mem[x])
@@ -190,7 +324,7 @@ class SlowContacts:
             rg.append(gaps)
             rkind.append(np.full(x.size, kind))
 
-        seg_gap, beside, tip_gap, tip_dir = self._cushion_gaps(pm, rcm)
+        seg_gap, beside, tip_gap, tip_dir = self.features.gaps(pm, rcm)
         slow = dots(v[mem], tab.seg_n) >= -cap
         x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
         cushion_rows(x, tab.seg_n[f], seg_gap[x, f], 1)
@@ -201,7 +335,7 @@ class SlowContacts:
         nc = len(ra)
         J = Rows(ra, rc_, rn, N)  # u = J v: separating speed along each contact normal
         # A rolling ball given a small push slides for an instant and then rolls on with 5/7
-        # of the push (the slip completion in _set): it answers as if 7/5 as heavy.
+        # of the push (the slip completion, motion.snap): it answers as if 7/5 as heavy.
         slip = _norm(v + R[:, None] * _perp(w[:, :2]))
         snaps = (slip <= EPS_U) & (self.physics.mu_slide > 0)
         A = J.matrix(np.where(snaps, 5.0 / 7.0, 1.0) / m)
@@ -214,7 +348,8 @@ class SlowContacts:
             v = v + J.spread(lam, inv_m)
             # A push leaves a rolling ball with a tiny slip that is completed at once; do it
             # here so that the solve sees the velocities that result.
-            _, v[mem], w[mem], _ = self._snap(p[mem], v[mem], w[mem], R[mem], None, move=False)
+            _, v[mem], w[mem], _ = snap(self.physics, p[mem], v[mem], w[mem], R[mem], None,
+                                                move=False)
         # Undo sub-micrometre sinks: the smallest mass-weighted moves that leave no contact
         # overlapping (the same complementarity problem, on positions), so a light ball
         # squeezed against a rail by a heavy one moves the heavy one back.
@@ -235,36 +370,21 @@ class SlowContacts:
         bend = np.zeros(nc)
         rel = v[ra] - np.where(ball[:, None], v[np.maximum(rc_, 0)], 0.0)
         tang = rel - (rel * rn).sum(axis=1)[:, None] * rn
-        reach = np.where(ball, R[ra] + R[np.maximum(rc_, 0)], self.rc[b, ra])
+        reach = np.where(ball, R[ra] + R[np.maximum(rc_, 0)], self.balls.rc[b, ra])
         curved = ball | (rkind == 2)
         bend[curved] = (tang[curved] ** 2).sum(axis=1) / reach[curved]
-        self._join(b, mem, t, p, v, w, ra[rest], rc_[rest], rn[rest], bend[rest])
+        self.groups.join(b, mem, t, p, v, w, ra[rest], rc_[rest], rn[rest], bend[rest])
         # What the solves changed: velocities as the balls now start (a resting contact's
         # last rounding of speed taken out, a ball set at rest), and positions.
-        row = self._motion[b, mem]
-        moved = (row[:, 3:5] != v_in[mem]).any(axis=1) | (row[:, 1:3] != p0[mem]).any(axis=1)
+        row = self.balls.motion[b, mem]
+        moved = (row[:, Col.V] != v_in[mem]).any(axis=1) | (row[:, Col.P] != p0[mem]).any(axis=1)
         return members, mem[moved].tolist()
 
-    def _join(self, b: int, mem, t: float, p, v, w, ra, rc_, rn, bend) -> None:
-        """Start the motion of balls `mem` of table b at time t from (p, v, w) (all N balls):
-        balls in resting contacts (rows ra, rc_, rn, bend as in _cluster) move as a group
-        held by the contacts' forces; the others move freely."""
-        held = np.unique(np.concatenate([ra, rc_[rc_ >= 0]]))
-        free = mem[~np.isin(mem, held)]
-        self.group[b, mem] = -1
-        if free.size:
-            self._set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free],
-                      w[free])
-        if held.size:
-            where = {int(x): n for n, x in enumerate(held.tolist())}
-            rows = [(where[int(x)], where.get(int(y), -1), n, bb)
-                    for x, y, n, bb in zip(ra, rc_, rn, bend, strict=True)]
-            vj, acc, alpha, state, duration, wj = push(
-                self.physics, v[held], w[held], self.radius[b, held],
-                self.mass[b, held], self.spin_rate[b, held], rows)
-            self.state[b, held] = state
-            self.t_trans[b, held] = t + duration
-            self._motion[b, held, :12] = np.concatenate(
-                [np.full((held.size, 1), t), p[held], vj, acc, wj, alpha], axis=1)
-            self.group[b, held] = int(held.min())
-        self._ngroup[b] = int((self.group[b] >= 0).sum())
+    def _sunk(self, b, i) -> np.ndarray:
+        """True for balls (b, i) sunk deeper than CLUSTER_GAP into the rail, jaw or jaw tip
+        they are about to meet."""
+        p, _, _ = self.balls.eval(b, i, self.tb[b], spin=False)
+        f = self.schedule.f_cush[b, i]
+        n = self.features.normals(f, p)
+        depth = self.balls.rc[b, i] - ((p - self.features.points(f)) * n).sum(axis=1)
+        return depth > CLUSTER_GAP

@@ -1,7 +1,9 @@
-"""What the rules need to know about one shot, read from the engine's event list.
+"""What the rules need to know about one shot, read from the engine's events.
 
-The engine records, per table, a list of event dicts in time order: ``{"t", "type", "i", ...}``
-where ``i`` holds ball indices into the scene's ids. The rules use three types:
+The engine logs, per table, typed events in time order (`termpool.physics.events.Event`, its
+`log`), and gives them as dicts as well (`Event.to_json`, its `events`): ``{"t", "type", "i",
+...}`` where ``i`` holds ball indices into the scene's ids. Either form is read. The rules use
+three types:
 
 - ``ball_ball`` (``i`` = the two balls, then any other balls of a touching cluster that the
   contact set moving),
@@ -16,6 +18,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+
+from termpool.physics.events import Event, EventKind
 
 
 @dataclass(frozen=True)
@@ -63,21 +67,30 @@ def _ball_ids(ev: dict, ids: Sequence[str]) -> list[str]:
     return [str(b) for b in ev["ids"]]
 
 
+def _read(ev: Event | dict, ids: Sequence[str]) -> tuple[str, list[str], str | None]:
+    """An event's type, ball ids and pocket name, from either form."""
+    if isinstance(ev, Event):
+        pocket = ev.pocket if ev.kind is EventKind.POCKET else None
+        return ev.kind.value, [ids[k] for k in ev.balls], pocket
+    kind = ev["type"]
+    return kind, _ball_ids(ev, ids), ev["pocket"] if kind == "pocket" else None
+
+
 def summarize(
-    events: Iterable[dict],
+    events: Iterable[Event | dict],
     ids: Sequence[str],
     cue_id: str = "cue",
     is_break: bool = False,
 ) -> ShotSummary:
-    """Summarize one shot from its events (engine dicts or `termpool sim` output events)."""
-    evs = sorted(events, key=lambda e: e["t"])  # stable: same-time events keep their order
+    """Summarize one shot from its events (the engine's, typed or as dicts, or `termpool sim`
+    output events)."""
+    evs = sorted(events, key=lambda e: e.t if isinstance(e, Event) else e["t"])  # stable
     first: str | None = None
     cushions = 0
     rail: dict[str, None] = {}
     pocketed: dict[str, str] = {}
     for ev in evs:
-        kind = ev["type"]
-        balls = _ball_ids(ev, ids)
+        kind, balls, pocket = _read(ev, ids)
         if kind == "ball_ball":
             pair = balls[:2]  # further ids are other balls of a touching cluster
             if first is None and cue_id in pair:
@@ -88,7 +101,7 @@ def summarize(
                 cushions += 1
                 rail.setdefault(balls[0], None)
         elif kind == "pocket":
-            pocketed.setdefault(balls[0], str(ev["pocket"]))
+            pocketed.setdefault(balls[0], str(pocket))
     return ShotSummary(
         first_contact=first,
         cushions_after_contact=cushions,

@@ -17,23 +17,19 @@ of the normal speed away.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from termpool.physics.cushion.model import CushionPhysics
 from termpool.physics.cushion.rail import (
     from_rail,
     from_rail_one,
-    max_one,
-    min_one,
     nose,
     nose_one,
     to_rail,
     to_rail_one,
 )
-
-if TYPE_CHECKING:
-    from termpool.physics.params import Physics
+from termpool.physics.vec import max_one, min_one
 
 # Restitution and nose friction when a scene gives none: nominal values, as pooltool uses
 # them (Han fitted a speed-dependent e on a carom table).
@@ -42,7 +38,7 @@ MU_CUSHION = 0.2
 
 
 def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.ndarray,
-           ph: Physics) -> tuple[np.ndarray, np.ndarray]:
+           ph: CushionPhysics) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w)."""
     s, c = nose(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail(n, v, w)
@@ -63,7 +59,7 @@ def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.nda
 
 
 def bounce_one(n: list, v: list, w: list, r: float, m: float,
-               ph: Physics) -> tuple[list, list]:
+               ph: CushionPhysics) -> tuple[list, list]:
     """`bounce` for one ball in plain floats, bit-identical to it."""
     s, c = nose_one(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail_one(n, v, w)

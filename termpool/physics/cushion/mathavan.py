@@ -40,23 +40,19 @@ Cost and safety:
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
+from termpool.physics.cushion.model import CushionPhysics
 from termpool.physics.cushion.rail import (
     from_rail,
     from_rail_one,
-    max_one,
-    min_one,
     nose,
     nose_one,
     to_rail,
     to_rail_one,
 )
-
-if TYPE_CHECKING:
-    from termpool.physics.params import Physics
+from termpool.physics.vec import max_one, min_one
 
 # Restitution and nose friction when a scene gives none: the values Mathavan et al. fitted
 # to their measured rebounds (snooker balls and cushions).
@@ -138,7 +134,7 @@ def _gains(s):
 
 
 def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.ndarray,
-           ph: Physics) -> tuple[np.ndarray, np.ndarray]:
+           ph: CushionPhysics) -> tuple[np.ndarray, np.ndarray]:
     """Bounce balls off cushions with horizontal normals n (into the table); returns (v, w)."""
     if len(n) < FEW:
         rows = zip(n, v, w, r, m, strict=True)
@@ -149,7 +145,7 @@ def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.nda
 
 
 def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
-                m: np.ndarray, ph: Physics) -> tuple[np.ndarray, np.ndarray]:
+                m: np.ndarray, ph: CushionPhysics) -> tuple[np.ndarray, np.ndarray]:
     """`bounce` on arrays all the way (whatever their size)."""
     s, c = nose(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail(n, v, w)
@@ -201,7 +197,7 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
 
 
 def bounce_one(n: list, v: list, w: list, r: float, m: float,
-               ph: Physics) -> tuple[list, list]:
+               ph: CushionPhysics) -> tuple[list, list]:
     """`bounce` for one ball in plain floats, bit-identical to it."""
     s, c = nose_one(r, ph.cushion_height)
     vx, vy, wx, wy, wz = to_rail_one(n, v, w)

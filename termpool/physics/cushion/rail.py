@@ -25,17 +25,6 @@ def nose_one(r: float, height: float) -> tuple[float, float]:
     return sin_t, math.sqrt(1.0 - sin_t * sin_t)
 
 
-def min_one(a: float, b: float) -> float:
-    """np.minimum for two floats: NaN from either, and b when they are equal (so 0.0, -0.0
-    gives -0.0 as numpy does)."""
-    return a if (a < b or a != a) else b
-
-
-def max_one(a: float, b: float) -> float:
-    """np.maximum for two floats (see min_one)."""
-    return a if (a > b or a != a) else b
-
-
 def to_rail(n, v, w) -> tuple[np.ndarray, ...]:
     """(vx, vy, wx, wy, wz) in the rail frame; vy > 0 approaches the cushion."""
     n0, n1 = n[:, 0], n[:, 1]

@@ -1,0 +1,136 @@
+"""A table's cushion features as the engine meets them: the rails and jaws (segments of the
+cushion noses), the jaw tips (points) and the pocket holes, numbered in that order; a ball's
+next feature is an index into them (`Engine.f_cush`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from termpool.physics.roots import first_line_contact, first_line_contact_one
+from termpool.physics.table import Table
+from termpool.physics.vec import dots, norm
+
+
+class Features:
+    """The features of `table`, with the geometry contact predictions and responses use."""
+
+    def __init__(self, table: Table) -> None:
+        self.table = table
+        self.nseg, self.npt = len(table.seg_a), len(table.points)
+        self.first_hole = self.nseg + self.npt  # features from here on are pocket holes
+        seg_d = table.seg_b - table.seg_a
+        self.seg_len = norm(seg_d)
+        self.seg_dir = seg_d / self.seg_len[:, None]
+        self.seg_off = (table.seg_a * table.seg_n).sum(axis=1)  # each line's offset along n
+        self.seg_start = (table.seg_a * self.seg_dir).sum(axis=1)
+        self.segs = list(zip(table.seg_a.tolist(), self.seg_dir.tolist(),
+                             self.seg_len.tolist(), strict=True))  # for lines_few
+        # Jaw tips, then holes: met as circles (a ball's centre at reach rc of a tip, within
+        # a hole's radius of its centre).
+        self.circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+
+    def lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
+        """(M, S) first contact times of M balls with the cushion segments."""
+        tab = self.table
+        n = tab.seg_n
+        s0 = dots(p, n) - self.seg_off
+        M, S = s0.shape
+        along0 = dots(p, self.seg_dir) - self.seg_start
+        beside = (along0 >= 0) & (along0 <= self.seg_len)
+        tl = first_line_contact(s0.ravel(), dots(v, n).ravel(), dots(a, n).ravel(),
+                                np.repeat(rc, S), np.repeat(horizon, S),
+                                beside.ravel()).reshape(M, S)
+        # The contact must fall on the segment itself; its ends are the jaw-tip points.
+        fin = np.isfinite(tl)
+        if fin.any():
+            tt = np.where(fin, tl, 0.0)[..., None]
+            pt = p[:, None] + v[:, None] * tt + 0.5 * a[:, None] * (tt * tt)
+            along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self.seg_dir)
+            tl = np.where(fin & (along >= 0) & (along <= self.seg_len[None]), tl, np.inf)
+        return tl
+
+    def lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
+        """`lines` for a few balls in plain floats, bit-identical. A ball whose centre is
+        further from a cushion segment than its reach (travel in the window plus the nose
+        distance, with a micrometre to spare) cannot meet it and skips it: the array path
+        finds no contact there either."""
+        tab = self.table
+        n = tab.seg_n
+        out = np.full((len(p), self.nseg), np.inf)
+        rows = zip((dots(p, n) - self.seg_off).tolist(),
+                   (dots(p, self.seg_dir) - self.seg_start).tolist(), dots(v, n).tolist(),
+                   dots(a, n).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
+                   horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
+        for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
+            for k, (ak, dk, length) in enumerate(self.segs):
+                # The ball's distance from the segment is at least each of these.
+                if s0[k] > far or -s0[k] > far or -along0[k] > far or along0[k] - length > far:
+                    continue
+                beside = along0[k] >= 0 and along0[k] <= length
+                tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
+                if tl < math.inf:
+                    # The contact must fall on the segment itself (as in `lines`).
+                    tt = tl * tl
+                    qx = (pm[0] + vm[0] * tl + 0.5 * am[0] * tt) - ak[0]
+                    qy = (pm[1] + vm[1] * tl + 0.5 * am[1] * tt) - ak[1]
+                    along = qx * dk[0] + qy * dk[1]
+                    if along >= 0 and along <= length:
+                        out[m, k] = tl
+        return out
+
+    def names(self, f) -> list[str]:
+        """Names of features by index: rail, jaw, tip, or the pocket's name."""
+        tab, nseg, npt = self.table, self.nseg, self.npt
+        names = []
+        for fi in f.tolist():
+            if fi < nseg:
+                names.append(tab.seg_kind[fi])
+            elif fi < nseg + npt:
+                names.append("tip")
+            else:
+                names.append(tab.hole_names[fi - nseg - npt])
+        return names
+
+    def normals(self, f, p) -> np.ndarray:
+        """Unit normals (into the table) of rails, jaws or jaw tips f for balls at p: a rail's
+        or jaw's, or from a jaw tip to the ball (not for pocket holes)."""
+        nseg = self.nseg
+        n = self.table.seg_n[np.minimum(f, nseg - 1)]
+        tip = (f >= nseg) & (f < self.first_hole)
+        if tip.any():
+            d = p[tip] - self.table.points[f[tip] - nseg]
+            n[tip] = d / norm(d)[:, None]
+        return n
+
+    def points(self, f) -> np.ndarray:
+        """A point on each rail, jaw or jaw tip f: a segment's start, or the tip."""
+        seg = (f < self.nseg)[:, None]
+        tips = self.table.points
+        return np.where(seg, self.table.seg_a[np.minimum(f, self.nseg - 1)],
+                        tips[np.clip(f - self.nseg, 0, max(self.npt - 1, 0))]
+                        if self.npt else 0.0)
+
+    def contact_one(self, f: int, p: list) -> tuple[list, list]:
+        """A point on rail, jaw or jaw tip f and its normal for a ball at p, in plain floats
+        (`points` and `normals` bit for bit)."""
+        if f < self.nseg:
+            return self.table.seg_a[f].tolist(), self.table.seg_n[f].tolist()
+        ref = self.table.points[f - self.nseg].tolist()
+        d0, d1 = p[0] - ref[0], p[1] - ref[1]
+        dist = float(np.hypot(d0, d1))
+        return ref, [d0 / dist, d1 / dist]
+
+    def gaps(self, p, rc):
+        """Gaps of balls at p (M, 2) with contact reach rc (M,) to the cushion segments, with
+        whether each ball is beside the segment, and to the jaw tips, with the direction from
+        each tip: (seg_gap (M, S), beside (M, S), tip_gap (M, P), tip_dir (M, P, 2))."""
+        tab = self.table
+        seg_gap = dots(p, tab.seg_n) - self.seg_off - rc[:, None]
+        along = dots(p, self.seg_dir) - self.seg_start
+        beside = (along >= 0) & (along <= self.seg_len)
+        dp = p[:, None] - tab.points[None]
+        dd = norm(dp)
+        return seg_gap, beside, dd - rc[:, None], dp / dd[..., None]

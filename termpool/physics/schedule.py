@@ -1,0 +1,164 @@
+"""The engine's predictions: for every ball the time of its next motion transition, of its next
+horizon check and of its next cushion, jaw tip or pocket contact, and for every pair of balls
+the time of their next contact, kept per table in one row so that finding a table's next event
+is one argmin. An event renews only the predictions of the balls it touched.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from termpool.physics.balls import FEW, Balls
+from termpool.physics.features import Features
+from termpool.physics.roots import first_contact
+from termpool.physics.state import POCKETED, ROLLING, SLIDING
+from termpool.physics.vec import norm as _norm
+
+_MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
+_LIVE = np.array([s != POCKETED for s in range(5)])
+
+
+class Due:
+    """What a prediction is of, in the order of a table's row of times: N transitions, N
+    horizon checks, N cushion contacts, then N x N ball pairs. (Plain ints, not an enum:
+    numpy takes an enum member through a slow path.)"""
+
+    TRANSITION = 0
+    CHECK = 1  # a moving ball's predictions looked HORIZON ahead: renew them
+    CUSHION = 2  # a rail, jaw, jaw tip or pocket hole (`f_cush` says which)
+    PAIR = 3
+
+
+class Schedule:
+    """The predictions of B tables of N balls. `times` is the (B, 3 N + N N) row of every
+    prediction (`new_times`), whose first N columns are the balls' `t_trans`; `tb` the
+    tables' clocks; predictions look at most `horizon` seconds ahead."""
+
+    @staticmethod
+    def new_times(B: int, N: int) -> np.ndarray:
+        return np.full((B, 3 * N + N * N), np.inf)
+
+    def __init__(self, times: np.ndarray, balls: Balls, features: Features, tb: np.ndarray,
+                 horizon: float) -> None:
+        B, N = balls.B, balls.N
+        self.N, self.balls, self.features, self.tb, self.horizon = N, balls, features, tb, horizon
+        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
+        self.times = times
+        self.t_trans = times[:, :N]
+        assert np.shares_memory(balls.t_trans, times)  # the balls write their transitions here
+        self.t_check = times[:, N:2 * N]
+        self.t_cush = times[:, 2 * N:3 * N]
+        self.f_cush = np.zeros((B, N), dtype=np.int64)  # the feature each t_cush is of
+        self.t_pair = times[:, 3 * N:].reshape(B, N, N)
+        assert np.shares_memory(self.t_pair, times)  # a view, not a copy
+        self.t_next = np.full(B, np.inf)  # each table's next event time and its code
+        self.c_next = np.zeros(B, dtype=np.int64)
+
+    def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
+        q, r = np.divmod(code, self.N)
+        due = np.minimum(q, Due.PAIR)
+        return due, np.where(q < Due.PAIR, r, q - Due.PAIR), np.where(q < Due.PAIR, -1, r)
+
+    def predict(self, b: np.ndarray, i: np.ndarray) -> None:
+        """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
+        balls, feat = self.balls, self.features
+        t = self.tb[b]
+        st = balls.state[b, i]
+        moving = _MOVING[st]
+        t_check = np.where(moving, t + self.horizon, np.inf)
+        self.t_check[b, i] = t_check
+        end = np.minimum(self.t_trans[b, i], t_check)
+        self.t_cush[b, i] = np.inf
+        self.t_pair[b, i, :] = np.inf
+        self.t_pair[b, :, i] = np.inf
+        live = st != POCKETED
+        if not live.all():
+            m = np.flatnonzero(live)
+            if m.size == 0:
+                return
+            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+        # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
+        M = b.size
+        rows = np.arange(M)
+        tc = t[:, None]
+        P, V, _ = balls.eval(b[:, None], self._balls, tc, spin=False)
+        A = balls.acc[b]
+        p, v, a = P[rows, i], V[rows, i], A[rows, i]
+        # Pairs: every other ball on the table, where at least one of the two moves.
+        stk = balls.state[b]
+        valid = _LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
+        mi = np.nonzero(valid)[0]
+        R = balls.radius[b]
+        end_k = np.minimum(self.t_trans[b], self.t_check[b])
+        rel_p = [(P - p[:, None])[valid]]
+        rel_v = [(V - v[:, None])[valid]]
+        rel_a = [(A - a[:, None])[valid]]
+        dist = [(R + R[rows, i][:, None])[valid]]
+        horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
+        # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
+        # noses or a hole within their window (a ball in open felt costs nothing here); tips
+        # and holes are the same quartic as a pair. A corner hole may reach into the table
+        # past the rail lines, up to its mouth.
+        T = end - t
+        reach = _norm(v) * T + 0.5 * _norm(a) * T * T + balls.rc[b, i]
+        tab = feat.table
+        x, y = p[:, 0], p[:, 1]
+        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
+        if len(tab.hole_r):
+            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
+            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
+        mv = np.flatnonzero(moving & near)
+        nc = len(feat.circles)
+        if mv.size and nc:
+            rc = balls.rc[b[mv], i[mv]]
+            rel_p.append((feat.circles[None] - p[mv, None]).reshape(-1, 2))
+            rel_v.append(np.repeat(-v[mv], nc, axis=0))
+            rel_a.append(np.repeat(-a[mv], nc, axis=0))
+            holes = np.broadcast_to(feat.table.hole_r, (mv.size, nc - feat.npt))
+            dist.append(np.concatenate([np.repeat(rc[:, None], feat.npt, axis=1), holes],
+                                       axis=1).ravel())
+            horizon.append(np.repeat(T[mv], nc))
+            found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
+                                  np.concatenate(rel_a), np.concatenate(dist),
+                                  np.concatenate(horizon))
+        else:
+            found = first_contact(rel_p[0], rel_v[0], rel_a[0], dist[0], horizon[0])
+        npair = mi.size
+        if npair:
+            tp = t[mi] + found[:npair]
+            bb, ii, kk = b[mi], i[mi], np.nonzero(valid)[1]
+            self.t_pair[bb, ii, kk] = tp
+            self.t_pair[bb, kk, ii] = tp
+        if mv.size:
+            tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
+            lines = feat.lines_few if mv.size <= FEW else feat.lines
+            tline = lines(p[mv], v[mv], a[mv], balls.rc[b[mv], i[mv]], T[mv], reach[mv])
+            allt = np.concatenate([tline, tcirc], axis=1)
+            f = allt.argmin(axis=1)
+            self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
+            self.f_cush[b[mv], i[mv]] = f
+
+    def refresh(self, tabs: np.ndarray) -> None:
+        """Recompute the next event of tables `tabs` from their predictions."""
+        allt = self.times[tabs]
+        code = allt.argmin(axis=1)
+        self.t_next[tabs] = allt[np.arange(len(tabs)), code]
+        self.c_next[tabs] = code
+
+    def unstick(self, b: int, i: int, j: int) -> None:
+        """A pressed pair whose solve changed nothing, found pressed again at the same
+        instant, would be met there for ever (a ball slowing to a stop as it parts, a group
+        whose push leaves it pressed): it is looked for again as a pair that is not pressed,
+        when it has sunk SINK."""
+        t = self.tb[b]
+        if self.t_pair[b, i, j] > t:
+            return
+        k = np.array([i, j])
+        p, v, _ = self.balls.eval(np.full(2, b), k, np.full(2, t), spin=False)
+        a = self.balls.acc[b, k]
+        end = np.minimum(self.t_trans[b, k], self.t_check[b, k]).min() - t
+        found = first_contact((p[1] - p[0])[None], (v[1] - v[0])[None], (a[1] - a[0])[None],
+                              self.balls.radius[b, k].sum()[None], np.array([end]), pressed=False)
+        self.t_pair[b, i, j] = self.t_pair[b, j, i] = t + found[0]
+
