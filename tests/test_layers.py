@@ -23,12 +23,9 @@ CONTRACTS = [c["id"] for c in
 
 # contract id -> the imports that still break it
 STILL_BROKEN = {
-    "acyclic-physics": "termpool.physics.params imports termpool.physics.cushion (MODELS), "
-                       "whose models import params back",
 }
 # module (path from the root) -> the private names of other modules it still imports
 STILL_PRIVATE = {
-    "termpool/physics/cushion/simple.py": "termpool.physics.contact._cross, _cross1, _to3",
 }
 
 LINT = ("import sys; from importlinter.cli import lint_imports; "
@@ -140,16 +137,16 @@ def private_imports(source: str, name: str, modules=MODULES) -> list[str]:
 
 def test_the_private_name_check_finds_each_form() -> None:
     code = ("from termpool import cli\nimport termpool.scene\nimport termpool.files as f\n"
-            "from termpool.physics.contact import _cross\nfrom .results import _samples\n"
+            "from termpool.physics.vec import _cross\nfrom .results import _samples\n"
             "from . import engine\nfrom .cushion import simple\n"
             "cli._fail('x'); termpool.scene._fmt(1); f._size(1); engine._TRANSITION_NAMES\n"
             "simple.x._y; cli.__doc__; _own(); self._mine\n"
             "from termpool.physics.state import norm as _norm\n"
             "from .probe import _own\n")
     assert private_imports(code, "termpool.physics.probe") == [
-        "termpool.cli._fail", "termpool.files._size", "termpool.physics.contact._cross",
+        "termpool.cli._fail", "termpool.files._size",
         "termpool.physics.engine._TRANSITION_NAMES", "termpool.physics.results._samples",
-        "termpool.scene._fmt"]
+        "termpool.physics.vec._cross", "termpool.scene._fmt"]
     # a package's __init__ is its package: relative imports start there
     assert private_imports("from .common import _x\nfrom . import _y\n",
                            "bench.__init__") == ["bench.common._x"]
