@@ -247,7 +247,7 @@ def _sim(args: argparse.Namespace) -> int:
     if scene.game is not None:
         from termpool.rules.referee import referee
 
-        result["outcome"] = referee(scene.game, scene.ids, eng.events[0])
+        result["outcome"] = referee(scene.game, scene.ids, eng.log[0])
     try:
         text = dump_json(result)
     except ValueError as e:

@@ -63,7 +63,7 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
     miss = 0.0 if practice else -lv.leave * MISS_LEAVE
     foul = FOUL - (0.0 if practice else lv.leave)  # ball in hand: the best table to leave
     for b in range(B):
-        summary = summarize(eng.events[b], t.ids, is_break=state.is_break)
+        summary = summarize(eng.log[b], t.ids, is_break=state.is_break)
         called = _call(state, targets, t, cands, b, summary, pockets)
         out, nxt = judge(replace(state, called=called), summary)
         calls.append(called)

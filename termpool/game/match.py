@@ -272,7 +272,7 @@ class Match:
         if run is not self._run:
             raise ValueError("finish: this shot does not belong to the match's current turn")
         eng = run.engine
-        summary = summarize(eng.events[0], run.ids, is_break=run.state.is_break)
+        summary = summarize(eng.log[0], run.ids, is_break=run.state.is_break)
         outcome, new_state = judge(run.state, summary)
         self._undo.append(self._snapshot())
         self.history.append(record.shot_record(run, outcome, len(self.history) + 1,

@@ -230,7 +230,7 @@ def replay_shot(rec: Any, path: str = "shot", v: Voice = RECORD) -> dict:
     if not rested:
         return {"ok": False, "events": len(fresh["events"]), "reason": "",
                 "differences": [still_moving(rec["steps"])]}
-    outcome = None if scene.game is None else verdict(scene.game, scene.ids, engine.events[0])
+    outcome = None if scene.game is None else verdict(scene.game, scene.ids, engine.log[0])
     fresh["outcome"] = None if outcome is None else json.loads(json.dumps(outcome.to_json()))
     diffs = []
     for k in ("time", "steps", "events", "final", "outcome"):

@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable, Sequence
 
+from termpool.physics.events import Event
 from termpool.rules import eight, nine, practice
 from termpool.rules.codec import read_game, state_from_game
 from termpool.rules.common import Outcome, State
@@ -35,15 +36,15 @@ def load_game_scene(src: str | os.PathLike | dict) -> Scene:
     return scene
 
 
-def verdict(game: dict, ids: Sequence[str], events: Iterable[dict]) -> Outcome:
+def verdict(game: dict, ids: Sequence[str], events: Iterable[Event | dict]) -> Outcome:
     """The outcome of one shot: the scene's (validated) game block, its ball ids and the
-    shot's events (the engine's, or as `termpool sim` prints them)."""
+    shot's events (the engine's typed log, or as `termpool sim` prints them)."""
     state = state_from_game(game, ids)
     summary = summarize(events, ids, is_break=state.is_break)
     outcome, _ = judge(state, summary)
     return outcome
 
 
-def referee(game: dict, ids: Sequence[str], events: Iterable[dict]) -> dict:
+def referee(game: dict, ids: Sequence[str], events: Iterable[Event | dict]) -> dict:
     """The JSON `outcome` of one shot (see `verdict`)."""
     return verdict(game, ids, events).to_json()

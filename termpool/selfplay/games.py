@@ -118,7 +118,7 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
             run = m.begin(Shot(struck.speed, struck.angle, struck.side, struck.top,
                                called=struck.called))
             out = run.finish()
-            summary = summarize(run.engine.events[0], run.ids, is_break=is_break)
+            summary = summarize(run.engine.log[0], run.ids, is_break=is_break)
             mine["shots"] += 1
             opponent_shot |= me != m.breaker
             mine["breaks"] += is_break
