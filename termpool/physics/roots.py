@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from termpool.physics.vec import max_one, min_one
+
 TOUCH = 1e-9  # gaps below this (m) count as touching
 SINK = 4.5e-7  # a resting contact pushed together is caught after this much overlap (m):
 # with anything deeper than SINK resolved at once, no overlap can pass 2 SINK < 1 micrometre
@@ -23,6 +25,7 @@ A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but acceler
 # rounding, and is caught by SINK if it lasts
 PIECES = 2  # straight pieces of the window in the cull
 _FRACTIONS = np.arange(PIECES, dtype=float)
+_PIECES_ONE = _FRACTIONS.tolist()
 
 
 def first_contact(
@@ -88,19 +91,81 @@ def first_contact(
     if sel.size == 0:
         return out
     idx = idx[sel]
-    px, py, vx, vy, ax, ay = px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel]
-    T = hz[sel]
-    c4 = 0.25 * aa[sel]
+    out[idx] = solve(px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel], hz[sel], tg[sel],
+                     pv[idx], r0[idx], vv[sel], aa[sel])
+    return out
+
+
+def first_contact_few(cands: list, pressed: bool = True) -> list:
+    """`first_contact` for a few candidates in plain floats: each of `cands` is a tuple
+    (px, py, vx, vy, ax, ay, dist, horizon). The culls run in plain floats, operation for
+    operation as the array version; only the pairs that pass them go to `solve`, in arrays,
+    so the result is bit-identical."""
+    out = []
+    keep = []  # (place in out, px, py, vx, vy, ax, ay, horizon, target, pv, r0, vv, aa)
+    for px, py, vx, vy, ax, ay, dist, horizon in cands:
+        pv = px * vx + py * vy
+        r0 = math.sqrt(px * px + py * py)
+        touching = r0 - dist < TOUCH
+        now = touching and (pv < -V_MIN * r0 or r0 < dist - SINK)
+        if touching and not now and pv <= V_MIN * r0 and pressed:
+            # numpy's array power can differ from the C library's in the last bit: cube
+            # through numpy, as the array version does.
+            acc = (_over(vx * vx + vy * vy + px * ax + py * ay, r0)
+                   - _over(pv * pv, float((np.array([r0]) ** 3)[0])))
+            now = acc < -A_MIN
+        if now:
+            out.append(0.0)
+            continue
+        out.append(math.inf)
+        target = (min_one(dist, r0) - SINK) if touching else dist
+        vn = _over(pv, r0)
+        an = _over(px * ax + py * ay, r0)
+        tv = min_one(max_one(_over(-vn, an), 0.0), horizon) if an > 0 else horizon
+        proj = min_one(r0 + (vn + 0.5 * an * tv) * tv, r0)
+        if not ((proj <= target or not r0 > 0) and horizon > 0):
+            continue
+        vv = vx * vx + vy * vy
+        aa = ax * ax + ay * ay
+        h = horizon / PIECES
+        reach = target + 0.5 * math.sqrt(aa) * h * h
+        reach2 = reach * reach
+        close = False
+        for f in _PIECES_ONE:
+            s0 = h * f
+            qx = px + (vx + 0.5 * ax * s0) * s0
+            qy = py + (vy + 0.5 * ay * s0) * s0
+            wx = vx + ax * s0
+            wy = vy + ay * s0
+            ww = wx * wx + wy * wy
+            ts = min_one(max_one(-(qx * wx + qy * wy) / ww, 0.0), h) if ww > 0 else 0.0
+            cx, cy = qx + wx * ts, qy + wy * ts
+            if cx * cx + cy * cy <= reach2:
+                close = True
+                break
+        if close and (vv > 0 or aa > 0):
+            keep.append((len(out) - 1, px, py, vx, vy, ax, ay, horizon, target, pv, r0, vv, aa))
+    if keep:
+        place, *cols = zip(*keep, strict=True)
+        for k, t in zip(place, solve(*(np.array(c) for c in cols)).tolist(), strict=True):
+            out[k] = t
+    return out
+
+
+def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
+    """The contact times (inf: none) of the pairs that passed `first_contact`'s culls, from
+    their relative motion, window T, target distance tg and the culls' pv = p.v, r0 = |p|,
+    vv = |v|^2 and aa = |a|^2: the quartic's roots, checked and polished."""
+    c4 = 0.25 * aa
     c3 = ax * vx + ay * vy
-    c2 = vv[sel] + ax * px + ay * py
-    c1 = 2.0 * pv[idx]
-    tg = tg[sel]
-    c0 = r0[idx] ** 2 - tg * tg
+    c2 = vv + ax * px + ay * py
+    c1 = 2.0 * pv
+    c0 = r0 ** 2 - tg * tg
     # Work in s = t / T so that the interesting roots lie in [0, 1] whatever the window.
     T2 = T * T
     C4, C3, C2, C1 = c4 * T2 * T2, c3 * T2 * T, c2 * T2, c1 * T
     quartic = C4 > 1e-13 * (np.abs(C2) + np.abs(C1) + np.abs(c0))
-    s = np.full(idx.size, np.inf)
+    s = np.full(T.size, np.inf)
     q = np.flatnonzero(quartic)
     if q.size:
         comp = np.zeros((q.size, 4, 4))
@@ -126,7 +191,7 @@ def first_contact(
         s[d] = np.where(good, root, np.inf)
     hit = s < np.inf
     if not hit.any():
-        return out
+        return s
     t = np.minimum(np.maximum(s, 0.0), 1.0) * T
     # Accept only a clear crossing: the pair touches at t (the gap within TOUCH), closes
     # faster than V_MIN, and would go on to overlap by more than TOUCH (the local parabola's
@@ -143,8 +208,7 @@ def first_contact(
     for k in np.flatnonzero(hit & ~clear).tolist():
         t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
                                float(c0[k]), float(T[k]), float(tg[k]))
-    out[idx] = np.where(hit, t, np.inf)
-    return out
+    return np.where(hit, t, np.inf)
 
 
 def _poly(c: tuple, t: float) -> float:

@@ -10,12 +10,23 @@ import numpy as np
 
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
-from termpool.physics.roots import first_contact
+from termpool.physics.motion import Col
+from termpool.physics.roots import first_contact, first_contact_few
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
+from termpool.physics.vec import min_one
 from termpool.physics.vec import norm as _norm
 
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
+_MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
+
+
+def _argmin(row: list) -> int:
+    """np.argmin of a list of floats: the first smallest, or the first NaN."""
+    for k, x in enumerate(row):
+        if x != x:
+            return k
+    return row.index(min(row))
 
 
 class Due:
@@ -62,6 +73,13 @@ class Schedule:
 
     def predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
+        if b.size <= FEW:
+            self.predict_few(b, i)
+        else:
+            self.predict_many(b, i)
+
+    def predict_many(self, b: np.ndarray, i: np.ndarray) -> None:
+        """`predict` on arrays."""
         balls, feat = self.balls, self.features
         t = self.tb[b]
         st = balls.state[b, i]
@@ -138,6 +156,101 @@ class Schedule:
             f = allt.argmin(axis=1)
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
+
+    def predict_few(self, b: np.ndarray, i: np.ndarray) -> None:
+        """`predict` for a few balls in plain floats: the same candidates in the same order,
+        culled by `first_contact_few`, so the predictions are bit-identical."""
+        balls, feat, tab = self.balls, self.features, self.features.table
+        inf, horizon = np.inf, self.horizon
+        bl, il, tl = b.tolist(), i.tolist(), self.tb[b].tolist()
+        rows = []
+        for bm, im, t in zip(bl, il, tl, strict=True):
+            st = int(balls.state[bm, im])
+            moving = _MOVING_ONE[st]
+            t_check = t + horizon if moving else inf
+            self.t_check[bm, im] = t_check
+            end = min_one(float(self.t_trans[bm, im]), t_check)
+            self.t_cush[bm, im] = inf
+            self.t_pair[bm, im, :] = inf
+            self.t_pair[bm, :, im] = inf
+            if st != POCKETED:
+                rows.append((bm, im, t, end, moving))
+        if not rows:
+            return
+        cands: list = []
+        pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
+        tables: dict = {}
+        for bm, im, t, end, moving in rows:
+            if bm not in tables:
+                tables[bm] = (balls.motion[bm].tolist(), balls.state[bm].tolist(),
+                              np.minimum(self.t_trans[bm], self.t_check[bm]).tolist())
+            motion, stk, end_k = tables[bm]
+            me = motion[im]
+            d = t - me[Col.T0]
+            pix = me[Col.PX] + (me[Col.VX] + 0.5 * me[Col.AX] * d) * d
+            piy = me[Col.PY] + (me[Col.VY] + 0.5 * me[Col.AY] * d) * d
+            vix, viy = me[Col.VX] + me[Col.AX] * d, me[Col.VY] + me[Col.AY] * d
+            aix, aiy, ri = me[Col.AX], me[Col.AY], me[Col.RADIUS]
+            for k, (other, sk) in enumerate(zip(motion, stk, strict=True)):
+                if not _LIVE_ONE[sk] or k == im or not (moving or _MOVING_ONE[sk]):
+                    continue
+                d = t - other[Col.T0]
+                ax, ay = other[Col.AX], other[Col.AY]
+                cands.append((
+                    other[Col.PX] + (other[Col.VX] + 0.5 * ax * d) * d - pix,
+                    other[Col.PY] + (other[Col.VY] + 0.5 * ay * d) * d - piy,
+                    other[Col.VX] + ax * d - vix, other[Col.VY] + ay * d - viy,
+                    ax - aix, ay - aiy, other[Col.RADIUS] + ri, min_one(end, end_k[k]) - t))
+                pairs.append((bm, im, k, t))
+        # Cushions, as in `predict`: only moving balls that can reach a cushion nose or a
+        # hole within their window.
+        ps = [(pix, piy, vix, viy, aix, aiy) for pix, piy, vix, viy, aix, aiy in (
+            self._at(tables[bm][0][im], t) for bm, im, t, _, _ in rows)]
+        P = np.array(ps)
+        T = np.array([end - t for _, _, t, end, _ in rows])
+        rc = balls.rc[[r[0] for r in rows], [r[1] for r in rows]]
+        reach = _norm(P[:, 2:4]) * T + 0.5 * _norm(P[:, 4:6]) * T * T + rc
+        x, y = P[:, 0], P[:, 1]
+        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
+        if len(tab.hole_r):
+            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
+            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
+        mv = [m for m, (r, n) in enumerate(zip(rows, near.tolist(), strict=True)) if r[4] and n]
+        nc = len(feat.circles)
+        if mv and nc:
+            circles = feat.circles.tolist()
+            hole_r = tab.hole_r.tolist()
+            rcl, Tl = rc.tolist(), T.tolist()
+            for m in mv:
+                px, py, vx, vy, ax, ay = ps[m]
+                dists = [rcl[m]] * feat.npt + hole_r
+                cands += [(cx - px, cy - py, -vx, -vy, -ax, -ay, dk, Tl[m])
+                          for (cx, cy), dk in zip(circles, dists, strict=True)]
+        found = first_contact_few(cands)
+        npair = len(pairs)
+        for (bm, im, k, t), f in zip(pairs, found, strict=False):
+            self.t_pair[bm, im, k] = t + f
+        for (bm, im, k, t), f in zip(pairs, found, strict=False):
+            self.t_pair[bm, k, im] = t + f
+        if mv:
+            tline = feat.lines_few(P[mv, 0:2], P[mv, 2:4], P[mv, 4:6], rc[mv], T[mv],
+                                   reach[mv]).tolist()
+            for n, m in enumerate(mv):
+                allt = tline[n] + found[npair + n * nc:npair + (n + 1) * nc]
+                f = _argmin(allt)
+                bm, im, t = rows[m][0], rows[m][1], rows[m][2]
+                self.t_cush[bm, im] = t + allt[f]
+                self.f_cush[bm, im] = f
+
+    @staticmethod
+    def _at(me: list, t: float) -> tuple:
+        """Position, velocity and acceleration at t of a ball whose packed motion is `me`,
+        as `Balls.eval` computes them."""
+        d = t - me[Col.T0]
+        ax, ay = me[Col.AX], me[Col.AY]
+        return (me[Col.PX] + (me[Col.VX] + 0.5 * ax * d) * d,
+                me[Col.PY] + (me[Col.VY] + 0.5 * ay * d) * d,
+                me[Col.VX] + ax * d, me[Col.VY] + ay * d, ax, ay)
 
     def refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
