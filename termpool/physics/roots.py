@@ -119,10 +119,18 @@ def first_contact_few(cands: list, pressed: bool = True) -> list:
             continue
         out.append(math.inf)
         target = (min_one(dist, r0) - SINK) if touching else dist
-        vn = _over(pv, r0)
-        an = _over(px * ax + py * ay, r0)
-        tv = min_one(max_one(_over(-vn, an), 0.0), horizon) if an > 0 else horizon
-        proj = min_one(r0 + (vn + 0.5 * an * tv) * tv, r0)
+        if r0 != 0.0:
+            vn, an = pv / r0, (px * ax + py * ay) / r0
+        else:
+            vn, an = _over(pv, r0), _over(px * ax + py * ay, r0)
+        if an > 0:  # (np.minimum and np.maximum written out, see vec.min_one)
+            tv = -vn / an
+            tv = tv if tv > 0.0 or tv != tv else 0.0
+            tv = tv if tv < horizon or tv != tv else horizon
+        else:
+            tv = horizon
+        proj = r0 + (vn + 0.5 * an * tv) * tv
+        proj = proj if proj < r0 or proj != proj else r0
         if not ((proj <= target or not r0 > 0) and horizon > 0):
             continue
         vv = vx * vx + vy * vy

@@ -200,7 +200,8 @@ class Schedule:
                     other[Col.PX] + (other[Col.VX] + 0.5 * ax * d) * d - pix,
                     other[Col.PY] + (other[Col.VY] + 0.5 * ay * d) * d - piy,
                     other[Col.VX] + ax * d - vix, other[Col.VY] + ay * d - viy,
-                    ax - aix, ay - aiy, other[Col.RADIUS] + ri, min_one(end, end_k[k]) - t))
+                    ax - aix, ay - aiy, other[Col.RADIUS] + ri,
+                    (end if end < end_k[k] or end != end else end_k[k]) - t))
                 pairs.append((bm, im, k, t))
         # Cushions, as in `predict`: only moving balls that can reach a cushion nose or a
         # hole within their window.
