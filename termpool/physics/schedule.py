@@ -204,44 +204,40 @@ class Schedule:
                     (end if end < end_k[k] or end != end else end_k[k]) - t))
                 pairs.append((bm, im, k, t))
         # Cushions, as in `predict`: only moving balls that can reach a cushion nose or a
-        # hole within their window.
-        ps = [(pix, piy, vix, viy, aix, aiy) for pix, piy, vix, viy, aix, aiy in (
-            self._at(tables[bm][0][im], t) for bm, im, t, _, _ in rows)]
-        P = np.array(ps)
-        T = np.array([end - t for _, _, t, end, _ in rows])
-        rc = balls.rc[[r[0] for r in rows], [r[1] for r in rows]]
-        reach = _norm(P[:, 2:4]) * T + 0.5 * _norm(P[:, 4:6]) * T * T + rc
-        x, y = P[:, 0], P[:, 1]
-        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        if len(tab.hole_r):
-            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
-            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
-        mv = [m for m, (r, n) in enumerate(zip(rows, near.tolist(), strict=True)) if r[4] and n]
+        # hole within their window. Lengths go through numpy's hypot (the C library's can
+        # differ in the last bit), one call a ball.
+        hole_c, hole_r = feat.hole_c, feat.hole_r
+        mv = []  # (row, position, velocity, acceleration, window, reach, contact distance)
+        for bm, im, t, end, moving in rows:
+            if not moving:
+                continue
+            px, py, vx, vy, ax, ay = self._at(tables[bm][0][im], t)
+            T = end - t
+            rc = float(balls.rc[bm, im])
+            hv, ha, *edge = np.hypot([vx, ax] + [px - hx for hx, _ in hole_c],
+                                     [vy, ay] + [py - hy for _, hy in hole_c]).tolist()
+            reach = hv * T + 0.5 * ha * T * T + rc
+            if (px < reach or py < reach or px > tab.length - reach or py > tab.width - reach
+                    or any(e - r < reach for e, r in zip(edge, hole_r, strict=True))):
+                mv.append((bm, im, t, [px, py], [vx, vy], [ax, ay], T, reach, rc))
         nc = len(feat.circles)
-        if mv and nc:
-            circles = feat.circles.tolist()
-            hole_r = tab.hole_r.tolist()
-            rcl, Tl = rc.tolist(), T.tolist()
-            for m in mv:
-                px, py, vx, vy, ax, ay = ps[m]
-                dists = [rcl[m]] * feat.npt + hole_r
-                cands += [(cx - px, cy - py, -vx, -vy, -ax, -ay, dk, Tl[m])
-                          for (cx, cy), dk in zip(circles, dists, strict=True)]
+        if nc:
+            for _, _, _, (px, py), (vx, vy), (ax, ay), T, _, rc in mv:
+                dists = [rc] * feat.npt + hole_r
+                cands += [(cx - px, cy - py, -vx, -vy, -ax, -ay, dk, T)
+                          for (cx, cy), dk in zip(feat.circle_list, dists, strict=True)]
         found = first_contact_few(cands)
         npair = len(pairs)
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
             self.t_pair[bm, im, k] = t + f
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
             self.t_pair[bm, k, im] = t + f
-        if mv:
-            tline = feat.lines_few(P[mv, 0:2], P[mv, 2:4], P[mv, 4:6], rc[mv], T[mv],
-                                   reach[mv]).tolist()
-            for n, m in enumerate(mv):
-                allt = tline[n] + found[npair + n * nc:npair + (n + 1) * nc]
-                f = _argmin(allt)
-                bm, im, t = rows[m][0], rows[m][1], rows[m][2]
-                self.t_cush[bm, im] = t + allt[f]
-                self.f_cush[bm, im] = f
+        for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
+            circles = found[npair + n * nc:npair + (n + 1) * nc]
+            allt = feat.lines_one(p, v, a, rc, T, reach) + circles
+            f = _argmin(allt)
+            self.t_cush[bm, im] = t + allt[f]
+            self.f_cush[bm, im] = f
 
     @staticmethod
     def _at(me: list, t: float) -> tuple:
