@@ -67,6 +67,11 @@ class Schedule:
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
+        if code.size == 1:  # one event (one table): in plain ints, three small arrays
+            q, r = divmod(int(code[0]), self.N)
+            pair = q >= Due.PAIR
+            return (np.array([Due.PAIR if pair else q]), np.array([q - Due.PAIR if pair else r]),
+                    np.array([r if pair else -1]))
         q, r = np.divmod(code, self.N)
         due = np.minimum(q, Due.PAIR)
         return due, np.where(q < Due.PAIR, r, q - Due.PAIR), np.where(q < Due.PAIR, -1, r)
@@ -251,6 +256,13 @@ class Schedule:
 
     def refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
+        if tabs.size == 1:  # one table: its row of times, no gathers
+            b = int(tabs[0])
+            row = self.times[b]
+            code = int(row.argmin())
+            self.t_next[b] = row[code]
+            self.c_next[b] = code
+            return
         allt = self.times[tabs]
         code = allt.argmin(axis=1)
         self.t_next[tabs] = allt[np.arange(len(tabs)), code]
