@@ -2,10 +2,12 @@
 
 Instructions per break are (count(K=3) - count(K=1)) / 2, which leaves out start-up:
 
-    PYTHONHASHSEED=0 valgrind --tool=callgrind --callgrind-out-file=/dev/null \\
+    PYTHONHASHSEED=0 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \\
+        valgrind --tool=callgrind --callgrind-out-file=/dev/null \\
         "$(python -c 'import sys; print(sys.executable)')" benchmarks/instructions.py 3
 
-(valgrind must run the interpreter itself, not a shell shim such as pyenv's.)
+(valgrind must run the interpreter itself, not a shell shim such as pyenv's; with BLAS's
+default threads their spinning is counted too, and the count moves from run to run.)
 """
 
 from __future__ import annotations
