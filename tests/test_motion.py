@@ -17,8 +17,10 @@ from termpool.physics.balls import FEW
 from termpool.physics.cushion import MODELS
 from termpool.physics.engine import Engine
 from termpool.physics.params import BALL_RADIUS, Physics
+from termpool.physics.roots import SINK, first_contact, first_contact_few
 from termpool.physics.state import EPS_U, POCKETED
 from termpool.physics.table import Table
+from termpool.scene import load_scene
 
 TABLE = Table(length=20.0, width=10.0, pockets="none")
 K = 400  # balls started per case
@@ -267,3 +269,81 @@ def test_engine_refuses_a_radius_or_mass_that_is_not_positive(field, bad):
     # The plain-float paths divide by both, so they must be positive (as scenes ensure).
     with pytest.raises(ValueError, match=f"^{field}: must be positive and finite$"):
         Engine(TABLE, Physics(), [[1.0, 1.0], [2.0, 1.0]], **{field: [0.03, bad]})
+
+
+def _relative_motions(seed: int, k: int = 3000):
+    """Relative motions of k pairs or ball-and-point candidates: random ones, and the exact
+    geometries games are made of (touching at exactly the contact distance or a rounding
+    off it, sunk by SINK, resting with the pair pressed together or parting, at the same
+    centre, at rest, and with an empty window)."""
+    rng = np.random.default_rng(seed)
+    dist = rng.choice([2 * BALL_RADIUS, BALL_RADIUS + 0.01, 0.06], k)
+    ang = rng.uniform(0, 2 * np.pi, k)
+    u = np.column_stack([np.cos(ang), np.sin(ang)])
+    r = dist + rng.choice([0.0, 5e-10, -5e-10, -SINK, 1e-4, 0.3, 1.5], k)
+    p = u * r[:, None]
+    v = rng.normal(0.0, 2.0, (k, 2)) * rng.choice([1.0, 1e-3, 0.0], (k, 1))
+    a = rng.normal(0.0, 3.0, (k, 2)) * rng.choice([1.0, 1e-7, 0.0], (k, 1))
+    side = rng.random(k) < 0.2  # moving along the line of centres, exactly: head on or apart
+    v[side] = -u[side] * rng.normal(0.0, 2.0, side.sum())[:, None]
+    slide = rng.random(k) < 0.15  # tangent: no closing speed, pressed or pulled by a
+    v[slide] = np.column_stack([-u[slide, 1], u[slide, 0]]) * rng.normal(0, 1, slide.sum())[:, None]
+    a[slide] = u[slide] * rng.choice([-2.0, 2.0, 1e-8], slide.sum())[:, None]
+    p[rng.random(k) < 0.01] = 0.0
+    horizon = rng.uniform(0.0, 2.0, k) * rng.choice([1.0, 0.0], k, p=[0.95, 0.05])
+    return p, v, a, dist, horizon
+
+
+@pytest.mark.parametrize("pressed", [True, False])
+@pytest.mark.parametrize("seed", [20, 21, 22])
+def test_contact_times_of_a_few_in_floats_match_the_array_path_bit_for_bit(seed, pressed):
+    p, v, a, dist, horizon = _relative_motions(seed)
+    with np.errstate(all="ignore"):
+        many = first_contact(p, v, a, dist, horizon, pressed=pressed)
+        cands = list(zip(*p.T.tolist(), *v.T.tolist(), *a.T.tolist(), dist.tolist(),
+                         horizon.tolist(), strict=True))
+        few = [t for n in range(0, len(cands), 7)
+               for t in first_contact_few(cands[n:n + 7], pressed=pressed)]
+    assert np.array_equal(np.array(few), many)
+    assert (many == 0).sum() > 50 and np.isfinite(many[many > 0]).sum() > 100  # both kinds
+
+
+@pytest.mark.parametrize("seed", [23, 24, 25])
+def test_predictions_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit(seed):
+    """A racked 9-ft table (frozen balls, pockets, jaw tips) with some balls moving and
+    some pocketed: renewing one or two balls' predictions in plain floats gives the same
+    times and features as the array path."""
+    rng = np.random.default_rng(seed)
+    scene = load_scene({"balls": "8ball", "shot": {"speed": 8.0}})
+    n = len(scene.ids)
+    pos = scene.pos.copy()
+    pos[:6] = rng.uniform([0.05, 0.05], [2.49, 1.22], (6, 2))  # anywhere: rails, pockets
+    vel = rng.normal(0.0, 1.5, (n, 2)) * (rng.random((n, 1)) < 0.5)
+    w = rng.normal(0.0, 40.0, (n, 3)) * (rng.random((n, 1)) < 0.5)
+    # Two balls headed for a corner and a side pocket (their holes and jaw tips).
+    pos[6], vel[6] = [0.12, 0.1], rng.uniform([-1.0, -1.0], [-0.2, -0.2])
+    pos[7], vel[7] = [1.27, 1.1], [rng.uniform(-0.2, 0.2), 1.0]
+    # And two straight down past a corner's and a side pocket's jaw tips, overlapping them
+    # by half a radius (the jaw tip, not the rail, is met).
+    (x8, _), (x9, _) = scene.table.points.reshape(-1, 2)[[0, 5]]
+    pos[8], vel[8] = [x8 - 0.5 * BALL_RADIUS, 0.1], [0.0, -rng.uniform(0.5, 2.0)]
+    pos[9], vel[9] = [x9 + 0.5 * BALL_RADIUS, 0.1], [0.0, -rng.uniform(0.5, 2.0)]
+    engines = [Engine(scene.table, scene.physics, pos, vel, w) for _ in range(2)]
+    gone = rng.integers(0, n)
+    for eng in engines:
+        eng.state[0, gone] = POCKETED
+    pairs = cushions = 0  # finite predictions met on the way
+    for _ in range(40):
+        t = float(rng.uniform(0.0, 0.02))
+        balls = rng.integers(0, n, int(rng.integers(1, 3)))
+        b = np.zeros(balls.size, dtype=np.int64)
+        for eng, way in zip(engines, ("predict_few", "predict_many"), strict=True):
+            eng.tb[0] = t
+            with np.errstate(all="ignore"):
+                getattr(eng.schedule, way)(b, balls)
+        pairs += int(np.isfinite(engines[0].schedule.t_pair[0, balls]).sum())
+        cushions += int(np.isfinite(engines[0].t_cush[0, balls]).sum())
+    few, many = engines
+    assert np.array_equal(few.schedule.times, many.schedule.times)
+    assert np.array_equal(few.f_cush, many.f_cush)
+    assert pairs > 10 and cushions > 5

@@ -114,9 +114,8 @@ class Balls:
 
     def ball_state(self, b: int, i: int, t: float) -> BallState:
         """Ball i of table b as it is at time t."""
-        p, v, w = self.eval(np.array([b]), np.array([i]), np.array([t]))
-        return BallState(float(p[0, 0]), float(p[0, 1]), float(v[0, 0]), float(v[0, 1]),
-                         (float(w[0, 0]), float(w[0, 1]), float(w[0, 2])), int(self.state[b, i]))
+        p, v, w = motion.at(self.motion[b, i].tolist(), float(t))  # `eval` in plain floats
+        return BallState(p[0], p[1], v[0], v[1], (w[0], w[1], w[2]), int(self.state[b, i]))
 
     def now(self, tb: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(B, N, 2) positions, (B, N, 2) velocities and (B, N, 3) spins at each table's clock

@@ -120,20 +120,31 @@ class Engine:
     def _run_until(self, t_end: float) -> None:
         """Run every table's events up to t_end in time order; clocks end at t_end."""
         self._spend(1)
-        if (self.t_next <= t_end).any():
+        due = float(self.t_next[0]) <= t_end if self.B == 1 else (self.t_next <= t_end).any()
+        if due:
             with np.errstate(all="ignore"):  # infinities stand for "never"
                 self._run_events(t_end)
         if math.isfinite(t_end):
             self.tb[:] = t_end
 
     def _run_events(self, t_end: float) -> None:
+        one = self.B == 1  # one table (the usual case): no array scans
         while True:
-            tabs = np.nonzero((self.t_next <= t_end) & (self.t_next < math.inf))[0]
-            if tabs.size == 0:
-                break
+            if one:
+                t = float(self.t_next[0])
+                if not (t <= t_end and t < math.inf):
+                    break
+                tabs = _ONE
+            else:
+                tabs = np.nonzero((self.t_next <= t_end) & (self.t_next < math.inf))[0]
+                if tabs.size == 0:
+                    break
             self._spend(PASS_WORK)
             self.passes += 1
-            self.tb[tabs] = self.t_next[tabs]
+            if one:
+                self.tb[0] = t
+            else:
+                self.tb[tabs] = self.t_next[tabs]
             self._handle(tabs, self.schedule.c_next[tabs])
             self.schedule.refresh(tabs)
 
@@ -235,6 +246,10 @@ class Engine:
         """(B,) True where every ball is stationary or pocketed."""
         return np.isinf(self.t_next)
 
+    def _all_at_rest(self) -> bool:
+        """`at_rest().all()`, for one table without array calls."""
+        return math.isinf(float(self.t_next[0])) if self.B == 1 else bool(self.at_rest().all())
+
     def step(self, dt: float) -> None:
         """Advance every table by dt seconds, exactly: every event inside the step is run at
         its own time, however many there are."""
@@ -262,7 +277,7 @@ class Engine:
             samples.append(self._sample())
             k = 1
         start, n = self.time, 0
-        while not self.at_rest().all():
+        while not self._all_at_rest():
             # Step ends are start + n dt (no drift from summing steps); a sliver left by
             # rounding is not another step.
             if duration is not None and self.time >= duration - 1e-9 * dt:

@@ -26,11 +26,15 @@ class Features:
         self.seg_dir = seg_d / self.seg_len[:, None]
         self.seg_off = (table.seg_a * table.seg_n).sum(axis=1)  # each line's offset along n
         self.seg_start = (table.seg_a * self.seg_dir).sum(axis=1)
-        self.segs = list(zip(table.seg_a.tolist(), self.seg_dir.tolist(),
-                             self.seg_len.tolist(), strict=True))  # for lines_few
         # Jaw tips, then holes: met as circles (a ball's centre at reach rc of a tip, within
         # a hole's radius of its centre).
         self.circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+        # Plain-float forms for a few balls (lines_one, Schedule.predict_few).
+        self.circle_list = self.circles.tolist()
+        self.hole_c, self.hole_r = table.hole_c.tolist(), table.hole_r.tolist()
+        self.lines1 = list(zip(table.seg_a.tolist(), self.seg_dir.tolist(),
+                               self.seg_len.tolist(), table.seg_n.tolist(),
+                               self.seg_off.tolist(), self.seg_start.tolist(), strict=True))
 
     def lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
         """(M, S) first contact times of M balls with the cushion segments."""
@@ -53,32 +57,38 @@ class Features:
         return tl
 
     def lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
-        """`lines` for a few balls in plain floats, bit-identical. A ball whose centre is
-        further from a cushion segment than its reach (travel in the window plus the nose
+        """`lines` for a few balls in plain floats (`lines_one`), bit-identical."""
+        return np.array([self.lines_one(*args) for args in zip(
+            p.tolist(), v.tolist(), a.tolist(), rc.tolist(), horizon.tolist(), reach.tolist(),
+            strict=True)]).reshape(len(p), self.nseg)
+
+    def lines_one(self, p: list, v: list, a: list, rc: float, horizon: float,
+                  reach: float) -> list:
+        """`lines` for one ball in plain floats, operation for operation (`dots` adds the
+        two products in the same order), so the times are bit-identical. A ball whose centre
+        is further from a cushion segment than its reach (travel in the window plus the nose
         distance, with a micrometre to spare) cannot meet it and skips it: the array path
         finds no contact there either."""
-        tab = self.table
-        n = tab.seg_n
-        out = np.full((len(p), self.nseg), np.inf)
-        rows = zip((dots(p, n) - self.seg_off).tolist(),
-                   (dots(p, self.seg_dir) - self.seg_start).tolist(), dots(v, n).tolist(),
-                   dots(a, n).tolist(), p.tolist(), v.tolist(), a.tolist(), rc.tolist(),
-                   horizon.tolist(), (reach + 1e-6).tolist(), strict=True)
-        for m, (s0, along0, sv, sa, pm, vm, am, rcm, hz, far) in enumerate(rows):
-            for k, (ak, dk, length) in enumerate(self.segs):
-                # The ball's distance from the segment is at least each of these.
-                if s0[k] > far or -s0[k] > far or -along0[k] > far or along0[k] - length > far:
-                    continue
-                beside = along0[k] >= 0 and along0[k] <= length
-                tl = first_line_contact_one(s0[k], sv[k], sa[k], rcm, hz, beside)
-                if tl < math.inf:
-                    # The contact must fall on the segment itself (as in `lines`).
-                    tt = tl * tl
-                    qx = (pm[0] + vm[0] * tl + 0.5 * am[0] * tt) - ak[0]
-                    qy = (pm[1] + vm[1] * tl + 0.5 * am[1] * tt) - ak[1]
-                    along = qx * dk[0] + qy * dk[1]
-                    if along >= 0 and along <= length:
-                        out[m, k] = tl
+        out = [math.inf] * self.nseg
+        far = reach + 1e-6
+        p0, p1 = p
+        for k, (ak, dk, length, nk, off, start) in enumerate(self.lines1):
+            # The ball's distance from the segment is at least each of these.
+            s0 = p0 * nk[0] + p1 * nk[1] - off
+            along0 = p0 * dk[0] + p1 * dk[1] - start
+            if s0 > far or -s0 > far or -along0 > far or along0 - length > far:
+                continue
+            beside = along0 >= 0 and along0 <= length
+            tl = first_line_contact_one(s0, v[0] * nk[0] + v[1] * nk[1],
+                                        a[0] * nk[0] + a[1] * nk[1], rc, horizon, beside)
+            if tl < math.inf:
+                # The contact must fall on the segment itself (as in `lines`).
+                tt = tl * tl
+                qx = (p0 + v[0] * tl + 0.5 * a[0] * tt) - ak[0]
+                qy = (p1 + v[1] * tl + 0.5 * a[1] * tt) - ak[1]
+                along = qx * dk[0] + qy * dk[1]
+                if along >= 0 and along <= length:
+                    out[k] = tl
         return out
 
     def names(self, f) -> list[str]:

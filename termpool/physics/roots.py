@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from termpool.physics.vec import max_one, min_one
+
 TOUCH = 1e-9  # gaps below this (m) count as touching
 SINK = 4.5e-7  # a resting contact pushed together is caught after this much overlap (m):
 # with anything deeper than SINK resolved at once, no overlap can pass 2 SINK < 1 micrometre
@@ -23,6 +25,7 @@ A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but acceler
 # rounding, and is caught by SINK if it lasts
 PIECES = 2  # straight pieces of the window in the cull
 _FRACTIONS = np.arange(PIECES, dtype=float)
+_PIECES_ONE = _FRACTIONS.tolist()
 
 
 def first_contact(
@@ -88,19 +91,144 @@ def first_contact(
     if sel.size == 0:
         return out
     idx = idx[sel]
-    px, py, vx, vy, ax, ay = px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel]
-    T = hz[sel]
-    c4 = 0.25 * aa[sel]
+    out[idx] = solve(px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel], hz[sel], tg[sel],
+                     pv[idx], r0[idx], vv[sel], aa[sel])
+    return out
+
+
+def first_contact_few(cands: list, pressed: bool = True) -> list:
+    """`first_contact` for a few candidates in plain floats: each of `cands` is a tuple
+    (px, py, vx, vy, ax, ay, dist, horizon). The culls run in plain floats, operation for
+    operation as the array version; only the pairs that pass them go to `solve`, in arrays,
+    so the result is bit-identical."""
+    out = []
+    keep = []  # (place in out, px, py, vx, vy, ax, ay, horizon, target, pv, r0, vv, aa)
+    for px, py, vx, vy, ax, ay, dist, horizon in cands:
+        pv = px * vx + py * vy
+        r0 = math.sqrt(px * px + py * py)
+        touching = r0 - dist < TOUCH
+        now = touching and (pv < -V_MIN * r0 or r0 < dist - SINK)
+        if touching and not now and pv <= V_MIN * r0 and pressed:
+            # numpy's array power can differ from the C library's in the last bit: cube
+            # through numpy, as the array version does.
+            acc = (_over(vx * vx + vy * vy + px * ax + py * ay, r0)
+                   - _over(pv * pv, float((np.array([r0]) ** 3)[0])))
+            now = acc < -A_MIN
+        if now:
+            out.append(0.0)
+            continue
+        out.append(math.inf)
+        target = (min_one(dist, r0) - SINK) if touching else dist
+        if r0 != 0.0:
+            vn, an = pv / r0, (px * ax + py * ay) / r0
+        else:
+            vn, an = _over(pv, r0), _over(px * ax + py * ay, r0)
+        if an > 0:  # (np.minimum and np.maximum written out, see vec.min_one)
+            tv = -vn / an
+            tv = tv if tv > 0.0 or tv != tv else 0.0
+            tv = tv if tv < horizon or tv != tv else horizon
+        else:
+            tv = horizon
+        proj = r0 + (vn + 0.5 * an * tv) * tv
+        proj = proj if proj < r0 or proj != proj else r0
+        if not ((proj <= target or not r0 > 0) and horizon > 0):
+            continue
+        vv = vx * vx + vy * vy
+        aa = ax * ax + ay * ay
+        h = horizon / PIECES
+        reach = target + 0.5 * math.sqrt(aa) * h * h
+        reach2 = reach * reach
+        close = False
+        for f in _PIECES_ONE:
+            s0 = h * f
+            qx = px + (vx + 0.5 * ax * s0) * s0
+            qy = py + (vy + 0.5 * ay * s0) * s0
+            wx = vx + ax * s0
+            wy = vy + ay * s0
+            ww = wx * wx + wy * wy
+            ts = min_one(max_one(-(qx * wx + qy * wy) / ww, 0.0), h) if ww > 0 else 0.0
+            cx, cy = qx + wx * ts, qy + wy * ts
+            if cx * cx + cy * cy <= reach2:
+                close = True
+                break
+        if close and (vv > 0 or aa > 0):
+            keep.append((len(out) - 1, px, py, vx, vy, ax, ay, horizon, target, pv, r0, vv, aa))
+    if keep:
+        for k, t in zip((c[0] for c in keep), solve_few([c[1:] for c in keep]), strict=True):
+            out[k] = t
+    return out
+
+
+def solve_few(pairs: list) -> list:
+    """`solve` in plain floats, operation for operation, for pairs given as tuples of its
+    arguments; only the quartics' eigenvalues go through numpy, all in one call, so the times
+    are bit-identical."""
+    coef = []
+    for px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa in pairs:
+        c4 = 0.25 * aa
+        c3 = ax * vx + ay * vy
+        c2 = vv + ax * px + ay * py
+        c1 = 2.0 * pv
+        c0 = r0 * r0 - tg * tg
+        T2 = T * T
+        C4, C3, C2, C1 = c4 * T2 * T2, c3 * T2 * T, c2 * T2, c1 * T
+        coef.append((c4, c3, c2, c1, c0, C4, C3, C2, C1, T, tg,
+                     C4 > 1e-13 * (abs(C2) + abs(C1) + abs(c0))))
+    quartics = [c for c in coef if c[-1]]
+    if quartics:
+        comp = np.zeros((len(quartics), 4, 4))
+        comp[:, 1, 0] = comp[:, 2, 1] = comp[:, 3, 2] = 1.0
+        top = []
+        for _, _, _, _, c0, C4, C3, C2, C1, _, _, _ in quartics:
+            inv = -1.0 / C4
+            top.append((C3 * inv, C2 * inv, C1 * inv, c0 * inv))
+        comp[:, 0] = top
+        roots = iter(np.linalg.eigvals(comp).tolist())
+    out = []
+    for c4, c3, c2, c1, c0, C4, C3, C2, C1, T, tg, quartic in coef:
+        s = math.inf
+        if quartic:
+            for root in next(roots):
+                re = root.real
+                slope = ((4 * C4 * re + 3 * C3) * re + 2 * C2) * re + C1
+                if (abs(root.imag) <= 1e-6 * (1.0 + abs(re)) and re >= -1e-9 and re <= 1 + 1e-9
+                        and slope <= 0 and re < s):
+                    s = re
+        else:
+            A, B, C = C2, C1, c0
+            disc = B * B - 4 * A * C
+            root = _over(C, -0.5 * (B - math.sqrt(max_one(disc, 0.0))))
+            if disc >= 0 and B < 0 and A > 0 and root >= -1e-9 and root <= 1 + 1e-9:
+                s = root
+        if not s < math.inf:
+            out.append(math.inf)
+            continue
+        t = min_one(max_one(s, 0.0), 1.0) * T
+        f = (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+        df = ((4 * c4 * t + 3 * c3) * t + 2 * c2) * t + c1
+        d2 = (12 * c4 * t + 6 * c3) * t + 2 * c2
+        band = 2 * tg * TOUCH
+        if abs(f) <= band and df < -2 * tg * V_MIN and (d2 <= 0 or df * df > 8 * d2 * band):
+            out.append(min_one(max_one(t - f / df, 0.0), T))
+        else:
+            out.append(_first_crossing(c4, c3, c2, c1, c0, T, tg))
+    return out
+
+
+def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
+    """The contact times (inf: none) of the pairs that passed `first_contact`'s culls, from
+    their relative motion, window T, target distance tg and the culls' pv = p.v, r0 = |p|,
+    vv = |v|^2 and aa = |a|^2: the quartic's roots, checked and polished."""
+    c4 = 0.25 * aa
     c3 = ax * vx + ay * vy
-    c2 = vv[sel] + ax * px + ay * py
-    c1 = 2.0 * pv[idx]
-    tg = tg[sel]
-    c0 = r0[idx] ** 2 - tg * tg
+    c2 = vv + ax * px + ay * py
+    c1 = 2.0 * pv
+    c0 = r0 ** 2 - tg * tg
     # Work in s = t / T so that the interesting roots lie in [0, 1] whatever the window.
     T2 = T * T
     C4, C3, C2, C1 = c4 * T2 * T2, c3 * T2 * T, c2 * T2, c1 * T
     quartic = C4 > 1e-13 * (np.abs(C2) + np.abs(C1) + np.abs(c0))
-    s = np.full(idx.size, np.inf)
+    s = np.full(T.size, np.inf)
     q = np.flatnonzero(quartic)
     if q.size:
         comp = np.zeros((q.size, 4, 4))
@@ -126,7 +254,7 @@ def first_contact(
         s[d] = np.where(good, root, np.inf)
     hit = s < np.inf
     if not hit.any():
-        return out
+        return s
     t = np.minimum(np.maximum(s, 0.0), 1.0) * T
     # Accept only a clear crossing: the pair touches at t (the gap within TOUCH), closes
     # faster than V_MIN, and would go on to overlap by more than TOUCH (the local parabola's
@@ -143,8 +271,7 @@ def first_contact(
     for k in np.flatnonzero(hit & ~clear).tolist():
         t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
                                float(c0[k]), float(T[k]), float(tg[k]))
-    out[idx] = np.where(hit, t, np.inf)
-    return out
+    return np.where(hit, t, np.inf)
 
 
 def _poly(c: tuple, t: float) -> float:

@@ -10,12 +10,23 @@ import numpy as np
 
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
-from termpool.physics.roots import first_contact
+from termpool.physics.motion import Col
+from termpool.physics.roots import first_contact, first_contact_few
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
+from termpool.physics.vec import min_one
 from termpool.physics.vec import norm as _norm
 
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
+_MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
+
+
+def _argmin(row: list) -> int:
+    """np.argmin of a list of floats: the first smallest, or the first NaN."""
+    for k, x in enumerate(row):
+        if x != x:
+            return k
+    return row.index(min(row))
 
 
 class Due:
@@ -56,12 +67,24 @@ class Schedule:
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
+        if code.size == 1:  # one event (one table): in plain ints, three small arrays
+            q, r = divmod(int(code[0]), self.N)
+            pair = q >= Due.PAIR
+            return (np.array([Due.PAIR if pair else q]), np.array([q - Due.PAIR if pair else r]),
+                    np.array([r if pair else -1]))
         q, r = np.divmod(code, self.N)
         due = np.minimum(q, Due.PAIR)
         return due, np.where(q < Due.PAIR, r, q - Due.PAIR), np.where(q < Due.PAIR, -1, r)
 
     def predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
+        if b.size <= FEW:
+            self.predict_few(b, i)
+        else:
+            self.predict_many(b, i)
+
+    def predict_many(self, b: np.ndarray, i: np.ndarray) -> None:
+        """`predict` on arrays."""
         balls, feat = self.balls, self.features
         t = self.tb[b]
         st = balls.state[b, i]
@@ -139,8 +162,107 @@ class Schedule:
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
 
+    def predict_few(self, b: np.ndarray, i: np.ndarray) -> None:
+        """`predict` for a few balls in plain floats: the same candidates in the same order,
+        culled by `first_contact_few`, so the predictions are bit-identical."""
+        balls, feat, tab = self.balls, self.features, self.features.table
+        inf, horizon = np.inf, self.horizon
+        bl, il, tl = b.tolist(), i.tolist(), self.tb[b].tolist()
+        rows = []
+        for bm, im, t in zip(bl, il, tl, strict=True):
+            st = int(balls.state[bm, im])
+            moving = _MOVING_ONE[st]
+            t_check = t + horizon if moving else inf
+            self.t_check[bm, im] = t_check
+            end = min_one(float(self.t_trans[bm, im]), t_check)
+            self.t_cush[bm, im] = inf
+            self.t_pair[bm, im, :] = inf
+            self.t_pair[bm, :, im] = inf
+            if st != POCKETED:
+                rows.append((bm, im, t, end, moving))
+        if not rows:
+            return
+        cands: list = []
+        pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
+        tables: dict = {}
+        for bm, im, t, end, moving in rows:
+            if bm not in tables:
+                tables[bm] = (balls.motion[bm].tolist(), balls.state[bm].tolist(),
+                              np.minimum(self.t_trans[bm], self.t_check[bm]).tolist())
+            motion, stk, end_k = tables[bm]
+            me = motion[im]
+            d = t - me[Col.T0]
+            pix = me[Col.PX] + (me[Col.VX] + 0.5 * me[Col.AX] * d) * d
+            piy = me[Col.PY] + (me[Col.VY] + 0.5 * me[Col.AY] * d) * d
+            vix, viy = me[Col.VX] + me[Col.AX] * d, me[Col.VY] + me[Col.AY] * d
+            aix, aiy, ri = me[Col.AX], me[Col.AY], me[Col.RADIUS]
+            for k, (other, sk) in enumerate(zip(motion, stk, strict=True)):
+                if not _LIVE_ONE[sk] or k == im or not (moving or _MOVING_ONE[sk]):
+                    continue
+                d = t - other[Col.T0]
+                ax, ay = other[Col.AX], other[Col.AY]
+                cands.append((
+                    other[Col.PX] + (other[Col.VX] + 0.5 * ax * d) * d - pix,
+                    other[Col.PY] + (other[Col.VY] + 0.5 * ay * d) * d - piy,
+                    other[Col.VX] + ax * d - vix, other[Col.VY] + ay * d - viy,
+                    ax - aix, ay - aiy, other[Col.RADIUS] + ri,
+                    (end if end < end_k[k] or end != end else end_k[k]) - t))
+                pairs.append((bm, im, k, t))
+        # Cushions, as in `predict`: only moving balls that can reach a cushion nose or a
+        # hole within their window. Lengths go through numpy's hypot (the C library's can
+        # differ in the last bit), one call a ball.
+        hole_c, hole_r = feat.hole_c, feat.hole_r
+        mv = []  # (row, position, velocity, acceleration, window, reach, contact distance)
+        for bm, im, t, end, moving in rows:
+            if not moving:
+                continue
+            px, py, vx, vy, ax, ay = self._at(tables[bm][0][im], t)
+            T = end - t
+            rc = float(balls.rc[bm, im])
+            hv, ha, *edge = np.hypot([vx, ax] + [px - hx for hx, _ in hole_c],
+                                     [vy, ay] + [py - hy for _, hy in hole_c]).tolist()
+            reach = hv * T + 0.5 * ha * T * T + rc
+            if (px < reach or py < reach or px > tab.length - reach or py > tab.width - reach
+                    or any(e - r < reach for e, r in zip(edge, hole_r, strict=True))):
+                mv.append((bm, im, t, [px, py], [vx, vy], [ax, ay], T, reach, rc))
+        nc = len(feat.circles)
+        if nc:
+            for _, _, _, (px, py), (vx, vy), (ax, ay), T, _, rc in mv:
+                dists = [rc] * feat.npt + hole_r
+                cands += [(cx - px, cy - py, -vx, -vy, -ax, -ay, dk, T)
+                          for (cx, cy), dk in zip(feat.circle_list, dists, strict=True)]
+        found = first_contact_few(cands)
+        npair = len(pairs)
+        for (bm, im, k, t), f in zip(pairs, found, strict=False):
+            self.t_pair[bm, im, k] = t + f
+        for (bm, im, k, t), f in zip(pairs, found, strict=False):
+            self.t_pair[bm, k, im] = t + f
+        for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
+            circles = found[npair + n * nc:npair + (n + 1) * nc]
+            allt = feat.lines_one(p, v, a, rc, T, reach) + circles
+            f = _argmin(allt)
+            self.t_cush[bm, im] = t + allt[f]
+            self.f_cush[bm, im] = f
+
+    @staticmethod
+    def _at(me: list, t: float) -> tuple:
+        """Position, velocity and acceleration at t of a ball whose packed motion is `me`,
+        as `Balls.eval` computes them."""
+        d = t - me[Col.T0]
+        ax, ay = me[Col.AX], me[Col.AY]
+        return (me[Col.PX] + (me[Col.VX] + 0.5 * ax * d) * d,
+                me[Col.PY] + (me[Col.VY] + 0.5 * ay * d) * d,
+                me[Col.VX] + ax * d, me[Col.VY] + ay * d, ax, ay)
+
     def refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
+        if tabs.size == 1:  # one table: its row of times, no gathers
+            b = int(tabs[0])
+            row = self.times[b]
+            code = int(row.argmin())
+            self.t_next[b] = row[code]
+            self.c_next[b] = code
+            return
         allt = self.times[tabs]
         code = allt.argmin(axis=1)
         self.t_next[tabs] = allt[np.arange(len(tabs)), code]
