@@ -252,7 +252,8 @@ def test_help_lists_the_key_bindings() -> None:
     text = screen_text(app.cells(120, 40)[0])
     for desc in ACTIONS.values():
         assert desc in text
-    assert "Space  shoot (hold to charge)" in text and "↑, ⇧←  fine aim" in text
+    # (the keys in a column as wide as the widest, "1-9, 0" for the power digits)
+    assert "Space   shoot (hold to charge)" in text and "↑, ⇧←   fine aim" in text
     # Rebound keys show as bound, in the box and in the panel's key help and power label.
     app = App(Options(mode="practice", colors="mono"),
               keymap=parse_keymap("shoot = z\n"), input_mode="repeat")
@@ -263,7 +264,8 @@ def test_help_lists_the_key_bindings() -> None:
     app.key(Key("z"), 1.0)
     assert "keep z down to charge" in screen_text(app.cells(120, 40)[0])
     app.key(Key("h"), 1.0)
-    assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
+    assert "Z       shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
+    assert "then Z strikes" in screen_text(app.cells(120, 40)[0])  # the power digits
 
 
 def test_menu_picks_a_game() -> None:
