@@ -290,3 +290,36 @@ def test_practice_key_help_names_take_back_and_re_rack_where_they_fit() -> None:
     app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0))
     app.key(Key("enter"), 0.0)
     assert "take back" not in screen_text(app.cells(160, 50)[0])
+
+
+def _keys_page(app: App) -> str:
+    app.key(Key("h"), 0.0)
+    text = screen_text(app.cells(120, 40)[0])
+    app.key(Key("esc"), 0.1)
+    return " ".join(" ".join(line.strip("│ ").split()) for line in text.splitlines())
+
+
+def test_the_keys_page_says_g_cycles_the_three_aid_levels() -> None:
+    app = app_in("8ball")
+    app.key(Key("enter"), 0.0)  # the cue ball placed: the aim, where G acts
+    page = _keys_page(app)
+    assert "G aim aid: every path, then the ghost ball only, then off (cycles)" in page
+    seen = []
+    for k in range(3):  # ... as G does
+        app.key(Key("g"), 1.0 + k)
+        seen.append(app.state.opts.aid)
+    assert seen == ["ghost", "off", "full"]
+
+
+def test_the_keys_page_lists_the_power_digits_unless_they_are_bound() -> None:
+    from termpool.ui.controls import KeyMap
+
+    app = app_in("8ball")
+    app.key(Key("enter"), 0.0)
+    assert "1-9, 0 power 10-90 %, 0: 100 %; then Space strikes" in _keys_page(app)
+    for digit, level in (("3", 0.3), ("9", 0.9), ("0", 1.0)):  # ... as they do
+        app.key(Key(digit), 1.0)
+        assert app.state.controls.charge.preset_level == pytest.approx(level)
+    bound = App(Options(mode="8ball", opponent="human", seed=0, colors="mono"),
+                keymap=KeyMap({"rerack": ["1"]}))
+    assert "1-9, 0" not in _keys_page(bound)  # "1" re-racks: the row would be wrong

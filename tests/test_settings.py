@@ -66,6 +66,13 @@ def test_the_table_offers_what_the_game_has() -> None:
     assert set(CHANGED) == set(BY_KEY)  # the tests below cover every setting
 
 
+def test_the_level_help_says_who_each_level_plays_like() -> None:
+    text = BY_KEY["level"].help
+    for level in BY_KEY["level"].values:
+        after = text.split(f" {level} ", 1)
+        assert len(after) == 2 and after[1].startswith("(a "), level  # "pro (a professional)"
+
+
 def test_options_default_to_the_table() -> None:
     opts = Options()
     assert {k: getattr(opts, k) for k in DEFAULTS} == DEFAULTS

@@ -19,7 +19,6 @@ from termpool.ui.app import App, Options
 from termpool.ui.controls import PowerCharge
 from termpool.ui.headless import play, screen_text
 from termpool.ui.keys import Key, legacy_events, parse_script
-from termpool.ui.phases import cpu
 from termpool.ui.phases.cpu import CPU_AIM_S, CPU_SHOW_S
 from termpool.ui.phases.turn import new_match, start_turn
 from termpool.ui.shots import DT, FAST, power_to_speed
@@ -32,6 +31,7 @@ from termpool.ui.state import (
     Quit,
     Run,
     Thinking,
+    shooter_is_cpu,
     shot_clock,
     voice,
 )
@@ -252,7 +252,8 @@ def test_help_lists_the_key_bindings() -> None:
     text = screen_text(app.cells(120, 40)[0])
     for desc in ACTIONS.values():
         assert desc in text
-    assert "Space  shoot (hold to charge)" in text and "↑, ⇧←  fine aim" in text
+    # (the keys in a column as wide as the widest, "1-9, 0" for the power digits)
+    assert "Space   shoot (hold to charge)" in text and "↑, ⇧←   fine aim" in text
     # Rebound keys show as bound, in the box and in the panel's key help and power label.
     app = App(Options(mode="practice", colors="mono"),
               keymap=parse_keymap("shoot = z\n"), input_mode="repeat")
@@ -263,7 +264,8 @@ def test_help_lists_the_key_bindings() -> None:
     app.key(Key("z"), 1.0)
     assert "keep z down to charge" in screen_text(app.cells(120, 40)[0])
     app.key(Key("h"), 1.0)
-    assert "Z      shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
+    assert "Z       shoot (hold to charge)" in screen_text(app.cells(120, 40)[0])
+    assert "then Z strikes" in screen_text(app.cells(120, 40)[0])  # the power digits
 
 
 def test_menu_picks_a_game() -> None:
@@ -1313,28 +1315,50 @@ def _to_the_computer(app: App) -> float:
     return t
 
 
-def test_the_verdict_on_the_players_shot_stays_through_the_computers_turn() -> None:
-    app = app_for(mode="8ball", opponent="cpu", seed=3)
-    _to_the_computer(app)
-    (verdict,) = [x for x in app.state.message if x not in app.state.cpu_note]
-    assert "Computer's turn" in verdict[0]  # the referee on the player's break
-    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
-    # The computer's first shot ends and leaves it at the table: its next plan keeps the
-    # player's verdict in view, not the computer's own.
-    note = app.state.cpu_note
-    put(app, shot_note=note, message=(*note, ("the 6 went in: Computer's turn again", "good")))
-    app.state, plan = cpu.plan(app.state)
-    put(app, part=Aiming(plan, app.state.stroke.angle))
-    assert app.state.message[0] == verdict
-    assert "the 6 went in" not in screen_text(app.cells(120, 40)[0])
-    # ... and while its shot runs.
-    put(app, part=replace(app.state.part, skip=True))
-    t = app.state.now
-    while app.state.phase is Phase.CPU:
+def _computer_turns(app: App, script: str):
+    """Play `script` (the player's break) and then until the player's turn comes back;
+    yield (part, verdict of the shot last played, 80x24 screen) at each frame of the
+    computer's aim and of its shots running."""
+    events = parse_script(script)
+    for t, key in events:
+        app.key(key, t)
+    last = None
+    while t < 300:
         t += 1 / 30
+        before = app.state.phase
         app.tick(t)
-    assert app.state.phase is Phase.RUN and app.state.message[0] == verdict
-    assert verdict[0][:40] in screen_text(app.cells(80, 24)[0])
+        s = app.state
+        if before is Phase.RUN and s.phase is not Phase.RUN:  # a shot judged: its verdict
+            last = s.message[-1]
+        if s.phase in (Phase.AIM, Phase.PLACE, Phase.OVER, Phase.OPTION):
+            return
+        if isinstance(s.part, Aiming) or (s.phase is Phase.RUN and shooter_is_cpu(s)):
+            yield s.part, last, screen_text(app.cells(80, 24)[0])
+
+
+def test_the_verdict_in_view_through_the_computers_turn_is_the_last_shots() -> None:
+    # A full-power break and a pro computer that runs balls: while it aims at each and while
+    # each shot runs, the panel shows the verdict on the shot just played (its own last
+    # pot), not the player's older verdict on the break.
+    app = app_for(mode="8ball", opponent="cpu", level="pro", seed=1)
+    own = set()
+    for _, verdict, text in _computer_turns(app, "enter 0 space"):
+        assert verdict is not None and verdict in app.state.message
+        assert verdict[0][:30] in text, (verdict, text)
+        if "Computer continues" in verdict[0]:
+            own.add(verdict)
+    assert len(own) >= 2  # it aimed after at least two of its own pots
+
+
+def test_the_computer_announces_its_answer_to_an_illegal_break() -> None:
+    # A 10% break is illegal: the computer accepts the table or has it re-racked, and its
+    # choice replaces the break's verdict (which asks for it) as a player's does.
+    app = app_for(mode="8ball", opponent="cpu", level="pro", seed=1)
+    seen = 0
+    for _, _, text in _computer_turns(app, "enter 1 space"):
+        assert "Computer chose to" in text and "may accept the table" not in text, text
+        seen += 1
+    assert seen
 
 
 def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> None:

@@ -48,7 +48,7 @@ ACTIONS: dict[str, str] = {
     "pause": "pause",
     "quit": "quit",
     "fast_forward": "fast forward the shot",
-    "aim_aid": "aim line on/off",
+    "aim_aid": "aim aid: every path, then the ghost ball only, then off (cycles)",
     "call_pocket": "next called pocket",
     "push_out": "push out (9-ball)",
     "bell": "sound on/off",

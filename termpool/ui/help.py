@@ -13,12 +13,14 @@ from collections.abc import Sequence
 
 from termpool.rules.words import MODE_NAMES, rules_page
 from termpool.ui.controls import ACTIONS
+from termpool.ui.keys import Key
 
 NEXT_KEYS = ("right", "pagedown", "down")
 BACK_KEYS = ("left", "pageup", "up")
 BOX_EDGE = 6  # a box's frame and margins take this many columns of the screen ...
 BOX_ROWS = 4  # ... and this many rows: its frame, a blank line and the footer
 ARROWS = {"left": "←", "right": "→", "up": "↑", "down": "↓"}
+DIGITS = "1234567890"  # the power keys: 10% to 90%, and 100%
 TWO_COLUMNS = 30  # keys go in two columns (when one is too tall) if each has this much room
 
 
@@ -32,8 +34,15 @@ def pretty(spec: str) -> str:
 
 def keymap_rows(keymap) -> list[tuple[str, str]]:
     """(keys, what they do) for every bound action of the game, and the mouse."""
-    rows = [(", ".join(pretty(k) for k in keymap.keys_for(a)), desc)
-            for a, desc in ACTIONS.items() if keymap.keys_for(a)]
+    rows = []
+    for a, desc in ACTIONS.items():
+        if keymap.keys_for(a):
+            rows.append((", ".join(pretty(k) for k in keymap.keys_for(a)), desc))
+        if a == "shoot" and not any(keymap.action(Key(d)) for d in DIGITS):
+            # The digits set the power where no action has them (ui.phases.aim); shoot is
+            # always bound (controls.REQUIRED).
+            strike = pretty(keymap.keys_for(a)[0])
+            rows.append(("1-9, 0", f"power 10-90 %, 0: 100 %; then {strike} strikes"))
     rows.append(("mouse", "click or drag on the table: aim there"))
     return rows
 

@@ -104,7 +104,7 @@ def check_name(text: str) -> str:
 # line is parsed before numpy is imported.
 SETTINGS: tuple[Setting, ...] = (
     Setting("level", "Computer's level", "the computer's skill: easy (a beginner), normal (a "
-            "club player), hard (a strong amateur), pro", "normal",
+            "club player), hard (a strong amateur), pro (a professional)", "normal",
             values=("easy", "normal", "hard", "pro"), later=True),
     Setting("table", "Table", "table size", "9ft", values=("7ft", "8ft", "9ft"), later=True),
     Setting("frames", "Frames to win", "a match is a race to this many frames", 1,

@@ -291,9 +291,6 @@ class State:
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
     cpu_note: tuple[Line, ...] = ()  # the computer's plan, in words
     shot_note: tuple[Line, ...] = ()  # ... kept for the shot it is playing
-    your_verdict: Line | None = None  # the verdict on the last shot of a player against
-    # the computer: kept in view through the computer's turn
-    chosen: tuple[int, Line] | None = None  # the last option answered: who, and the words
 
     @property
     def phase(self) -> Phase:

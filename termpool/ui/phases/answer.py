@@ -22,9 +22,8 @@ def key(s: State, key) -> State | None:
         if pick is None:
             return None
         line = (words.chose(m.players[m.shooter], pick), "dim")
-        player = m.shooter
         m.choose(pick)
-        return start_turn(replace(s, message=(line,), chosen=(player, line)))
+        return start_turn(replace(s, message=(line,)))
     if key.name == "n":
         return new_match(s, s.opts.mode, s.opts.opponent)
     if key.name == "m":

@@ -42,9 +42,8 @@ def tick(s: State, t: float) -> State:
     if isinstance(part, Answering):
         m = s.match
         line = (words.chose(m.players[m.shooter], part.choice), "turn")
-        player = m.shooter
         m.choose(part.choice)
-        return start_turn(replace(s, message=(line,), chosen=(player, line)))
+        return start_turn(replace(s, message=(line,)))
     since = t if part.since is None else part.since
     elapsed = t - since
     f = 1.0 if part.skip else min(1.0, elapsed / CPU_AIM_S)
@@ -71,11 +70,7 @@ def plan(s: State) -> tuple[State, Plan | Choice]:
     foresees = decision.sees in ("win", "loss", "foul")
     note = ((f"Computer: {decision.note}", "turn"),) if decision.note and not foresees \
         else ()  # a plan ("3 in the foot left pocket"), not the result it simulated
-    # The verdict on the player's own last shot stays in view through the computer's turn,
-    # however many shots it takes (with the computer's answer to an option, if it just gave
-    # one); else the last verdict (without the plan of the shot it was about).
+    # The verdict on the shot just played stays in view (the player's, or its own last one),
+    # or, after an option, the answer given; not the plan of the shot it was about.
     last = tuple(x for x in s.message if x not in s.shot_note)[:2]
-    if s.your_verdict is not None:
-        mine = s.chosen[1] if s.chosen is not None and s.chosen[0] == m.shooter else None
-        last = (s.your_verdict, *(x for x in last if x == mine))
     return replace(s, message=last + note, cpu_note=note), decision

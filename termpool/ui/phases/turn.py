@@ -65,7 +65,7 @@ def new_match(s: State, mode: str, opponent: str) -> State:
                   theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
                   eight_break=opts.eight_break)
     s = replace(s, opts=opts, played=played, match=match, cpu=cpu, last_power=DEFAULT_POWER,
-                shot_power_set=False, message=(), your_verdict=None, stroke=Stroke())
+                shot_power_set=False, message=(), stroke=Stroke())
     return start_turn(s)
 
 
@@ -80,7 +80,7 @@ def start_turn(s: State) -> State:
         won = m.frame_winner
         m.new_frame()
         frame = (words.frame_won(voice(s), won, m.scores, m.shooter), "good")
-        s = replace(s, your_verdict=None, message=(*s.message, frame))  # the news now
+        s = replace(s, message=(*s.message, frame))  # the news now
     if m.winner is not None:
         return log_match(replace(s, part=Over()))
     if m.option is not None:
@@ -102,8 +102,8 @@ def shoot(s: State, speed: float, angle: float, side: float, top: float, called=
     """Strike: the whole shot is simulated now and shown frame by frame (ui.shots). A shot
     the match refuses is said, and the shooter aims again (the computer's shots are checked
     the same way; should one be refused, the shot is left to the keys rather than to a loop
-    of refusals). With `keep_message` (the computer's shots) its plan stays in view, and the
-    verdict on the player's last shot."""
+    of refusals). With `keep_message` (the computer's shots) the words on show stay: its plan
+    and the verdict on the shot before it (see cpu.plan)."""
     side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
     shot = Shot(speed=speed, angle=angle, side=side, top=top, called=called,
                 push_out=push_out)
@@ -115,9 +115,8 @@ def shoot(s: State, speed: float, angle: float, side: float, top: float, called=
     fast = fast == "always" or (fast == "computer" and shooter_is_cpu(s))
     # The computer's plan stays in view while its shot runs, and then beside the verdict.
     note = s.cpu_note if keep_message else ()
-    yours = (s.your_verdict,) if keep_message and s.your_verdict else ()
     return replace(s, part=Run(run, simulate(run), s.now, fast), shot_note=note,
-                   message=yours + note)
+                   message=s.message if keep_message else ())
 
 
 def shoot_human(s: State, level: float, called: tuple[str, str] | None) -> State:
@@ -131,13 +130,10 @@ def finish_shot(s: State) -> State:
     """The shot's last frame is on show: it is judged and recorded, and the turn goes on."""
     m = s.match
     before = int(m.on_table.sum())
-    by_cpu = shooter_is_cpu(s)
     with signals_held():  # judged and recorded whole, whatever interrupts
         out = s.part.shot.finish()
     verdict = words.verdict(out, voice(s))
     s = replace(s, message=(*s.shot_note, verdict))
-    if not by_cpu and any(s.cpu):
-        s = replace(s, your_verdict=verdict)
     if s.opts.bell and (out.foul or int(m.on_table.sum()) < before):
         s = replace(s, bells=s.bells + 1)  # a pocketed ball or a foul
     return start_turn(s)
