@@ -15,7 +15,7 @@ python benchmarks/render.py
 - the game itself: the app breaking in practice mode, with its panel, at 200x60 (time per
   frame, and the strike, when the whole shot is simulated) and 80x24 (bytes per frame).
 
-Targets (issue 5): build <= 3 ms at 200x60; average <= 3 KB per frame during a break at
+Targets: build <= 3 ms at 200x60; average <= 3 KB per frame during a break at
 80x24; idle frames 0 bytes.
 """
 

@@ -63,7 +63,7 @@ def test_every_case_passes_quick_json(capsys: pytest.CaptureFixture[str]) -> Non
         assert row["engines"] >= 1 and row["looks"] >= 2 and row["steps"] + row["passes"] > 0
         assert 0 <= row["overlap_m"] <= OVERLAP_TOL and 0 <= row["cushion_m"] <= OVERLAP_TOL
         assert math.isfinite(row["wall_s"]) and row["wall_s"] >= 0
-    # Every group of issue 3 is there.
+    # Every group of stiff and extreme cases is there.
     assert {c["group"] for c in result["cases"]} == {
         "speed", "dt", "restitution", "friction", "mass", "radius", "rack", "cradle",
         "contact", "spin", "long run"}
