@@ -1,11 +1,13 @@
 """`termpool bench speed`: the standard 8-ball break on a 9-ft table, timed.
 
     termpool bench speed [--json] [--repeat N] [--batch B] [--dt S]
+                         [--pooltool PYTHON | --no-pooltool] [--pairs N]
 
 One table from Engine construction to rest, B slightly different breaks batched in one Engine,
 and the import of the core in a fresh interpreter; it prints a small table with targets and
 PASS/MISS, or one JSON object with --json. The break and the batch have CPU time (every thread
-of the process) beside wall time.
+of the process) beside wall time. Where pooltool is installed, its break is timed in the same
+run, paired run by run with termpool's (pooltool_pair.py).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import sys
 import time
 from typing import Any
 
+from bench import pooltool_pair
 from bench.common import (
     PROG,
     BenchParser,
@@ -269,6 +272,8 @@ def format_speed(r: dict) -> str:
     ]
     m = r["machine"]
     lines += [
+        *pooltool_pair.format_lines(r),
+        "",
         *machine_lines(m),
     ]
     return "\n".join(lines) + "\n"
@@ -301,12 +306,23 @@ def main(argv: list[str]) -> int:
         default=DT,
         help="fixed time step in seconds (default 1/60; fractions like 1/120 work)",
     )
+    pooltool_pair.add_arguments(p)
     args = p.parse_args(argv)
     try:
+        worker = pooltool_pair.start(args.pooltool, args.no_pooltool)
+    except (ValueError, pooltool_pair.WorkerError) as e:
+        say(f"bench speed: {e}")
+        return 2 if isinstance(e, ValueError) else 1
+    try:
         result = speed_figures(args.dt, args.repeat, args.batch)
+        result.update(pooltool_pair.figures(worker, break_scene(), args.dt, args.pairs))
+        pooltool_pair.judge(result)
     except (RuntimeError, ValueError, subprocess.TimeoutExpired) as e:
         say(f"bench speed: {e}")
         return 1
+    finally:
+        if worker is not None:
+            worker.close()
     if args.json:
         sys.stdout.write(to_json(json_safe(result)) + "\n")
     else:
