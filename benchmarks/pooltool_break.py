@@ -1,4 +1,4 @@
-"""pooltool's 8-ball break at 8 m/s, CPU and wall time, for comparison with termpool's.
+"""pooltool's own 8-ball break with a cue stick at 8 m/s, CPU and wall time.
 
     /path/to/pooltool-venv/bin/python benchmarks/pooltool_break.py [--runs N]
 
@@ -9,6 +9,10 @@ CPU time (`time.process_time`, every thread of the process) and wall time, the e
 each run (pooltool racks with small random gaps, so they vary), and the CPU time of threads
 other than the main one (Linux). Set NUMBA_CACHE_DIR to keep numba's cache out of the
 installed package.
+
+This is pooltool's break, not termpool's: a 7-ft table, gaps in the rack, and the cue ball
+off at about 11 m/s (V0 is the stick's speed). `termpool bench speed --pooltool PYTHON` runs
+termpool's own break in pooltool, paired with termpool's in the same run.
 """
 
 from __future__ import annotations
