@@ -6,7 +6,9 @@ figures are null. That interpreter runs bench/pooltool_worker.py as one process 
 it builds termpool's break in pooltool, runs it until numba has compiled (the warm-up), then
 runs one break each time it is asked. The pairs alternate which side goes first; each side
 times its own break with time.process_time() in its own process, and the ratio is taken pair
-by pair, so load that comes and goes hits both sides of a pair alike.
+by pair, so load that comes and goes hits both sides of a pair alike. Two breaks are compared
+(BREAKS): the scene's own, with its frozen rack, and the same with the rack opened by
+pooltool's own spacing.
 """
 
 from __future__ import annotations
@@ -34,8 +36,16 @@ TARGET = (">=", 4.0)
 WARM_BREAKS = 2  # untimed breaks before the pairs: numba compiles in the first
 START_TIMEOUT_S = 1800.0  # import and warm-up; numba's first compile takes 30-45 s here
 BREAK_TIMEOUT_S = 300.0
-FIGURES = ("pooltool_version", "pooltool_break_cpu_ms", "pooltool_events",
-           "pooltool_pair_termpool_cpu_ms", KEY)
+# The breaks compared, each the same on both sides: the scene's own (its frozen rack), and the
+# rack opened so that neighbours' centres are 2R (1 + OPEN_GAP) apart, pooltool's own rack
+# lattice (get_rack's spacing_factor) without its random wiggle: touching balls cost the two
+# engines very differently, so both are shown. The target is on the scene's own break.
+OPEN_GAP = 1e-3
+BREAKS = {"frozen": ("", 0.0), "open": ("_open", OPEN_GAP)}  # name: (key infix, gap)
+FIGURES = ("pooltool_version", *(
+    f"{stem}{infix}{tail}" for infix, _ in BREAKS.values()
+    for stem, tail in (("pooltool", "_break_cpu_ms"), ("pooltool", "_events"),
+                       ("pooltool", "_pair_termpool_cpu_ms"), ("vs_pooltool", "_cpu"))))
 
 
 class WorkerError(RuntimeError):
@@ -119,11 +129,13 @@ class Worker:
             raise self._fail("the pooltool worker stopped") from None
         return self._answer(timeout)
 
-    def setup(self, scene: Any, warm: int = WARM_BREAKS) -> dict:
-        return self.ask({"op": "setup", "warm": warm, **break_setup(scene)}, START_TIMEOUT_S)
+    def setup(self, scene: Any, name: str = "", pos: Any = None, warm: int = WARM_BREAKS
+              ) -> dict:
+        request = {"op": "setup", "name": name, "warm": warm, **break_setup(scene, pos)}
+        return self.ask(request, START_TIMEOUT_S)
 
-    def run_break(self) -> dict:
-        return self.ask({"op": "break"})
+    def run_break(self, name: str = "") -> dict:
+        return self.ask({"op": "break", "name": name})
 
     def _stop(self) -> None:
         """End the worker: its input closed, it exits (killed if it has not in 10 s)."""
@@ -149,10 +161,23 @@ class Worker:
         self.close()
 
 
-def break_setup(scene: Any) -> dict:
-    """What the worker needs to build termpool's break: the scene's table, balls, their
-    starting motion and the physics figures pooltool has names for, in plain numbers."""
+def open_rack(scene: Any, gap: float) -> Any:
+    """The scene's positions with every ball but the cue ball moved away from the foot spot
+    (the apex's) by the factor 1 + gap: touching neighbours' centres end 2R (1 + gap) apart."""
+    import numpy as np
+
+    pos = scene.pos.copy()
+    spot = np.array(scene.table.foot_spot)
+    moved = [i for i, bid in enumerate(scene.ids) if bid != "cue"]
+    pos[moved] = spot + (1.0 + gap) * (pos[moved] - spot)
+    return pos
+
+
+def break_setup(scene: Any, pos: Any = None) -> dict:
+    """What the worker needs to build termpool's break: the scene's table, balls (at `pos` if
+    given), their starting motion and the physics figures pooltool has names for."""
     t, ph = scene.table, scene.physics
+    pos = scene.pos if pos is None else pos
     return {
         "table": {k: float(getattr(t, k)) for k in (
             "length", "width", "corner_mouth", "side_mouth",
@@ -161,7 +186,7 @@ def break_setup(scene: Any) -> dict:
             "mu_slide", "mu_roll", "mu_spin", "e_ball", "e_cushion", "mu_cushion",
             "cushion_height", "g")},
         "balls": [
-            {"id": bid, "pos": [float(v) for v in scene.pos[i]],
+            {"id": bid, "pos": [float(v) for v in pos[i]],
              "vel": [float(v) for v in scene.vel[i]], "w": [float(v) for v in scene.w[i]],
              "radius": float(scene.radius[i]), "mass": float(scene.mass[i])}
             for i, bid in enumerate(scene.ids)
@@ -170,12 +195,13 @@ def break_setup(scene: Any) -> dict:
     }
 
 
-def alternate(term: Callable[[], float], pool: Callable[[], float], pairs: int
+def alternate(term: Callable[[], float], pool: Callable[[], float], pairs: int, start: int = 0
               ) -> list[tuple[float, float]]:
     """(termpool, pooltool) CPU seconds of `pairs` pairs of runs, termpool first in the even
-    pairs and pooltool first in the odd ones, so neither side always follows the other."""
+    pairs and pooltool first in the odd ones (counting from `start`), so neither side always
+    follows the other."""
     out = []
-    for k in range(pairs):
+    for k in range(start, start + pairs):
         if k % 2 == 0:
             t = term()
             p = pool()
@@ -186,55 +212,71 @@ def alternate(term: Callable[[], float], pool: Callable[[], float], pairs: int
     return out
 
 
-def summary(version: str | None, pairs: list[tuple[float, float]], events: list[int]) -> dict:
-    """The flat figures of the paired runs (all None without pooltool)."""
-    if version is None:
-        return dict.fromkeys(FIGURES)
+def summary(pairs: list[tuple[float, float]], events: list[int], infix: str = "") -> dict:
+    """The flat figures of one break's paired runs."""
     return {
-        "pooltool_version": version,
-        "pooltool_break_cpu_ms": 1e3 * statistics.median(p for _, p in pairs),
-        "pooltool_events": int(statistics.median_low(events)),
-        "pooltool_pair_termpool_cpu_ms": 1e3 * statistics.median(t for t, _ in pairs),
-        KEY: statistics.median(p / t for t, p in pairs),
+        f"pooltool{infix}_break_cpu_ms": 1e3 * statistics.median(p for _, p in pairs),
+        f"pooltool{infix}_events": int(statistics.median_low(events)),
+        f"pooltool{infix}_pair_termpool_cpu_ms": 1e3 * statistics.median(t for t, _ in pairs),
+        f"vs_pooltool{infix}_cpu": statistics.median(p / t for t, p in pairs),
     }
 
 
-def termpool_break(scene: Any, dt: float) -> Callable[[], float]:
+def termpool_break(scene: Any, dt: float, pos: Any = None) -> Callable[[], float]:
     """CPU seconds of one termpool break as `bench speed` times it: Engine built, run to rest."""
     def run() -> float:
         c0 = time.process_time()
-        make_engine(scene).run(dt)
+        make_engine(scene, pos).run(dt)
         return time.process_time() - c0
 
     return run
 
 
+def termpool_events(scene: Any, dt: float, pos: Any = None) -> int:
+    """The events of termpool's break (a recorded run, outside the timing)."""
+    eng = make_engine(scene, pos, record=True)
+    eng.run(dt)
+    return len(eng.events[0])
+
+
 def figures(worker: Worker | None, scene: Any, dt: float, pairs: int) -> dict:
-    """The paired figures, with the details under "pooltool" (None without pooltool)."""
+    """The paired figures of every break in BREAKS, pair by pair in turn, with the details
+    under "pooltool" (None, and every figure None, without pooltool)."""
     if worker is None:
-        return {"pooltool": None, **summary(None, [], [])}
-    ready = worker.setup(scene)
-    term = termpool_break(scene, dt)
-    term()  # termpool's warm-up run, as bench speed's own break has one
-    runs: list[dict] = []
+        return {"pooltool": None, **dict.fromkeys(FIGURES)}
+    sides, ready = {}, {}
+    for name, (_, gap) in BREAKS.items():
+        pos = open_rack(scene, gap) if gap else None
+        ready[name] = worker.setup(scene, name, pos)
+        sides[name] = termpool_break(scene, dt, pos)
+        sides[name]()  # termpool's warm-up run, as bench speed's own break has one
+    runs: dict[str, list[dict]] = {name: [] for name in BREAKS}
+    cpu: dict[str, list[tuple[float, float]]] = {name: [] for name in BREAKS}
 
-    def pool() -> float:
-        runs.append(worker.run_break())
-        return float(runs[-1]["cpu_s"])
+    def pool(name: str) -> Callable[[], float]:
+        def run() -> float:
+            runs[name].append(worker.run_break(name))
+            return float(runs[name][-1]["cpu_s"])
+        return run
 
-    cpu = alternate(term, pool, pairs)
-    events = [int(r["events"]) for r in runs]
-    details = {
-        "python": worker.python,
-        "from": worker.origin,
-        "pairs": pairs,
-        "warm_cpu_s": ready["warm_cpu_s"],
-        "termpool_cpu_ms": [1e3 * t for t, _ in cpu],
-        "pooltool_cpu_ms": [1e3 * p for _, p in cpu],
-        "pooltool_wall_ms": [1e3 * float(r["wall_s"]) for r in runs],
-        "events": events,
-    }
-    return {"pooltool": details, **summary(worker.version, cpu, events)}
+    for k in range(pairs):
+        for name in BREAKS:
+            cpu[name] += alternate(sides[name], pool(name), 1, start=k)
+    out: dict[str, Any] = {"pooltool_version": worker.version}
+    details: dict[str, Any] = {"python": worker.python, "from": worker.origin, "pairs": pairs}
+    for name, (infix, gap) in BREAKS.items():
+        events = [int(r["events"]) for r in runs[name]]
+        out.update(summary(cpu[name], events, infix))
+        details[name] = {
+            "rack_gap": gap,
+            "termpool_events": termpool_events(scene, dt, open_rack(scene, gap) if gap else None),
+            "warm_cpu_s": ready[name]["warm_cpu_s"],
+            "termpool_cpu_ms": [1e3 * t for t, _ in cpu[name]],
+            "pooltool_cpu_ms": [1e3 * p for _, p in cpu[name]],
+            "pooltool_wall_ms": [1e3 * float(r["wall_s"]) for r in runs[name]],
+            "events": events,
+        }
+    return {"pooltool": details, **out}
 
 
 def judge(out: dict) -> None:
@@ -250,12 +292,16 @@ def format_lines(r: dict) -> list[str]:
     if r.get("pooltool") is None:
         return [f"pooltool: not measured (give --pooltool PYTHON or set {ENV})"]
     d, verdict = r["pooltool"], {True: "PASS", False: "MISS"}[r["pass"][KEY]]
-    return [
-        f"against pooltool {r['pooltool_version']} ({d['python']}), {d['pairs']} paired runs, "
-        f"CPU medians: termpool {r['pooltool_pair_termpool_cpu_ms']:.1f} ms, pooltool "
-        f"{r['pooltool_break_cpu_ms']:.1f} ms ({r['pooltool_events']} events); "
-        f"pooltool/termpool {r[KEY]:.2f} (target {r['targets'][KEY]}) {verdict}",
-    ]
+    lines = [f"against pooltool {r['pooltool_version']} ({d['python']}), {d['pairs']} paired "
+             f"runs a break, CPU medians:"]
+    for name, (infix, gap) in BREAKS.items():
+        target = f" (target {r['targets'][KEY]}) {verdict}" if not infix else ""
+        lines.append(
+            f"  {name} rack{f' (gap {gap:g} x 2R)' if gap else ''}: termpool "
+            f"{r[f'pooltool{infix}_pair_termpool_cpu_ms']:.1f} ms, pooltool "
+            f"{r[f'pooltool{infix}_break_cpu_ms']:.1f} ms ({r[f'pooltool{infix}_events']} "
+            f"events); pooltool/termpool {r[f'vs_pooltool{infix}_cpu']:.2f}{target}")
+    return lines
 
 
 def add_arguments(p: Any) -> None:

@@ -6,11 +6,11 @@ Run by an interpreter that has pooltool (often a separate environment), so it us
 standard library and pooltool, never termpool. It talks one JSON object a line:
 
     worker -> {"ok": true, "version": V}          once pooltool is imported
-    {"op": "setup", ...}  -> {"ok": true, "events": E, "warm_cpu_s": [...]}
-        builds the break from termpool's scene (`setup` below), then runs it `warm` times
-        untimed-for-the-figures, so numba has compiled everything before the first timed run
-    {"op": "break"}       -> {"ok": true, "cpu_s": C, "wall_s": W, "events": E}
-        one break from the built template to rest; C is time.process_time() around it
+    {"op": "setup", "name": N, ...} -> {"ok": true, "events": E, "warm_cpu_s": [...]}
+        builds break N from termpool's scene (`pooltool_break` below), then runs it `warm`
+        times, outside the figures, so numba has compiled everything before the first timed run
+    {"op": "break", "name": N}      -> {"ok": true, "cpu_s": C, "wall_s": W, "events": E}
+        one break N from its built template to rest; C is time.process_time() around it
     end of input          -> the worker exits 0
     any failure           -> {"ok": false, "error": ONE_LINE}, and the worker exits 1
 """
@@ -46,17 +46,18 @@ def serve(make_break: Callable[[dict], Break], version: str,
     """Answer setup and break requests until the end of input (the protocol above).
     `make_break(setup)` builds the break; a stand-in engine can be served the same way."""
     _say(stdout, {"ok": True, "version": version})
-    brk: Break | None = None
+    breaks: dict[str, Break] = {}
     for line in stdin:
         try:
             req = json.loads(line)
+            name = str(req.get("name", ""))
             if req["op"] == "setup":
-                brk = make_break(req)
-                runs = [_timed(brk) for _ in range(max(1, int(req.get("warm", 1))))]
+                breaks[name] = make_break(req)
+                runs = [_timed(breaks[name]) for _ in range(max(1, int(req.get("warm", 1))))]
                 answer = {"ok": True, "events": runs[-1]["events"],
                           "warm_cpu_s": [r["cpu_s"] for r in runs]}
-            elif req["op"] == "break" and brk is not None:
-                answer = {"ok": True, **_timed(brk)}
+            elif req["op"] == "break" and name in breaks:
+                answer = {"ok": True, **_timed(breaks[name])}
             else:
                 raise ValueError(f"unexpected request {line.strip()[:80]!r}")
         except Exception as e:  # noqa: BLE001 -- every failure goes back as one line

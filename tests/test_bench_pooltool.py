@@ -25,7 +25,7 @@ import json, runpy, sys
 worker = runpy.run_path(sys.argv[1])
 
 def make_break(setup):
-    with open({setup_file!r}, "w") as f:
+    with open({setup_file!r} + setup["name"], "w") as f:
         json.dump(setup, f)
     if {fail_setup!r}:
         raise ValueError("no such table")
@@ -41,7 +41,7 @@ raise SystemExit(rc)
 def _fake(tmp_path: Path, fail_setup: bool = False, body: str | None = None) -> Path:
     path = tmp_path / "fakepython"
     path.write_text(body or FAKE.format(
-        python=sys.executable, setup_file=str(tmp_path / "setup.json"),
+        python=sys.executable, setup_file=str(tmp_path / "setup-"),
         done_file=str(tmp_path / "done"), fail_setup=fail_setup))
     path.chmod(0o755)
     return path
@@ -174,25 +174,32 @@ def test_paired_figures_with_a_stand_in_worker(tmp_path: Path,
     d = r["pooltool"]
     assert r["pooltool_version"] == "fake 1.0"
     assert d["from"] == "--pooltool" and d["pairs"] == 3 and d["python"] == str(fake)
-    assert len(d["warm_cpu_s"]) == pooltool_pair.WARM_BREAKS
-    term, pool = d["termpool_cpu_ms"], d["pooltool_cpu_ms"]
-    assert len(term) == len(pool) == len(d["pooltool_wall_ms"]) == len(d["events"]) == 3
-    assert all(t > 0 for t in term) and all(p > 0 for p in pool)
-    assert r["pooltool_break_cpu_ms"] == statistics.median(pool)
-    assert r["pooltool_pair_termpool_cpu_ms"] == statistics.median(term)
-    ratio = statistics.median(p / t for t, p in zip(term, pool, strict=True))
-    assert r["vs_pooltool_cpu"] == pytest.approx(ratio, rel=1e-12)
-    assert r["pass"]["vs_pooltool_cpu"] is (r["vs_pooltool_cpu"] >= 4)
-    # The worker was sent termpool's own break scene: every ball, the cue ball at 8 m/s.
     scene = speed.break_scene()
-    setup = json.loads((tmp_path / "setup.json").read_text())
-    assert r["pooltool_events"] == len(scene.ids) == len(setup["balls"])
-    assert [b["id"] for b in setup["balls"]] == scene.ids
-    cue = setup["balls"][scene.index("cue")]
-    assert cue["pos"] == scene.pos[scene.index("cue")].tolist()
-    assert math.hypot(*cue["vel"]) == speed.BREAK_SPEED
-    assert setup["table"]["length"] == scene.table.length
-    assert setup["warm"] == pooltool_pair.WARM_BREAKS
+    assert set(pooltool_pair.BREAKS) <= set(d)
+    for name, (infix, gap) in pooltool_pair.BREAKS.items():
+        b = d[name]
+        assert b["rack_gap"] == gap
+        assert len(b["warm_cpu_s"]) == pooltool_pair.WARM_BREAKS
+        term, pool = b["termpool_cpu_ms"], b["pooltool_cpu_ms"]
+        assert len(term) == len(pool) == len(b["pooltool_wall_ms"]) == len(b["events"]) == 3
+        assert all(t > 0 for t in term) and all(p > 0 for p in pool)
+        assert r[f"pooltool{infix}_break_cpu_ms"] == statistics.median(pool)
+        assert r[f"pooltool{infix}_pair_termpool_cpu_ms"] == statistics.median(term)
+        ratio = statistics.median(p / t for t, p in zip(term, pool, strict=True))
+        assert r[f"vs_pooltool{infix}_cpu"] == pytest.approx(ratio, rel=1e-12)
+        assert b["termpool_events"] > 0
+        # The worker was sent termpool's own break scene: every ball, the cue ball at 8 m/s.
+        setup = json.loads((tmp_path / f"setup-{name}").read_text())
+        assert r[f"pooltool{infix}_events"] == len(scene.ids) == len(setup["balls"])
+        assert [b["id"] for b in setup["balls"]] == scene.ids
+        cue = setup["balls"][scene.index("cue")]
+        assert cue["pos"] == scene.pos[scene.index("cue")].tolist()
+        assert math.hypot(*cue["vel"]) == speed.BREAK_SPEED
+        assert setup["table"]["length"] == scene.table.length
+        assert setup["warm"] == pooltool_pair.WARM_BREAKS
+    assert r["pass"]["vs_pooltool_cpu"] is (r["vs_pooltool_cpu"] >= 4)
+    frozen = json.loads((tmp_path / "setup-frozen").read_text())["balls"]
+    assert [b["pos"] for b in frozen] == scene.pos.tolist()
     assert (tmp_path / "done").exists()  # the worker saw the end of its input and exited
 
 
@@ -202,6 +209,7 @@ def test_the_variable_names_the_interpreter(tmp_path: Path, monkeypatch: pytest.
     assert bench.main(["speed", "--repeat", "1", "--batch", "4", "--pairs", "1"]) == 0
     out = capsys.readouterr().out
     assert "against pooltool fake 1.0" in out and "1 paired runs" in out
+    assert "frozen rack" in out and "open rack" in out
     assert (tmp_path / "done").exists()
 
 
@@ -209,7 +217,7 @@ def test_no_pooltool_skips_a_named_interpreter(tmp_path: Path,
                                               capsys: pytest.CaptureFixture[str]) -> None:
     r = _speed_json(capsys, "--pooltool", str(_fake(tmp_path)), "--no-pooltool")
     assert r["pooltool"] is None and r["vs_pooltool_cpu"] is None
-    assert not (tmp_path / "setup.json").exists()
+    assert not list(tmp_path.glob("setup-*"))
 
 
 # ------------------------------------------------------------------------------ the parts
@@ -231,13 +239,27 @@ def test_pairs_alternate_which_side_goes_first() -> None:
 
 
 def test_summary_takes_the_median_of_the_pairs_ratios() -> None:
-    # Ratios 4, 3 and 6: their median is 4, while the ratio of the medians would be 5/2.
-    s = pooltool_pair.summary("x", [(1.0, 4.0), (2.0, 6.0), (3.0, 18.0)], [5, 7, 7])
-    assert s["vs_pooltool_cpu"] == 4.0
-    assert s["pooltool_break_cpu_ms"] == 6000.0
-    assert s["pooltool_pair_termpool_cpu_ms"] == 2000.0
-    assert s["pooltool_events"] == 7
-    assert pooltool_pair.summary(None, [], []) == dict.fromkeys(pooltool_pair.FIGURES)
+    # Ratios 4, 3 and 6: their median is 4, while the ratio of the medians would be 3.
+    s = pooltool_pair.summary([(1.0, 4.0), (2.0, 6.0), (3.0, 18.0)], [5, 7, 7], "_open")
+    assert s == {"vs_pooltool_open_cpu": 4.0, "pooltool_open_break_cpu_ms": 6000.0,
+                 "pooltool_open_pair_termpool_cpu_ms": 2000.0, "pooltool_open_events": 7}
+    assert set(s) <= set(pooltool_pair.FIGURES)
+
+
+def test_open_rack_keeps_the_cue_ball_and_spreads_the_rack_evenly() -> None:
+    scene = speed.break_scene()
+    gap = 1e-3
+    pos = pooltool_pair.open_rack(scene, gap)
+    cue, apex = scene.index("cue"), scene.index(speed.APEX_ID)
+    assert (pos[cue] == scene.pos[cue]).all()
+    assert pos[apex] == pytest.approx(scene.pos[apex], abs=1e-12)  # on the foot spot
+    # Neighbours that touched are 2R (1 + gap) apart; none comes closer than that.
+    d = [math.dist(pos[i], pos[j]) for i in range(len(pos)) for j in range(i)
+         if cue not in (i, j)]
+    touching = 2 * float(scene.radius[0])
+    assert min(d) == pytest.approx(touching * (1 + gap), rel=1e-9)
+    closest = sum(1 for x in d if x < touching * (1 + 2 * gap))
+    assert closest == 30  # a 15-ball triangle: 10 contacts within rows, 20 between them
 
 
 def test_judge_marks_the_target() -> None:
