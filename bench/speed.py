@@ -49,6 +49,8 @@ TARGETS = {
     "break_ms": ("<=", 60.0),
     "batch_breaks_per_s": (">=", 200.0),
     "import_s": ("<", 0.3),
+    "decision_cpu_s": ("<=", 0.3),  # the computer (hard), a decision in play: median ...
+    "decision_cpu_s_max": ("<=", 1.0),  # ... and the largest
 }
 
 
@@ -194,15 +196,20 @@ def _check(value: float, op: str, bound: float) -> bool:
     return {"<=": value <= bound, ">=": value >= bound, "<": value < bound}[op]
 
 
-def speed_figures(dt: float, repeat: int, batch: int) -> dict:
+def speed_figures(dt: float, repeat: int, batch: int, games: int = 0) -> dict:
     scene = break_scene()
     out: dict[str, Any] = {"dt": dt, "repeat": repeat}
     out.update(time_break(scene, dt, repeat))
     out.update(time_batch(scene, dt, batch))
     out.update(time_import())
     out.update(break_events(scene, dt))
+    if games:
+        from bench.decisions import time_decisions
+
+        out.update(time_decisions(games))
     out["targets"] = {k: f"{op} {bound:g}" for k, (op, bound) in TARGETS.items()}
-    out["pass"] = {k: _check(out[k], op, bound) for k, (op, bound) in TARGETS.items()}
+    out["pass"] = {k: _check(out[k], op, bound) for k, (op, bound) in TARGETS.items()
+                   if k in out}
     out["machine"] = machine_info()
     return out
 
@@ -243,6 +250,24 @@ def format_speed(r: dict) -> str:
             f"median of {len(r['import_s_runs'])} fresh interpreters",
         ),
     ]
+    if "decision_cpu_s" in r:
+        rows += [
+            (
+                "decision (hard)",
+                f"{r['decision_cpu_s']:.3f} s",
+                TARGETS["decision_cpu_s"],
+                "decision_cpu_s",
+                f"CPU, median of its decisions in play (not the break) over "
+                f"{r['decision_games']} games against itself, {r['decision_shots']:.0f} shots",
+            ),
+            (
+                "  slowest",
+                f"{r['decision_cpu_s_max']:.3f} s",
+                TARGETS["decision_cpu_s_max"],
+                "decision_cpu_s_max",
+                "CPU",
+            ),
+        ]
     table = [("figure", "value", "target", "result", "notes")]
     for label, value, (op, bound), key, note in rows:
         target = f"{op} {bound:g}" if key else ""
@@ -301,9 +326,18 @@ def main(argv: list[str]) -> int:
         default=DT,
         help="fixed time step in seconds (default 1/60; fractions like 1/120 work)",
     )
+    p.add_argument(
+        "--games",
+        type=int,
+        default=2,
+        help="8-ball games of the computer (hard) against itself, for its decision time in "
+        "play (default 2; 0 leaves them out)",
+    )
     args = p.parse_args(argv)
+    if args.games < 0:
+        p.error("--games: must be 0 or more")
     try:
-        result = speed_figures(args.dt, args.repeat, args.batch)
+        result = speed_figures(args.dt, args.repeat, args.batch, args.games)
     except (RuntimeError, ValueError, subprocess.TimeoutExpired) as e:
         say(f"bench speed: {e}")
         return 1
