@@ -52,6 +52,8 @@ TARGETS = {
     "break_ms": ("<=", 60.0),
     "batch_breaks_per_s": (">=", 200.0),
     "import_s": ("<", 0.3),
+    "decision_cpu_s": ("<=", 0.3),  # the computer (hard), a decision in play: median ...
+    "decision_cpu_s_max": ("<=", 1.0),  # ... and the largest
 }
 
 
@@ -197,15 +199,20 @@ def _check(value: float, op: str, bound: float) -> bool:
     return {"<=": value <= bound, ">=": value >= bound, "<": value < bound}[op]
 
 
-def speed_figures(dt: float, repeat: int, batch: int) -> dict:
+def speed_figures(dt: float, repeat: int, batch: int, games: int = 0) -> dict:
     scene = break_scene()
     out: dict[str, Any] = {"dt": dt, "repeat": repeat}
     out.update(time_break(scene, dt, repeat))
     out.update(time_batch(scene, dt, batch))
     out.update(time_import())
     out.update(break_events(scene, dt))
+    if games:
+        from bench.decisions import time_decisions
+
+        out.update(time_decisions(games))
     out["targets"] = {k: f"{op} {bound:g}" for k, (op, bound) in TARGETS.items()}
-    out["pass"] = {k: _check(out[k], op, bound) for k, (op, bound) in TARGETS.items()}
+    out["pass"] = {k: _check(out[k], op, bound) for k, (op, bound) in TARGETS.items()
+                   if k in out}
     out["machine"] = machine_info()
     return out
 
@@ -246,6 +253,24 @@ def format_speed(r: dict) -> str:
             f"median of {len(r['import_s_runs'])} fresh interpreters",
         ),
     ]
+    if "decision_cpu_s" in r:
+        rows += [
+            (
+                "decision (hard)",
+                f"{r['decision_cpu_s']:.3f} s",
+                TARGETS["decision_cpu_s"],
+                "decision_cpu_s",
+                f"CPU, median of its decisions in play (not the break) over "
+                f"{r['decision_games']} games against itself, {r['decision_shots']:.0f} shots",
+            ),
+            (
+                "  slowest",
+                f"{r['decision_cpu_s_max']:.3f} s",
+                TARGETS["decision_cpu_s_max"],
+                "decision_cpu_s_max",
+                "CPU",
+            ),
+        ]
     table = [("figure", "value", "target", "result", "notes")]
     for label, value, (op, bound), key, note in rows:
         target = f"{op} {bound:g}" if key else ""
@@ -307,14 +332,23 @@ def main(argv: list[str]) -> int:
         help="fixed time step in seconds (default 1/60; fractions like 1/120 work)",
     )
     pooltool_pair.add_arguments(p)
+    p.add_argument(
+        "--games",
+        type=int,
+        default=2,
+        help="8-ball games of the computer (hard) against itself, for its decision time in "
+        "play (default 2; 0 leaves them out)",
+    )
     args = p.parse_args(argv)
+    if args.games < 0:
+        p.error("--games: must be 0 or more")
     try:
         worker = pooltool_pair.start(args.pooltool, args.no_pooltool)
     except (ValueError, pooltool_pair.WorkerError) as e:
         say(f"bench speed: {e}")
         return 2 if isinstance(e, ValueError) else 1
     try:
-        result = speed_figures(args.dt, args.repeat, args.batch)
+        result = speed_figures(args.dt, args.repeat, args.batch, args.games)
         result.update(pooltool_pair.figures(worker, break_scene(), args.dt, args.pairs))
         pooltool_pair.judge(result)
     except (RuntimeError, ValueError, subprocess.TimeoutExpired) as e:

@@ -50,7 +50,7 @@ def _play(sc, pos, on, plan, state):
     vel[c], w[c] = strike(plan.speed, plan.angle, plan.side, plan.top, float(sc.radius[0]))
     eng = Engine(sc.table, sc.physics, pos[keep], vel, w, sc.radius[keep], sc.mass[keep])
     eng.run_events()
-    summary = summarize(eng.events[0], ids, is_break=state.is_break)
+    summary = summarize(eng.log[0], ids, is_break=state.is_break)
     out, nxt = judge(replace(state, called=plan.called), summary)
     pos, on = pos.copy(), on.copy()
     pos[keep] = eng.pos[0]

@@ -629,6 +629,25 @@ def test_plans_say_what_kind_of_shot_they_are():
     assert ai.choose_shot(*brk.args(), State(mode="8ball", is_break=True)).kind == "break"
 
 
+def test_a_shot_that_pots_is_a_pot_naming_what_dropped():
+    # A safety or kick that the batch saw pot a ball it did not aim at (a kiss, a bank) is
+    # chosen for that pot: it is a pot of that ball into that pocket, never a safety. Every
+    # candidate, played exactly, keeps the turn only as a pot naming what dropped.
+    lay = Layout({"cue": (0.38, 0.15), "2": (1.762, 0.255), "5": (1.56, 1.085),
+                  "10": (2.05, 0.214), "12": (1.191, 0.69), "8": (0.908, 0.493)})
+    down = tuple(b for b in (*SOLIDS, *STRIPES) if b not in lay.ids)
+    state = State(mode="8ball", pocketed=down, groups={0: "solids", 1: "stripes"})
+    plans = ai.score_shots(*lay.args(), state, level="hard", max_candidates=64)
+    kept = 0
+    for plan in plans:
+        summary, out, _ = play(lay, plan, state)
+        if out.continue_turn:
+            kept += 1
+            assert plan.kind in ("pot", "combo"), plan
+            assert summary.pocketed.get(plan.ball) == plan.pocket, plan
+    assert kept >= 3
+
+
 def _rack(mode):
     sc = load_scene({"table": "9ft", "balls": mode})
     return sc.ids, sc.pos
@@ -739,6 +758,33 @@ def test_safeties_lower_the_opponent_s_best_chance():
     assert seen == 2
 
 
+def test_a_safety_that_hides_is_played_and_hides_as_struck():
+    # Solids to shoot, none of them pottable (blocked, or no pocket to send it to); the 13
+    # sits in front of the cue ball, an easy pot for the opponent. A soft hit on the 3 by the
+    # foot rail sends the cue ball the length of the table, far from every stripe. Each level
+    # that plays safe plays a safety (not the kiss the batch found that drops the 6 now and
+    # then), and struck with its errors it leaves the opponent less, every time, and on
+    # average less than half of what they had.
+    lay = Layout({"cue": (0.571, 0.127), "2": (0.988, 1.208), "3": (2.477, 0.255),
+                  "6": (0.903, 0.462), "8": (0.336, 0.442), "11": (1.915, 0.728),
+                  "12": (1.084, 1.015), "13": (0.582, 0.211)})
+    down = tuple(b for b in (*SOLIDS, *STRIPES) if b not in lay.ids)
+    state = State(mode="8ball", pocketed=down, groups={0: "solids", 1: "stripes"})
+    opp = replace(state, shooter=1)
+    assert ai.best_chance(*lay.args(), state, sigma=0.1) == 0.0
+    before = ai.best_chance(*lay.args(), opp)
+    assert before > 0.5
+    for level in ("normal", "hard", "pro"):
+        plan = ai.choose_shot(*lay.args(), state, level=level)
+        assert plan.kind == "safety", (level, plan)
+        after = []
+        for seed in range(6):
+            left, out = _after(lay, ai.as_struck(plan, level, seed), state)
+            assert out.foul is None and not out.continue_turn, (level, seed, out)
+            after.append(ai.best_chance(*left.args(), opp))
+        assert max(after) < before and np.mean(after) < before / 2, (level, after)
+
+
 def test_the_levels_table_in_the_docs_is_the_levels():
     from pathlib import Path
 
@@ -761,8 +807,8 @@ def test_the_levels_table_in_the_docs_is_the_levels():
 
 def test_no_safety_when_there_is_nothing_left_to_hide(monkeypatch):
     # The opponent (stripes) has almost no pot from where the cue ball lies: no safety can
-    # leave them less, so the level goes for its own (unlikely) pot; scored without that rule
-    # it would have chosen a safety.
+    # leave them less, so every safety scores as leaving them the best table and the level
+    # goes for its own (unlikely) pot; scored without that rule, safeties would outrank it.
     lay = Layout({"cue": (0.38, 0.15), "2": (1.762, 0.255), "5": (1.56, 1.085),
                   "10": (2.05, 0.214), "12": (1.191, 0.69), "8": (0.908, 0.493)})
     down = tuple(b for b in (*SOLIDS, *STRIPES) if b not in lay.ids)
@@ -770,8 +816,17 @@ def test_no_safety_when_there_is_nothing_left_to_hide(monkeypatch):
     assert ai.best_chance(*lay.args(), replace(state, shooter=1)) < 0.1
     plan = ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64)
     assert plan.kind == "pot"
+
+    def scores() -> tuple[float, float]:  # the chosen pot's in the batch, the best safety's
+        plans = ai.score_shots(*lay.args(), state, level="hard", max_candidates=64)
+        pot = [p.score for p in plans if p[:4] == plan[:4]]
+        return pot[0], max(p.score for p in plans if p.kind == "safety")
+
+    pot, safety = scores()
+    assert safety <= -ai.LEVELS["hard"].leave < pot
     monkeypatch.setattr(ai.scoring, "_opponent_now", lambda *_: math.inf)  # the rule off
-    assert ai.choose_shot(*lay.args(), state, level="hard", max_candidates=64).kind == "safety"
+    pot, safety = scores()
+    assert safety > pot
 
 
 def test_the_computer_is_a_player_with_the_game_s_level_names():

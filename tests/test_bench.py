@@ -30,7 +30,8 @@ def _positive_finite(x: object) -> bool:
 
 
 def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
-    rc = bench.main(["speed", "--json", "--repeat", "1", "--batch", "4", "--no-pooltool"])
+    rc = bench.main(["speed", "--json", "--repeat", "1", "--batch", "4", "--no-pooltool",
+                     "--games", "0"])
     out = capsys.readouterr().out
     assert rc == 0
     result = json.loads(out)  # exactly one JSON object
@@ -46,6 +47,7 @@ def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert result["events"].get("ball_ball", 0) > 0
     assert set(result["pass"]) == {"break_ms", "batch_breaks_per_s", "import_s",
                                    "vs_pooltool_cpu"}
+    assert "decision_cpu_s" not in result  # no games asked for
     assert {"platform", "python", "numpy", "cpu_count", "date"} <= set(result["machine"])
 
 
@@ -61,7 +63,17 @@ def test_batch_breaks_are_deterministic_and_distinct() -> None:
     assert abs(speeds - speed.BREAK_SPEED).max() < 1e-9
 
 
-@pytest.mark.parametrize("argv", [["nope"], [], ["speed", "--batch", "0"], ["speed", "--bogus"]])
+def test_decision_time_comes_from_games_of_the_computer_against_itself() -> None:
+    from bench.decisions import time_decisions
+
+    r = time_decisions(1, max_shots=3)
+    assert r["decision_level"] == "hard" and r["decision_games"] == 1
+    assert r["decision_shots"] == 3  # the break is one of them, and is not timed here
+    assert 0 < r["decision_cpu_s"] <= r["decision_cpu_s_max"]
+
+
+@pytest.mark.parametrize("argv", [["nope"], [], ["speed", "--batch", "0"], ["speed", "--bogus"],
+                                  ["speed", "--games", "-1"]])
 def test_bad_usage_returns_2(argv: list[str], capsys: pytest.CaptureFixture[str]) -> None:
     assert bench.main(argv) == 2
     err = capsys.readouterr().err

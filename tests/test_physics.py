@@ -400,6 +400,31 @@ def test_batch_of_breaks_is_step_independent_and_matches_single_tables():
         assert alone.events[0] == events.events[b]
 
 
+def test_stopped_tables_keep_their_clock_and_the_others_run_on_unchanged():
+    # A batch's user may stop tables it has seen enough of (the computer's throw check): the
+    # others run on bit for bit as in the batch without the stop, and a stopped table's
+    # balls stay as they were when it stopped, with no events after.
+    from bench.speed import batch_breaks, break_scene
+
+    scene = break_scene()
+    pos, vel, w = batch_breaks(scene, 4)
+    args = (scene.table, scene.physics, pos, vel, w)
+    kw = {"radius": scene.radius, "mass": scene.mass}
+    full = Engine(*args, **kw)
+    full.run_events(duration=30.0)
+    part = Engine(*args, **kw)
+    part.run_events(duration=0.25)
+    held, n_events = part.pos[1].copy(), len(part.log[1])
+    part.stop([1])
+    part.run_events(duration=30.0)  # every other clock moves on to 30 s
+    assert np.array_equal(part.pos[1], held) and len(part.log[1]) == n_events
+    assert part.at_rest()[1]  # a stopped table counts as done for the run
+    assert len(full.log[1]) > n_events  # it had more to do
+    for b in (0, 2, 3):
+        assert np.array_equal(part.pos[b], full.pos[b])
+        assert part.events[b] == full.events[b]
+
+
 def test_reference_driver_on_a_table_already_at_rest():
     eng = Engine(BIG, Physics(), [[1.0, 1.0], [2.0, 2.0]])
     eng.run_events()

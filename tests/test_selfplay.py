@@ -27,7 +27,8 @@ KEYS = {"games", "mode", "levels", "wins", "pot_rate", "fouls_per_game", "break_
         "safeties_per_game", "shots_per_game", "decision_s", "decision_s_max", "wall_s"}
 PER_LEVEL = ("wins", "pot_rate", "fouls_per_game", "break_and_run_rate", "safeties_per_game",
              "decision_s", "decision_s_max")
-TIMES = ("decision_s", "decision_s_max", "decision_cpu_s", "wall_s", "jobs")
+TIMES = ("decision_s", "decision_s_max", "decision_cpu_s", "shot_decision_cpu_s",
+         "shot_decision_cpu_s_max", "wall_s", "jobs")
 
 
 def env() -> dict:
@@ -180,6 +181,8 @@ def test_a_game_s_tallies_match_its_record(monkeypatch):
     assert [t["breaks"] for t in g["tallies"]] == [1, 0]  # player 0 breaks
     for t in g["tallies"]:
         assert len(t["decisions"]) == t["shots"]
+        # The decisions in play are every one but the break's.
+        assert len(t["shot_cpu"]) == t["shots"] - t["breaks"]
         assert t["pots"] <= t["pot_attempts"]
 
 
@@ -227,7 +230,8 @@ def test_figures_pool_a_level_over_both_sides_and_count_player_games():
                   safety_foul=[False, True], kick_before=[0.1], kick_after=[0.6],
                   kick_foul=[False])]},
         {"winner": None, "shots": 30, "tallies": [
-            tally("hard", pot_attempts=2, pots=2, breaks=1, decisions=[1.0]),
+            tally("hard", pot_attempts=2, pots=2, breaks=1, decisions=[1.0],
+                  shot_cpu=[0.3, 0.9, 0.1]),
             tally("hard", fouls=1, foul_kinds={"no_rail": 1})]},
     ]
     r = sp.figures(games, ["hard", "hard"])
@@ -240,6 +244,8 @@ def test_figures_pool_a_level_over_both_sides_and_count_player_games():
     assert r["shots_per_game"] == 20
     assert r["decision_s"]["hard"] == pytest.approx(0.5)
     assert r["decision_s_max"]["hard"] == 1.0
+    assert r["shot_decision_cpu_s"]["hard"] == 0.3
+    assert r["shot_decision_cpu_s_max"]["hard"] == 0.9
     assert r["kicks_per_game"]["hard"] == pytest.approx(1 / 4)
     s = r["safeties"]["hard"]
     assert s["count"] == 2 and s["lowered"] == 0.5 and s["lowered_without_foul"] == 1.0

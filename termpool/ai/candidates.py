@@ -9,6 +9,7 @@ import numpy as np
 
 from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import Engine
+from termpool.physics.events import Event, EventKind
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
 
@@ -268,10 +269,10 @@ def calibrate(t: OnTable, cands: Cands, table: Table, physics: Physics,
         radius = np.stack([np.full(B, t.radius[t.cue]), t.radius[tgt]], axis=1)
         mass = np.stack([np.full(B, t.mass[t.cue]), t.mass[tgt]], axis=1)
         eng = Engine(plain, physics, pos, vel, w, radius, mass, record=True)
-        eng.run_events(duration=SIM_SECONDS)
+        heading = _run_to_heading(eng)
         final = eng.pos[:, 1]
         for n in range(B):
-            where = _heading_point(eng.events[n])
+            where = heading[n]
             end = final[n] if where is None else where
             d = end - pt[n]
             if float(np.linalg.norm(d)) < 0.02:  # not hit, or barely moved: keep the aim
@@ -285,19 +286,46 @@ def calibrate(t: OnTable, cands: Cands, table: Table, physics: Physics,
             cands.angle[k] = geo.deg(ghost - pc)
 
 
-def _heading_point(events: list[dict]) -> np.ndarray | None:
-    """Where the object ball (index 1) first meets a cushion or a ball again after it was hit."""
-    hit = False
-    for ev in events:
-        if 1 not in ev["i"]:
+CALIBRATE_SLICE = 0.25  # simulated seconds between looks at which tables are done
+
+
+def _run_to_heading(eng: Engine) -> list[np.ndarray | None]:
+    """Run the two-ball tables until each object ball has shown where it heads (or to
+    SIM_SECONDS); returns those points. A table is stopped once its point is known: what it
+    does after is not read, and the rest run on exactly as in one run."""
+    heading: list[np.ndarray | None] = [None] * eng.B
+    seen = [0] * eng.B  # events already looked at, per table
+    hit = [False] * eng.B
+    t = 0.0
+    while t < SIM_SECONDS and not eng.at_rest().all():
+        t = min(t + CALIBRATE_SLICE, SIM_SECONDS)
+        eng.run_events(duration=t)
+        done = []
+        for n in range(eng.B):
+            if heading[n] is None:
+                heading[n], hit[n], seen[n] = _heading_point(eng.log[n], hit[n], seen[n])
+                if heading[n] is not None:
+                    done.append(n)
+        if done:
+            eng.stop(done)
+    eng.run_events(duration=SIM_SECONDS)
+    return heading
+
+
+def _heading_point(events: list[Event], hit: bool, start: int
+                   ) -> tuple[np.ndarray | None, bool, int]:
+    """Where the object ball (index 1) first meets a cushion or a ball again after it was
+    hit, looking from event `start` on; returns (the point or None, hit yet, events seen)."""
+    for ev in events[start:]:
+        if 1 not in ev.balls:
             continue
-        if ev["type"] == "ball_ball" and not hit:
+        if ev.kind is EventKind.BALL_BALL and not hit:
             hit = True
             continue
-        if hit and ev["type"] in ("cushion", "ball_ball"):
-            k = ev["i"].index(1)
-            return np.array([ev["balls"][k]["x"], ev["balls"][k]["y"]])
-    return None
+        if hit and ev.kind in (EventKind.CUSHION, EventKind.BALL_BALL):
+            s = ev.states[ev.balls.index(1)]
+            return np.array([s.x, s.y]), hit, len(events)
+    return None, hit, len(events)
 
 
 def simulate(t: OnTable, cands: Cands, table: Table, physics: Physics,

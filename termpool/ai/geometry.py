@@ -47,16 +47,19 @@ def pocket_geometry(table: Table, radius: float) -> Pockets:
 
 def blocked(a: np.ndarray, b: np.ndarray, obst: np.ndarray, rad_move, rad_obst: np.ndarray,
             skip: np.ndarray) -> np.ndarray:
-    """True where a ball of radius rad_move going from a to b (..., 2) would touch an obstacle.
+    """True where a ball of radius rad_move going from a to b would touch an obstacle.
 
-    a, b: (B, M, 2); obst: (B, K, 2); rad_obst: (K,); skip: (B, M, K) obstacles to ignore.
+    a, b: (S, 2) segments; obst: (S, K, 2); rad_move: a number or (S,); rad_obst: (K,);
+    skip: (S, K) obstacles to ignore.
     """
     d = b - a
     length2 = np.maximum((d * d).sum(-1), 1e-12)
-    rel = obst[:, None] - a[:, :, None]  # (B, M, K, 2)
-    s = np.clip((rel * d[:, :, None]).sum(-1) / length2[:, :, None], 0.0, 1.0)
-    gap = rel - s[..., None] * d[:, :, None]
-    close = (gap * gap).sum(-1) < (rad_move + rad_obst[None, None]) ** 2 - 1e-9
+    rel = obst - a[:, None]  # (S, K, 2)
+    s = np.clip((rel * d[:, None]).sum(-1) / length2[:, None], 0.0, 1.0)
+    gap = rel - s[..., None] * d[:, None]
+    reach = np.asarray(rad_move, dtype=float)
+    reach = (reach[:, None] if reach.ndim else reach) + rad_obst[None]
+    close = (gap * gap).sum(-1) < reach ** 2 - 1e-9
     return (close & ~skip).any(-1)
 
 
@@ -92,19 +95,21 @@ def pot_chances(cue: np.ndarray, balls: np.ndarray, alive: np.ndarray, target: n
     tol = np.maximum(pockets.half[None, None] * approach - 0.6 * rc, 0.004)
     chance = pot_chance(tol, d1, d2, cos_cut, (rc + radius)[None, :, None], sigma)
     # Blockers: every live ball but the target (and the cue ball on the cue's own path).
-    idx = np.arange(N)
-    dead = ~alive[:, None, :]  # (B, 1, K)
-    flat = (B, N * P, 2)
-    skip_t = np.broadcast_to((idx[:, None, None] == idx[None, None, :]), (N, P, N))
-    skip_t = np.broadcast_to(skip_t.reshape(1, N * P, N), (B, N * P, N)) | dead
-    skip_c = skip_t | (idx == cue_idx)[None, None, :]
-    src = np.broadcast_to(cue[:, None, None], ghost.shape).reshape(flat)
-    path1 = blocked(src, ghost.reshape(flat), balls, rc, radius, skip_c)
-    start = np.broadcast_to(balls[:, :, None], ghost.shape).reshape(flat)
-    end = np.broadcast_to(pockets.aim[None, None], ghost.shape).reshape(flat)
-    rmove = np.broadcast_to(radius[None, :, None], (B, N, P)).reshape(B, N * P)[..., None]
-    path2 = blocked(start, end, balls, rmove, radius, skip_t)  # the cue ball blocks too
-    ok &= ~(path1 | path2).reshape(B, N, P)
+    # Only the pots still open are checked: most (ball, pocket) pairs are closed already.
+    ok = ok.reshape(B, N * P)
+    bi, mi = np.nonzero(ok)
+    if bi.size:
+        ni, pi = np.divmod(mi, P)
+        idx = np.arange(N)
+        obst = balls[bi]  # (S, N, 2)
+        skip_t = (ni[:, None] == idx[None]) | ~alive[bi]
+        skip_c = skip_t | (idx == cue_idx)[None]
+        g = ghost.reshape(B, N * P, 2)[bi, mi]
+        path1 = blocked(cue[bi], g, obst, rc, radius, skip_c)
+        path2 = blocked(balls[bi, ni], pockets.aim[pi], obst, radius[ni], radius, skip_t)
+        shut = path1 | path2  # the cue ball blocks the object ball's path too
+        ok[bi[shut], mi[shut]] = False
+    ok = ok.reshape(B, N, P)
     return np.where(ok, chance, 0.0), u
 
 

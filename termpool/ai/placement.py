@@ -76,7 +76,7 @@ def _break_spot(t: OnTable, table: Table, physics: Physics, state: State, area: 
         return spots[0]
     eng = simulate(t, cands, table, physics, np.array(cue_at))
     pockets = geo.pocket_geometry(table, float(t.radius[t.cue]))
-    scores, _, _ = score_tables(state, targets, t, cands, eng, table, pockets, lv)
+    scores, *_ = score_tables(state, targets, t, cands, eng, table, pockets, lv)
     mean = scores.reshape(len(spots), -1, BREAK_SAMPLES).mean(axis=2).max(axis=1)
     return spots[int(np.argmax(mean))]
 

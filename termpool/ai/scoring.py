@@ -46,10 +46,11 @@ def _call(state: State, targets: list[str], t: OnTable, cands: Cands, b: int, su
 
 
 def score_tables(state, targets, t, cands, eng, table, pockets, lv,
-           sampled: bool = False) -> tuple[np.ndarray, list, list]:
+                 sampled: bool = False) -> tuple[np.ndarray, list, list, list]:
     """Score every simulated table; returns (scores, calls, notes: (note, sees) pairs, see
-    `Plan`). With `sampled`, the tables are samples of aim error and every pot counts in
-    full."""
+    `Plan`, flukes). With `sampled`, the tables are samples of aim error and every pot aimed
+    at counts in full. `flukes` holds, for a shot that keeps the table by a pot it did not
+    aim at (a kiss, a bank: scored at FLUKE), the (ball, pocket) that dropped, else None."""
     B, n = eng.B, eng.N
     alive = eng.state != POCKETED
     final = eng.pos
@@ -57,6 +58,7 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
     calls: list = []
     notes: list = []
     sees: list = []
+    flukes: list = []
     leave_for: list[tuple[int, float, State]] = []  # (table, pot chance or -1, next state)
     practice = state.mode == "practice"
     # A pot that misses in play: the opponent gets the table (in practice, nobody does).
@@ -74,8 +76,12 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
         # by its chance, the break as it is, anything else (a kiss, a combination) a fluke.
         sunk = t.ids[cands.via[b]] if cands.via[b] >= 0 else tgt  # the ball aimed at a pocket
         intended = sunk is not None and aimed is not None and summary.pocketed.get(sunk) == aimed
-        p = 1.0 if cands.kind[b] == "break" or sampled else cands.chance[b] if intended \
-            else FLUKE
+        p = 1.0 if cands.kind[b] == "break" else (1.0 if sampled else cands.chance[b]) \
+            if intended else FLUKE
+        kept = out.winner == state.shooter or (out.continue_turn and bool(potted))
+        fluke = kept and bool(potted) and not intended and cands.kind[b] != "break"
+        ball = next((x for x in potted if x in targets), potted[0]) if fluke else None
+        flukes.append((ball, summary.pocketed[ball]) if fluke else None)
         pocket = None if aimed is None else SAID.pocket(aimed)
         if out.winner is not None:
             scores[b] = p * WIN + (1 - p) * miss if out.winner == state.shooter else LOSS
@@ -133,7 +139,7 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
                 scores[b] -= lv.leave
             else:
                 scores[b] -= lv.leave * value[r]
-    return scores, calls, list(zip(notes, sees, strict=True))
+    return scores, calls, list(zip(notes, sees, strict=True)), flukes
 
 
 def _opponent_now(state: State, t: OnTable, pockets: geo.Pockets, table: Table) -> float:

@@ -62,6 +62,7 @@ class _Eval(NamedTuple):
     scores: np.ndarray
     calls: list
     notes: list
+    flukes: list
 
 
 def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
@@ -89,20 +90,24 @@ def _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
         cands.extend(safety_cands(t, targets, table, physics,
                                    reserve if likely else budget - len(cands)))
     if len(cands) == 0:
-        return _Eval(t, targets, pockets, lv, cands, np.zeros(0), [], [])
+        return _Eval(t, targets, pockets, lv, cands, np.zeros(0), [], [], [])
     eng = simulate(t, cands, table, physics)
-    scores, calls, notes = score_tables(state, targets, t, cands, eng, table, pockets, lv)
-    return _Eval(t, targets, pockets, lv, cands, scores, calls, notes)
+    scores, calls, notes, flukes = score_tables(state, targets, t, cands, eng, table, pockets,
+                                                lv)
+    return _Eval(t, targets, pockets, lv, cands, scores, calls, notes, flukes)
 
 
 def _plan(ev: _Eval, b: int, score: float) -> Plan:
     c = ev.cands
-    ball = pocket = None
-    if c.kind[b] in ("pot", "combo"):
+    kind, ball, pocket = c.kind[b], None, None
+    if kind in ("pot", "combo"):
         ball = ev.t.ids[c.via[b] if c.via[b] >= 0 else c.target[b]]
         pocket = ev.pockets.names[c.pocket[b]]
+    if ev.flukes[b] is not None:  # played for the ball the batch saw drop: a pot, not a safety
+        ball, pocket = ev.flukes[b]
+        kind = "pot" if kind in ("safety", "kick") else kind
     return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
-                ev.calls[b], float(score), ev.notes[b][0], c.kind[b], ball, pocket,
+                ev.calls[b], float(score), ev.notes[b][0], kind, ball, pocket,
                 ev.notes[b][1])
 
 
@@ -127,11 +132,18 @@ VERIFY_POINTS = ((0.0, 0.0, 1 / 3), (1.0, 0.0, 1 / 6), (-1.0, 0.0, 1 / 6),
 def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[int, float]:
     """The best of the top few candidates once the level's errors are taken into account.
 
-    Each is simulated again at VERIFY_POINTS, aim and speed off by sqrt(3) of the level's
-    error, all in one batch, and scored as played (a pot counts in full where it goes in).
-    Returns (candidate, its expected score)."""
+    The best `verify` by the batch's score, and the best `verify // 2` safeties and kicks
+    besides (pots found by chance score above every safety in the batch and would crowd them
+    out), are each simulated again at VERIFY_POINTS, aim and speed off by sqrt(3) of the
+    level's error, all in one batch, and scored as played: a pot aimed at counts in full
+    where it goes in, a pot by chance (a kiss, a bank) at FLUKE as in the batch. The centre
+    point is the batch's own table, which a pot by chance was picked for: counted in full, it
+    alone was worth more than any safety. Returns (candidate, its expected score)."""
     c, lv = ev.cands, ev.lv
-    top = [int(k) for k in np.argsort(-ev.scores, kind="stable")[:lv.verify]]
+    order = [int(k) for k in np.argsort(-ev.scores, kind="stable")]
+    top = order[:lv.verify]
+    top += [k for k in order[lv.verify:] if c.kind[k] in ("safety", "kick")
+            and ev.flukes[k] is None][:lv.verify // 2]
     sub = Cands()
     da, dv = math.sqrt(3.0) * lv.aim_sd, math.sqrt(3.0) * lv.speed_sd
     for k in top:
@@ -139,7 +151,8 @@ def _verify(ev: _Eval, state: State, table: Table, physics: Physics) -> tuple[in
             sub.add(c.speed[k] * (1 + fv * dv), c.angle[k] + fa * da, c.side[k], c.top[k],
                     c.target[k], c.pocket[k], c.kind[k], 1.0, c.via[k], c.aim[k])
     eng = simulate(ev.t, sub, table, physics)
-    s, _, _ = score_tables(state, ev.targets, ev.t, sub, eng, table, ev.pockets, lv, sampled=True)
+    s, *_ = score_tables(state, ev.targets, ev.t, sub, eng, table, ev.pockets, lv,
+                         sampled=True)
     n = len(VERIFY_POINTS)
     expect = sum(w * s[j::n] for j, (_, _, w) in enumerate(VERIFY_POINTS))
     best = int(np.argmax(expect))  # the first of equal scores

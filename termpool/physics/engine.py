@@ -93,6 +93,7 @@ class Engine:
         self.max_work = WORK_LIMIT if max_work is None else max_work
         self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
         self._count = np.zeros(B, dtype=np.int64)
+        self._stopped: np.ndarray | None = None  # tables `stop` took out of the run
         # The collaborators: the balls and their motions, the table's features, the
         # predictions, the responses to fast events, groups, slow contacts, the event log.
         times = Schedule.new_times(B, N)
@@ -125,7 +126,10 @@ class Engine:
             with np.errstate(all="ignore"):  # infinities stand for "never"
                 self._run_events(t_end)
         if math.isfinite(t_end):
-            self.tb[:] = t_end
+            if self._stopped is None:
+                self.tb[:] = t_end
+            else:
+                self.tb[~self._stopped] = t_end
 
     def _run_events(self, t_end: float) -> None:
         one = self.B == 1  # one table (the usual case): no array scans
@@ -242,8 +246,18 @@ class Engine:
     def w(self) -> np.ndarray:
         return self.balls.now(self.tb)[2]
 
+    def stop(self, tables) -> None:
+        """Run no more events of `tables` (indices): their clocks stay where they are, so
+        positions read later are as of now. For a batch whose user has seen what it needed
+        of some tables; the other tables run on exactly as they would have."""
+        tables = np.asarray(tables, dtype=np.int64)
+        if self._stopped is None:
+            self._stopped = np.zeros(self.B, bool)
+        self._stopped[tables] = True
+        self.t_next[tables] = math.inf
+
     def at_rest(self) -> np.ndarray:
-        """(B,) True where every ball is stationary or pocketed."""
+        """(B,) True where every ball is stationary or pocketed (or the table was stopped)."""
         return np.isinf(self.t_next)
 
     def _all_at_rest(self) -> bool:

@@ -19,7 +19,7 @@ What is counted, per player and game:
   in hand after a foul, from the best spot), and whether it fouled;
 - the wall time of each decision (placing the cue ball in hand, choosing the shot), and the
   processor time it took (what it would take on an idle machine: a shared one stretches the
-  wall time).
+  wall time), and apart from the breaks, the processor time of each decision in play.
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ def game_seed(seed: int, index: int) -> int:
 def _tally(level: str) -> dict:
     return {"level": level, "shots": 0, "pot_attempts": 0, "pots": 0, "fouls": 0,
             "safeties": 0, "breaks": 0, "runs": 0, "after_pot_attempts": 0,
-            "after_pot_pots": 0, "decisions": [], "decisions_cpu": [], "kicks": 0,
+            "after_pot_pots": 0, "decisions": [], "decisions_cpu": [], "shot_cpu": [], "kicks": 0,
             **{f"{d}_{k}": [] for d in DEFENCE for k in ("before", "after", "foul")},
             "foul_kinds": {}}
 
@@ -112,6 +112,8 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
             struck = player.shot(m)  # as struck; its kind and target as meant
             mine["decisions"].append(clock() - t0)
             mine["decisions_cpu"].append(time.process_time() - c0)
+            if not m.state.is_break:
+                mine["shot_cpu"].append(mine["decisions_cpu"][-1])
             defence = DEFENCE.get(struck.kind)
             before = _chance_for(m, 1 - me, None) if defence else None
             is_break = m.state.is_break
@@ -169,7 +171,8 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
     """The figures of finished games (see `play_game`), pooled by level: for each level its
     wins, pot rate, fouls and safeties per game it played (a level on both sides counts two
     player-games a game), break-and-run rate (of its breaks), median and slowest decision
-    (and the median processor time of one);
+    (and the median processor time of one; and of the decisions in play, not on a break, the
+    median and the largest processor time);
     then shots per game, games without a winner, the pot rate after a pot (position) and the
     opponent's best chance before and after its safeties."""
     names = list(dict.fromkeys(levels))
@@ -219,6 +222,9 @@ def figures(games: Sequence[dict], levels: Sequence[str]) -> dict:
         "decision_s_max": per("d", lambda p: max(p["decisions"], default=None)),
         "decision_cpu_s": per("c", lambda p: statistics.median(p["decisions_cpu"])
                               if p["decisions_cpu"] else None),
+        "shot_decision_cpu_s": per("c", lambda p: statistics.median(p["shot_cpu"])
+                                   if p["shot_cpu"] else None),
+        "shot_decision_cpu_s_max": per("c", lambda p: max(p["shot_cpu"], default=None)),
         "undecided": undecided,
         "pot_attempts": per("a", lambda p: p["pot_attempts"]),
         "foul_kinds": per("f", lambda p: dict(sorted(p["foul_kinds"].items()))),
