@@ -52,6 +52,7 @@ TARGETS = {
     "break_ms": ("<=", 60.0),
     "batch_breaks_per_s": (">=", 200.0),
     "import_s": ("<", 0.3),
+    "numpy_calls_per_event": ("<=", 100.0),  # one table, the break (--calls, under valgrind)
     "decision_cpu_s": ("<=", 0.3),  # the computer (hard), a decision in play: median ...
     "decision_cpu_s_max": ("<=", 1.0),  # ... and the largest
 }
@@ -199,20 +200,25 @@ def _check(value: float, op: str, bound: float) -> bool:
     return {"<=": value <= bound, ">=": value >= bound, "<": value < bound}[op]
 
 
-def speed_figures(dt: float, repeat: int, batch: int, games: int = 0) -> dict:
+def speed_figures(dt: float, repeat: int, batch: int, games: int = 0,
+                  calls: bool = False) -> dict:
     scene = break_scene()
     out: dict[str, Any] = {"dt": dt, "repeat": repeat}
     out.update(time_break(scene, dt, repeat))
     out.update(time_batch(scene, dt, batch))
     out.update(time_import())
     out.update(break_events(scene, dt))
+    if calls:
+        from bench.npcalls import calls_per_event
+
+        out.update(calls_per_event(out["events_total"]))
     if games:
         from bench.decisions import time_decisions
 
         out.update(time_decisions(games))
     out["targets"] = {k: f"{op} {bound:g}" for k, (op, bound) in TARGETS.items()}
     out["pass"] = {k: _check(out[k], op, bound) for k, (op, bound) in TARGETS.items()
-                   if k in out}
+                   if out.get(k) is not None}
     out["machine"] = machine_info()
     return out
 
@@ -293,6 +299,10 @@ def format_speed(r: dict) -> str:
         f"{r['break_sim_s']:.2f} s simulated",
         f"events ({r['events_total']}): {ev}",
         f"run_events() reference: {r['run_events_ms']:.1f} ms ({r['run_events_passes']} passes)",
+        *([f"numpy calls: {r['numpy_calls_per_event']:.0f} an event "
+           f"({r['numpy_calls_per_break']:.0f} a break; target <= 100: "
+           f"{ok[r['pass']['numpy_calls_per_event']]}), counted under valgrind"]
+          if r.get("numpy_calls_per_event") is not None else []),
         "",
     ]
     m = r["machine"]
@@ -339,6 +349,11 @@ def main(argv: list[str]) -> int:
         help="8-ball games of the computer (hard) against itself, for its decision time in "
         "play (default 2; 0 leaves them out)",
     )
+    p.add_argument(
+        "--calls",
+        action="store_true",
+        help="count numpy calls per event of the break under valgrind (a minute or two)",
+    )
     args = p.parse_args(argv)
     if args.games < 0:
         p.error("--games: must be 0 or more")
@@ -348,7 +363,7 @@ def main(argv: list[str]) -> int:
         say(f"bench speed: {e}")
         return 2 if isinstance(e, ValueError) else 1
     try:
-        result = speed_figures(args.dt, args.repeat, args.batch, args.games)
+        result = speed_figures(args.dt, args.repeat, args.batch, args.games, args.calls)
         result.update(pooltool_pair.figures(worker, break_scene(), args.dt, args.pairs))
         pooltool_pair.judge(result)
     except (RuntimeError, ValueError, subprocess.TimeoutExpired) as e:

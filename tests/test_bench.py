@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 
 import pytest
 
@@ -83,3 +84,49 @@ def test_bad_usage_returns_2(argv: list[str], capsys: pytest.CaptureFixture[str]
 def test_help(capsys: pytest.CaptureFixture[str]) -> None:
     assert bench.main(["--help"]) == 0
     assert "speed" in capsys.readouterr().out
+
+
+CALLGRIND = """\
+fn=(1) caller
+cfn=(2) ufunc_generic_vectorcall
+calls=5 0
+0 100
+cfn=(3) array_add
+calls=2 0
+0 10
+cfn=(4) array_tolist
+calls=3 0
+0 10
+fn=(5) other
+cfn=(2)
+calls=4 0
+0 10
+cfn=(6) list_append
+calls=9 0
+0 1
+"""
+
+
+def test_numpy_calls_are_read_from_callgrind_at_numpy_s_entry_points() -> None:
+    from bench import npcalls
+
+    counts = npcalls.parse_calls(CALLGRIND)
+    assert counts["ufunc_generic_vectorcall"] == 9  # summed over callers, name given once
+    points = npcalls.entry_points()
+    assert "array_add" not in points  # an operator: its ufunc call is the one counted
+    assert {"array_tolist", "array_size_get", "array_subscript"} <= points
+    assert npcalls.numpy_calls(counts, points) == 9 + 3
+
+
+@pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind is not installed")
+def test_numpy_calls_counted_under_valgrind(tmp_path) -> None:
+    from bench import npcalls
+
+    runner = tmp_path / "run.py"
+    runner.write_text("import sys\nimport numpy as np\na = np.ones(3)\n"
+                      "for _ in range(int(sys.argv[1])):\n"
+                      "    b = a + a; np.concatenate([a, b]); b[0] = a[1]; a.tolist()\n")
+    points = npcalls.entry_points()
+    one, three = (npcalls.numpy_calls(npcalls.callgrind(tmp_path, "run.py", k), points)
+                  for k in (1, 3))
+    assert three - one == 2 * 5  # a ufunc, a function, a write, a read, a method a round
