@@ -47,11 +47,13 @@ def parse_calls(text: str) -> Counter:
     names: dict[str, str] = {}
     current = None
     for line in text.splitlines():
-        m = re.match(r"cfn=\((\d+)\)(?: (.*))?", line)
+        # Function names are compressed: "(id) name" the first time, "(id)" after, in one
+        # namespace shared by fn= (the caller) and cfn= (the called) lines.
+        m = re.match(r"(c?)fn=\((\d+)\)(?: (.*))?", line)
         if m:
-            if m.group(2):
-                names[m.group(1)] = m.group(2)
-            current = names.get(m.group(1))
+            if m.group(3):
+                names[m.group(2)] = m.group(3)
+            current = names.get(m.group(2)) if m.group(1) else None
             continue
         m = re.match(r"calls=(\d+)", line)
         if m and current:
