@@ -9,6 +9,8 @@ import numpy as np
 
 from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import Engine
+from termpool.physics.events import Event, EventKind
+from termpool.physics.log import LIGHT
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
 
@@ -271,7 +273,7 @@ def calibrate(t: OnTable, cands: Cands, table: Table, physics: Physics,
         eng.run_events(duration=SIM_SECONDS)
         final = eng.pos[:, 1]
         for n in range(B):
-            where = _heading_point(eng.events[n])
+            where = _heading_point(eng.log[n])
             end = final[n] if where is None else where
             d = end - pt[n]
             if float(np.linalg.norm(d)) < 0.02:  # not hit, or barely moved: keep the aim
@@ -285,24 +287,25 @@ def calibrate(t: OnTable, cands: Cands, table: Table, physics: Physics,
             cands.angle[k] = geo.deg(ghost - pc)
 
 
-def _heading_point(events: list[dict]) -> np.ndarray | None:
+def _heading_point(events: list[Event]) -> np.ndarray | None:
     """Where the object ball (index 1) first meets a cushion or a ball again after it was hit."""
     hit = False
     for ev in events:
-        if 1 not in ev["i"]:
+        if 1 not in ev.balls:
             continue
-        if ev["type"] == "ball_ball" and not hit:
+        if ev.kind is EventKind.BALL_BALL and not hit:
             hit = True
             continue
-        if hit and ev["type"] in ("cushion", "ball_ball"):
-            k = ev["i"].index(1)
-            return np.array([ev["balls"][k]["x"], ev["balls"][k]["y"]])
+        if hit and ev.kind in (EventKind.CUSHION, EventKind.BALL_BALL):
+            s = ev.states[ev.balls.index(1)]
+            return np.array([s.x, s.y])
     return None
 
 
 def simulate(t: OnTable, cands: Cands, table: Table, physics: Physics,
               cue_at: np.ndarray | None = None) -> Engine:
-    """All candidates in one batch; `cue_at` (B, 2) puts the cue ball elsewhere per table."""
+    """All candidates in one batch; `cue_at` (B, 2) puts the cue ball elsewhere per table.
+    Its event log is the light one (no balls' states): the referee reads no more."""
     B, n = len(cands), len(t.ids)
     pos = np.broadcast_to(t.pos, (B, n, 2)).copy()
     if cue_at is not None:
@@ -313,6 +316,6 @@ def simulate(t: OnTable, cands: Cands, table: Table, physics: Physics,
         v, s = strike(cands.speed[b], cands.angle[b], cands.side[b], cands.top[b],
                       float(t.radius[t.cue]))
         vel[b, t.cue], w[b, t.cue] = v, s
-    eng = Engine(table, physics, pos, vel, w, t.radius, t.mass, record=True)
+    eng = Engine(table, physics, pos, vel, w, t.radius, t.mass, record=LIGHT)
     eng.run_events(duration=SIM_SECONDS)
     return eng
