@@ -4,10 +4,13 @@
                          [--pooltool PYTHON | --no-pooltool] [--pairs N]
 
 One table from Engine construction to rest, B slightly different breaks batched in one Engine,
-and the import of the core in a fresh interpreter; it prints a small table with targets and
-PASS/MISS, or one JSON object with --json. The break and the batch have CPU time (every thread
-of the process) beside wall time. Where pooltool is installed, its break is timed in the same
-run, paired run by run with termpool's (pooltool_pair.py).
+the import of the core in a fresh interpreter, `termpool sim`'s whole process on one ball
+beside an empty interpreter's, and what the batch's event logs cost; it prints a small table
+with targets and PASS/MISS, or one JSON object with --json. The break and the batch have CPU
+time (every thread of the process) beside wall time. Where pooltool is installed, its break
+is timed in the same run, paired run by run with termpool's (pooltool_pair.py). With
+--games N, the computer's decision time (bench/decisions.py); with --calls, numpy calls per
+event under valgrind (bench/npcalls.py).
 """
 
 from __future__ import annotations
@@ -52,10 +55,15 @@ TARGETS = {
     "break_ms": ("<=", 60.0),
     "batch_breaks_per_s": (">=", 200.0),
     "import_s": ("<", 0.3),
+    "record_light_pct": ("<=", 20.0),
+    "sim_start_s": ("<=", 0.08),
     "numpy_calls_per_event": ("<=", 100.0),  # one table, the break (--calls, under valgrind)
     "decision_cpu_s": ("<=", 0.3),  # the computer (hard), a decision in play: median ...
     "decision_cpu_s_max": ("<=", 1.0),  # ... and the largest
 }
+SIM_START_RUNS = 9
+SIM_START_SCENE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes",
+                               "rolling.json")  # one ball
 
 
 # ------------------------------------------------------------------------------------ speed
@@ -177,6 +185,69 @@ def time_import(runs: int = IMPORT_RUNS) -> dict:
     return {"import_s": statistics.median(times), "import_s_runs": times}
 
 
+def time_record(scene, batch: int, rounds: int = 2) -> dict:
+    """CPU time of the bench's batch run to rest with each event log (`record`: none, the
+    light log the referee reads, the full log), the three run in turn `rounds` times: the
+    logs' costs as median ratios to the run without, in percent."""
+    from termpool.physics.log import LIGHT
+
+    pos, vel, w = batch_breaks(scene, batch)
+    cpu: dict = {False: [], LIGHT: [], True: []}
+    for _ in range(rounds):
+        for record in cpu:
+            c0 = time.process_time()
+            make_engine(scene, pos, vel, w, record=record).run_events()
+            cpu[record].append(time.process_time() - c0)
+
+    def pct(record) -> float:
+        return 100.0 * (statistics.median(a / b for a, b in zip(cpu[record], cpu[False],
+                                                                 strict=True)) - 1.0)
+
+    return {"record_light_pct": pct(LIGHT), "record_full_pct": pct(True),
+            "record_none_cpu_s": statistics.median(cpu[False])}
+
+
+def _child_cpu() -> float:
+    import resource
+
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def time_sim_start(runs: int = SIM_START_RUNS) -> dict:
+    """Whole processes, wall and CPU time (medians): `termpool sim` on a one-ball scene, and
+    as anchors in the same run, in turn with it, an empty interpreter (`python -c pass`) and
+    one that imports numpy (with one BLAS thread, as termpool starts it): the floor under
+    any command that simulates."""
+    import termpool
+    from termpool.command import BLAS_THREADS
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
+    env = dict(os.environ)
+    env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    one = dict(env, **{name: env.get(name, "1") for name in BLAS_THREADS})
+    cmds = {"sim_start": ([sys.executable, "-m", "termpool", "sim", SIM_START_SCENE], env),
+            "python_start": ([sys.executable, "-c", "pass"], env),
+            "numpy_start": ([sys.executable, "-c", "import numpy"], one)}
+    wall: dict = {k: [] for k in cmds}
+    cpu: dict = {k: [] for k in cmds}
+    for _ in range(runs):
+        for k, (cmd, e) in cmds.items():
+            t0, c0 = time.perf_counter(), _child_cpu()
+            p = subprocess.run(cmd, env=e, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               text=True, timeout=120)
+            if p.returncode != 0:
+                last = (p.stderr.strip().splitlines() or ["no output"])[-1]
+                raise RuntimeError(f"{' '.join(cmd[1:])} failed: {last}")
+            wall[k].append(time.perf_counter() - t0)
+            cpu[k].append(_child_cpu() - c0)
+    out: dict = {"sim_start_runs": runs}
+    for k in cmds:
+        out[f"{k}_s"] = statistics.median(wall[k])
+        out[f"{k}_cpu_s"] = statistics.median(cpu[k])
+    return out
+
+
 def break_events(scene, dt: float) -> dict:
     """Event counts of the single break (recorded run), and run_events() wall time for it."""
     from collections import Counter
@@ -207,6 +278,8 @@ def speed_figures(dt: float, repeat: int, batch: int, games: int = 0,
     out.update(time_break(scene, dt, repeat))
     out.update(time_batch(scene, dt, batch))
     out.update(time_import())
+    out.update(time_sim_start())
+    out.update(time_record(scene, batch))
     out.update(break_events(scene, dt))
     if calls:
         from bench.npcalls import calls_per_event
@@ -257,6 +330,22 @@ def format_speed(r: dict) -> str:
             TARGETS["import_s"],
             "import_s",
             f"median of {len(r['import_s_runs'])} fresh interpreters",
+        ),
+        (
+            "sim start-up",
+            f"{r['sim_start_s']:.3f} s",
+            TARGETS["sim_start_s"],
+            "sim_start_s",
+            f"one ball, whole process, median of {r['sim_start_runs']} (CPU "
+            f"{r['sim_start_cpu_s']:.3f} s); python -c pass {r['python_start_s']:.3f} s, "
+            f"import numpy {r['numpy_start_s']:.3f} s",
+        ),
+        (
+            "light event log",
+            f"{r['record_light_pct']:+.0f} %",
+            TARGETS["record_light_pct"],
+            "record_light_pct",
+            f"B={r['batch']} to rest, CPU against no log (full log {r['record_full_pct']:+.0f} %)",
         ),
     ]
     if "decision_cpu_s" in r:

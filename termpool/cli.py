@@ -12,6 +12,7 @@ import argparse
 import math
 import sys
 import time
+from collections.abc import Callable, Collection
 from typing import Any
 
 from termpool.command import Exit, Parser, one_blas_thread
@@ -55,12 +56,136 @@ def bundled_example(name: str = "break.json") -> str:
     return str(files("termpool").joinpath("examples", name))
 
 
-def _parser() -> Parser:
+def _sim_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", metavar="SCENE", help="scene file (JSON), or - for stdin")
+    p.add_argument(
+        "--dt",
+        type=_positive("--dt", *DT_RANGE),
+        default=DT,
+        help="fixed time step in seconds (default 1/60; ignored by --method event)",
+    )
+    p.add_argument(
+        "--duration",
+        type=_positive("--duration", hi=MAX_DURATION),
+        default=None,
+        help="stop after this many simulated seconds (default: run until all balls are at rest)",
+    )
+    p.add_argument(
+        "--method",
+        choices=METHODS,
+        default="fixed",
+        help="fixed: batched fixed-step engine (default); event: event-to-event reference driver",
+    )
+    p.add_argument(
+        "--sample-hz",
+        type=_positive("--sample-hz", hi=MAX_SAMPLE_HZ),
+        default=None,
+        metavar="N",
+        help="also output ball positions sampled N times per simulated second",
+    )
+
+
+def _play_arguments(p: argparse.ArgumentParser) -> None:
+    from termpool.ui.play import add_arguments
+
+    add_arguments(p)
+
+
+def _replay_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
+    p.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
+    p.add_argument("--watch", action="store_true",
+                   help="play the match on screen as it was played (Space pauses, ← → step "
+                        "a shot, F ×4, H help, Q quits)")
+    from termpool.ui.settings import BY_KEY
+
+    p.add_argument("--colors", choices=BY_KEY["colors"].values,
+                   default=None, help="--watch: colour depth (default: from the terminal)")
+    p.add_argument("--headless", action="store_true",
+                   help="--watch without a terminal: play --keys on a virtual screen, print "
+                        "the last screen")
+    p.add_argument("--size", help="--headless: screen size (default 100x32)")
+    p.add_argument("--keys", metavar="KEYS", help="--headless: key script ('-' for stdin), "
+                   "e.g. 'wait 5 right space'")
+
+
+def _rules_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("game", nargs="?", choices=("8ball", "9ball", "practice"),
+                   help="the game (default: all)")
+
+
+def _stats_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--json", action="store_true", help="print the same figures as JSON")
+
+
+def _selfplay_arguments(p: argparse.ArgumentParser) -> None:
+    from termpool.selfplay import add_arguments
+
+    add_arguments(p)
+
+
+# Each command: its one-line help, its description, and what adds its arguments (None: the
+# command parses its own, as `bench` does).
+_COMMANDS: dict[str, tuple[str, str, Callable[[argparse.ArgumentParser], None] | None]] = {
+    "sim": (
+        "simulate a scene and print the result as JSON",
+        "Load a scene (JSON, see docs/scenes.md), run it until every ball is at rest (or for "
+        "--duration simulated seconds) and print the final balls, the event log and, with "
+        "--sample-hz, sampled positions as JSON on stdout. A scene with a `game` block "
+        "also gets the referee's \"outcome\" of the shot.",
+        _sim_arguments,
+    ),
+    "play": (
+        "play pool in the terminal (the default command)",
+        "Play pool in the terminal: 8-ball, 9-ball or practice, against the "
+        "computer or a second player. --headless plays a key script on a virtual screen.",
+        _play_arguments,
+    ),
+    "replay": (
+        "watch a saved match again (--watch), or check that it replays identically",
+        "Re-simulate every shot of a replay file (a saved match, see docs/rules.md) from its "
+        "scene and shot parameters and check that the events, the final balls and the "
+        "referee's outcome are identical, floats bit for bit. Exit 0 when every shot "
+        "matches, 1 when any differs, 2 for a malformed file.",
+        _replay_arguments,
+    ),
+    "rules": (
+        "print the rules of 8-ball, 9-ball or practice (the page H shows in the game)",
+        "Print the rules the referee plays by, in plain words: the page the "
+        "game's help (H) shows. Without a game, all three.",
+        _rules_arguments,
+    ),
+    "stats": (
+        "the history of play: totals, per opponent, the last 20 matches",
+        "Sum up the history of play (one line per player per match, in the data directory: "
+        "$XDG_DATA_HOME/termpool/history.jsonl, else ~/.local/share/termpool/): the totals, "
+        "the totals per opponent (the computer's level, a second player, practice), a chart "
+        "of the pot rate and the last 20 matches, as the menu's Stats screen shows them. "
+        "Corrupt lines are skipped with one line of warning.",
+        _stats_arguments,
+    ),
+    "selfplay": (
+        "play the computer against itself and print how each level played",
+        "Play N games between two levels of the computer (the break alternating) and "
+        "print each level's wins, pot rate, fouls, break-and-run rate, safeties and "
+        "decision times (see docs/ai.md). Deterministic for a --seed, whatever --jobs. "
+        "Ctrl-C prints the figures of the games finished so far.",
+        _selfplay_arguments,
+    ),
+    "bench": ("benchmark the physics engine (see `termpool bench --help`)", "", None),
+}
+
+
+def _parser(commands: Collection[str] | None = None) -> Parser:
+    """The command line's parser, every command listed. Only `commands` (None: all) get
+    their arguments, since the game's bring in the UI: `termpool sim` imports no more than it
+    needs. The closing hint (the bundled example's path) is for the help without a command."""
+    every = commands is None
     p = Parser(
         prog=PROG,
         description="Pool in the terminal: 8-ball, 9-ball and practice, against the computer "
                     "or a friend at the same keyboard.",
-        epilog=(
+        epilog=None if commands else (
             "With no arguments, termpool starts the game (the same as `termpool play`). "
             "`termpool play --record match.json` keeps your matches; `termpool replay "
             "match.json --watch` shows one again on screen. Without a terminal, try "
@@ -72,111 +197,13 @@ def _parser() -> Parser:
 
     p.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
-    s = sub.add_parser(
-        "sim",
-        help="simulate a scene and print the result as JSON",
-        description=(
-            "Load a scene (JSON, see docs/scenes.md), run it until every ball is at rest (or for "
-            "--duration simulated seconds) and print the final balls, the event log and, with "
-            "--sample-hz, sampled positions as JSON on stdout. A scene with a `game` block "
-            "also gets the referee's \"outcome\" of the shot."
-        ),
-    )
-    s.add_argument("scene", metavar="SCENE", help="scene file (JSON), or - for stdin")
-    s.add_argument(
-        "--dt",
-        type=_positive("--dt", *DT_RANGE),
-        default=DT,
-        help="fixed time step in seconds (default 1/60; ignored by --method event)",
-    )
-    s.add_argument(
-        "--duration",
-        type=_positive("--duration", hi=MAX_DURATION),
-        default=None,
-        help="stop after this many simulated seconds (default: run until all balls are at rest)",
-    )
-    s.add_argument(
-        "--method",
-        choices=METHODS,
-        default="fixed",
-        help="fixed: batched fixed-step engine (default); event: event-to-event reference driver",
-    )
-    s.add_argument(
-        "--sample-hz",
-        type=_positive("--sample-hz", hi=MAX_SAMPLE_HZ),
-        default=None,
-        metavar="N",
-        help="also output ball positions sampled N times per simulated second",
-    )
-    from termpool.ui.play import add_arguments
-    from termpool.ui.settings import BY_KEY
-
-    pl = sub.add_parser(
-        "play",
-        help="play pool in the terminal (the default command)",
-        description="Play pool in the terminal: 8-ball, 9-ball or practice, against the "
-        "computer or a second player. --headless plays a key script on a virtual screen.",
-    )
-    add_arguments(pl)
-    r = sub.add_parser(
-        "replay",
-        help="watch a saved match again (--watch), or check that it replays identically",
-        description=(
-            "Re-simulate every shot of a replay file (a saved match, see docs/rules.md) from its "
-            "scene and shot parameters and check that the events, the final balls and the "
-            "referee's outcome are identical, floats bit for bit. Exit 0 when every shot "
-            "matches, 1 when any differs, 2 for a malformed file."
-        ),
-    )
-    r.add_argument("file", metavar="FILE", help="replay file (JSON), or - for stdin")
-    r.add_argument("--json", action="store_true", help="print the per-shot results as JSON")
-    r.add_argument("--watch", action="store_true",
-                   help="play the match on screen as it was played (Space pauses, ← → step "
-                        "a shot, F ×4, H help, Q quits)")
-    r.add_argument("--colors", choices=BY_KEY["colors"].values,
-                   default=None, help="--watch: colour depth (default: from the terminal)")
-    r.add_argument("--headless", action="store_true",
-                   help="--watch without a terminal: play --keys on a virtual screen, print "
-                        "the last screen")
-    r.add_argument("--size", help="--headless: screen size (default 100x32)")
-    r.add_argument("--keys", metavar="KEYS", help="--headless: key script ('-' for stdin), "
-                   "e.g. 'wait 5 right space'")
-    ru = sub.add_parser(
-        "rules",
-        help="print the rules of 8-ball, 9-ball or practice (the page H shows in the game)",
-        description="Print the rules the referee plays by, in plain words: the page the "
-                    "game's help (H) shows. Without a game, all three.",
-    )
-    ru.add_argument("game", nargs="?", choices=("8ball", "9ball", "practice"),
-                    help="the game (default: all)")
-    st = sub.add_parser(
-        "stats",
-        help="the history of play: totals, per opponent, the last 20 matches",
-        description=(
-            "Sum up the history of play (one line per player per match, in the data directory: "
-            "$XDG_DATA_HOME/termpool/history.jsonl, else ~/.local/share/termpool/): the totals, "
-            "the totals per opponent (the computer's level, a second player, practice), a chart "
-            "of the pot rate and the last 20 matches, as the menu's Stats screen shows them. "
-            "Corrupt lines are skipped with one line of warning."
-        ),
-    )
-    st.add_argument("--json", action="store_true", help="print the same figures as JSON")
-    from termpool.selfplay import add_arguments as selfplay_arguments
-
-    sp = sub.add_parser(
-        "selfplay",
-        help="play the computer against itself and print how each level played",
-        description=(
-            "Play N games between two levels of the computer (the break alternating) and "
-            "print each level's wins, pot rate, fouls, break-and-run rate, safeties and "
-            "decision times (see docs/ai.md). Deterministic for a --seed, whatever --jobs. "
-            "Ctrl-C prints the figures of the games finished so far."
-        ),
-    )
-    selfplay_arguments(sp)
-    sub.add_parser(
-        "bench", help="benchmark the physics engine (see `termpool bench --help`)", add_help=False
-    )
+    for name, (help_, description, add) in _COMMANDS.items():
+        if add is None:
+            sub.add_parser(name, help=help_, add_help=False)
+            continue
+        c = sub.add_parser(name, help=help_, description=description)
+        if every or name in commands:
+            add(c)
     return p
 
 
@@ -202,11 +229,14 @@ def dump_json(result: dict) -> str:
 
 
 def _sim(args: argparse.Namespace) -> int:
-    from termpool.rules.referee import load_game_scene
-    from termpool.scene import SceneError
+    from termpool.scene import SceneError, load_scene
 
     try:
-        scene = load_game_scene(args.scene)
+        scene = load_scene(args.scene)
+        if scene.game is not None:  # the rules are imported only for a scene that has a game
+            from termpool.rules.referee import check_game
+
+            check_game(scene)
     except SceneError as e:
         return _fail(str(e))
     from termpool.physics.engine import Engine
@@ -418,7 +448,7 @@ def main(argv: list[str] | None = None) -> int:
         if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help",
                                                                       "--version")):
             argv = ["play", *argv]  # play is the default command: `termpool --colors 16`
-        args = _parser().parse_args(argv)
+        args = _parser([argv[0]] if argv[0] in _COMMANDS else []).parse_args(argv)
         if args.command == "sim":
             return _sim(args)
         if args.command == "play":

@@ -22,6 +22,10 @@ FIGURES = (
     "batch_stepped_cpu_s",
     "import_s",
     "run_events_ms",
+    "sim_start_s",
+    "sim_start_cpu_s",
+    "python_start_s",
+    "numpy_start_s",
 )
 COUNTS = ("break_steps", "break_passes", "batch_passes", "batch_steps", "events_total")
 
@@ -47,8 +51,11 @@ def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert sum(result["events"].values()) == result["events_total"]
     assert result["events"].get("ball_ball", 0) > 0
     assert set(result["pass"]) == {"break_ms", "batch_breaks_per_s", "import_s",
-                                   "vs_pooltool_cpu"}
+                                   "vs_pooltool_cpu", "record_light_pct", "sim_start_s"}
     assert "decision_cpu_s" not in result  # no games asked for
+    # The logs' costs are ratios of noisy times: finite, and a log cannot cost the whole run.
+    for key in ("record_light_pct", "record_full_pct"):
+        assert math.isfinite(result[key]) and result[key] > -100.0, (key, result[key])
     assert {"platform", "python", "numpy", "cpu_count", "date"} <= set(result["machine"])
 
 

@@ -348,3 +348,43 @@ def test_the_top_help_speaks_to_players_and_names_watching_a_match() -> None:
     assert "8-ball, 9-ball and practice" in out
     assert "--record match.json" in out and "replay match.json --watch" in out
     assert "batched" not in out and "physics core" not in out
+
+
+# What `termpool sim` imports: the physics and the scene, the rules only for a scene with a
+# game block, never the game, the computer or the UI (its start-up is most of a short run's
+# time; docs/performance.md).
+_MODULES = (
+    "import atexit, runpy, sys\n"
+    "atexit.register(lambda: sys.stderr.write('\\nMODULES ' + ' '.join(sorted(sys.modules))))\n"
+    "sys.argv = ['termpool', *sys.argv[1:]]\n"
+    "runpy.run_module('termpool', run_name='__main__', alter_sys=True)\n"
+)
+
+
+def sim_modules(scene: str) -> set[str]:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+    p = subprocess.run([sys.executable, "-c", _MODULES, "sim", scene], env=env,
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout)["balls"]
+    return set(p.stderr.rsplit("MODULES ", 1)[1].split())
+
+
+def _under(modules: set[str], *packages: str) -> list[str]:
+    return sorted(m for m in modules if any(m == p or m.startswith(p + ".") for p in packages))
+
+
+def test_sim_imports_neither_the_ui_nor_the_game(tmp_path):
+    one = tmp_path / "one.json"
+    one.write_text(json.dumps({"table": "9ft", "balls": [{"id": "cue", "x": 0.6, "y": 0.6}],
+                               "shot": {"speed": 2.0, "angle": 10}}))
+    modules = sim_modules(str(one))
+    assert "termpool.physics.engine" in modules and "termpool.scene" in modules
+    assert _under(modules, "blessed", "termpool.ui", "termpool.game", "termpool.ai",
+                  "termpool.selfplay", "termpool.rules") == []
+    # A scene with a game block brings the referee, and still not the UI.
+    modules = sim_modules(str(EX / "referee_pot.json"))
+    assert "termpool.rules.referee" in modules
+    assert _under(modules, "blessed", "termpool.ui", "termpool.game", "termpool.ai",
+                  "termpool.selfplay") == []

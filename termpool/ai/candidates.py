@@ -10,6 +10,7 @@ import numpy as np
 from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import Engine
 from termpool.physics.events import Event, EventKind
+from termpool.physics.log import LIGHT
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
 
@@ -330,7 +331,8 @@ def _heading_point(events: list[Event], hit: bool, start: int
 
 def simulate(t: OnTable, cands: Cands, table: Table, physics: Physics,
               cue_at: np.ndarray | None = None) -> Engine:
-    """All candidates in one batch; `cue_at` (B, 2) puts the cue ball elsewhere per table."""
+    """All candidates in one batch; `cue_at` (B, 2) puts the cue ball elsewhere per table.
+    Its event log is the light one (no balls' states): the referee reads no more."""
     B, n = len(cands), len(t.ids)
     pos = np.broadcast_to(t.pos, (B, n, 2)).copy()
     if cue_at is not None:
@@ -341,6 +343,6 @@ def simulate(t: OnTable, cands: Cands, table: Table, physics: Physics,
         v, s = strike(cands.speed[b], cands.angle[b], cands.side[b], cands.top[b],
                       float(t.radius[t.cue]))
         vel[b, t.cue], w[b, t.cue] = v, s
-    eng = Engine(table, physics, pos, vel, w, t.radius, t.mass, record=True)
+    eng = Engine(table, physics, pos, vel, w, t.radius, t.mass, record=LIGHT)
     eng.run_events(duration=SIM_SECONDS)
     return eng

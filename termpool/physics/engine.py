@@ -22,7 +22,7 @@ from termpool.physics.balls import Balls, ball_arrays
 from termpool.physics.events import BallState
 from termpool.physics.features import Features
 from termpool.physics.joined import Groups
-from termpool.physics.log import EventLog
+from termpool.physics.log import LIGHT, EventLog, check_mode
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.respond import Responses
 from termpool.physics.schedule import Due, Schedule
@@ -66,7 +66,10 @@ def _split(due: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 class Engine:
-    """Advance B independent tables of N balls each (arrays may omit the table axis)."""
+    """Advance B independent tables of N balls each (arrays may omit the table axis).
+
+    `record`: True keeps the full event log (each event with its balls' states), LIGHT
+    (`"light"`) the log without the states (what the referee reads), False none."""
 
     def __init__(
         self,
@@ -77,11 +80,12 @@ class Engine:
         w=None,
         radius=BALL_RADIUS,
         mass=BALL_MASS,
-        record: bool = True,
+        record: bool | str = True,
         horizon: float = HORIZON,
         max_work: float | None = None,
     ) -> None:
         self.batched, pos, vel, w, radius, mass = ball_arrays(pos, vel, w, radius, mass)
+        check_mode(record)
         B, N = radius.shape
         self.B, self.N = B, N
         self.table, self.physics, self.record = table, physics, record
@@ -104,7 +108,7 @@ class Engine:
         self.groups = Groups(physics, self.balls, self.tb)
         self.slow = SlowContacts(physics, self.balls, self.features, self.schedule, self.groups,
                                  self.respond, self.tb)
-        self.recorder = EventLog(self.balls, self.features, self.tb)
+        self.recorder = EventLog(self.balls, self.features, self.tb, states=record != LIGHT)
         self.log = self.recorder.tables  # each table's events, typed
         # The arrays the engine's users read, as the collaborators hold them.
         bl, sc = self.balls, self.schedule

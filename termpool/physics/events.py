@@ -64,9 +64,9 @@ class BallState:
 @dataclass(slots=True)
 class Event:
     """One event of one table: its kind, time, the balls it concerns (indices) with their
-    states just after it, and for a cushion the feature met (`cushion`: its index among the
-    table's rails and jaws, then jaw tips; `feature`: "rail", "jaw" or "tip"), for a pocket
-    the pocket's name."""
+    states just after it (none in a light log, whose JSON "balls" is then empty), and for a
+    cushion the feature met (`cushion`: its index among the table's rails and jaws, then jaw
+    tips; `feature`: "rail", "jaw" or "tip"), for a pocket the pocket's name."""
 
     kind: EventKind
     t: float

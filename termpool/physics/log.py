@@ -1,22 +1,39 @@
-"""The engine's record of what happened: each table's events, typed (`Event`) and as JSON."""
+"""The engine's record of what happened: each table's events, typed (`Event`) and as JSON.
+
+Two modes. The full log gives each event the states of its balls just after it (records,
+replays and `termpool sim` print them). The light log (`LIGHT`) keeps the rest of each event
+(kind, time, table, balls, cushion or pocket) and no states: all the referee reads, for a
+fraction of the cost, as the computer opponent's batches use it.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
-from termpool.physics.balls import Balls
+from termpool.physics import motion
+from termpool.physics.balls import FEW, Balls
 from termpool.physics.events import ENDS, BallState, Event, EventKind
 from termpool.physics.features import Features
 from termpool.physics.schedule import Due
 from termpool.physics.state import POCKETED
 
+LIGHT = "light"  # the engine's `record` for a log without the balls' states
+
+
+def check_mode(record) -> None:
+    """Raise ValueError naming `record` unless it is True (the full log), False (none) or LIGHT."""
+    if not (record == LIGHT if isinstance(record, str) else record in (True, False)):
+        raise ValueError(f"record: must be True, False or {LIGHT!r}, not {record!r}")
+
 
 class EventLog:
     """Every table's events in time order: `tables` (typed) and `json()` (`Event.to_json`).
-    `tb` is the tables' clocks, at which the balls' states are taken."""
+    `tb` is the tables' clocks, at which the balls' states are taken; without `states`
+    (the light log) events carry none."""
 
-    def __init__(self, balls: Balls, features: Features, tb: np.ndarray) -> None:
-        self.balls, self.features, self.tb = balls, features, tb
+    def __init__(self, balls: Balls, features: Features, tb: np.ndarray,
+                 states: bool = True) -> None:
+        self.balls, self.features, self.tb, self.states = balls, features, tb, states
         self.tables: list[list[Event]] = [[] for _ in range(balls.B)]
         self._json: list[list[dict]] = [[] for _ in range(balls.B)]
         self._unsynced = False  # events were added since json() was last brought up to date
@@ -34,47 +51,69 @@ class EventLog:
         moving (`extra`, after the contact's own one or two), and transitions of other balls
         of a group renewed by the event (`also`: ball, state before, state after) follow it
         as events of their own. A resting contact that begins (`quiet`: balls start pressing
-        together, no impulse) is not a collision and is not recorded."""
+        together, no impulse) is not a collision and is not recorded.
+
+        The events are built first and the balls' states taken after, all of the pass's
+        balls in one evaluation."""
+        tabs_l, due_l, i_l = tabs.tolist(), due.tolist(), i.tolist()
+        j_l = j.tolist() if j is not None else None
         state = self.balls.state
-        for n, b in enumerate(tabs.tolist()):
-            k = int(due[n])
-            if k == Due.CHECK or n in quiet:
-                self._also(b, also.get(n, ()))
-                continue
-            ib = int(i[n])
-            where: dict = {}
-            if k == Due.TRANSITION:
-                pair = (int(old_state[n]), int(state[b, ib]))
-                if pair[0] == pair[1]:  # a group's motion renewed, nothing ended
-                    self._also(b, also.get(n, ()))
-                    continue
-                what = ENDS.get(pair, EventKind.TRANSITION)
-                balls = [ib]
-            elif k == Due.CUSHION:
-                f, name = cushions[n]
-                if state[b, ib] == POCKETED:
-                    what, where["pocket"] = EventKind.POCKET, name
+        now = state[tabs, i].tolist()
+        old = old_state.tolist() if old_state is not None else None
+        times = self.tb[tabs].tolist()
+        # (kind, table, time, balls, cushion, feature, pocket), in the order of the pass
+        out: list[tuple] = []
+        for n, b in enumerate(tabs_l):
+            k = due_l[n]
+            t = times[n]
+            if k != Due.CHECK and n not in quiet:
+                ib = i_l[n]
+                cushion = feature = pocket = None
+                if k == Due.TRANSITION:
+                    pair = (old[n], now[n])
+                    what = None if pair[0] == pair[1] else ENDS.get(pair, EventKind.TRANSITION)
+                    balls = [ib]  # (nothing ended when a group's motion was only renewed)
+                elif k == Due.CUSHION:
+                    f, name = cushions[n]
+                    if now[n] == POCKETED:
+                        what, pocket = EventKind.POCKET, name
+                    else:
+                        what, cushion, feature = EventKind.CUSHION, f, name
+                    balls = [ib]
                 else:
-                    what, where["cushion"], where["feature"] = EventKind.CUSHION, f, name
-                balls = [ib]
-            else:
-                what = EventKind.BALL_BALL
-                balls = [ib, int(j[n])]
-            balls += extra.get(n, [])
-            self._append(Event(what, float(self.tb[b]), b, tuple(balls),
-                               tuple(self._state(b, x) for x in balls), **where))
-            self._also(b, also.get(n, ()))
-
-    def _also(self, b: int, changes) -> None:
-        for x, old, new in changes:
-            self._append(Event(ENDS[(old, new)], float(self.tb[b]), b, (x,), (self._state(b, x),)))
-
-    def _state(self, b: int, x: int) -> BallState:
-        return self.balls.ball_state(b, x, self.tb[b])
-
-    def _append(self, ev: Event) -> None:
-        self.tables[ev.table].append(ev)
+                    what = EventKind.BALL_BALL
+                    balls = [ib, j_l[n]]
+                if what is not None:
+                    balls += extra.get(n, [])
+                    out.append((what, b, t, tuple(balls), cushion, feature, pocket))
+            for x, was, new in also.get(n, ()):
+                out.append((ENDS[(was, new)], b, t, (x,), None, None, None))
+        if not out:
+            return
+        if self.states:
+            states = iter(self._states([(b, x) for _, b, _, balls, *_ in out for x in balls]))
+        tables = self.tables
+        for what, b, t, balls, cushion, feature, pocket in out:
+            got = tuple(next(states) for _ in balls) if self.states else ()
+            tables[b].append(Event(what, t, b, balls, got, cushion, feature, pocket))
         self._unsynced = True
+
+    def _states(self, which: list[tuple[int, int]]) -> list[BallState]:
+        """The states of balls (table, ball) at their tables' clocks: up to FEW in plain
+        floats (`motion.at`), more in one array evaluation (`motion.at_many`), which agree
+        bit for bit."""
+        bl, tb = self.balls, self.tb
+        if len(which) <= FEW:
+            out = []
+            for b, x in which:
+                p, v, w = motion.at(bl.motion[b, x].tolist(), float(tb[b]))
+                out.append(BallState(p[0], p[1], v[0], v[1], (w[0], w[1], w[2]),
+                                     int(bl.state[b, x])))
+            return out
+        b, x = np.array(which).T
+        p, v, w = bl.eval(b, x, tb[b])
+        return [BallState(px, py, vx, vy, (wx, wy, wz), s) for (px, py), (vx, vy), (wx, wy, wz), s
+                in zip(p.tolist(), v.tolist(), w.tolist(), bl.state[b, x].tolist(), strict=True)]
 
     def json(self) -> list[list[dict]]:
         """Each table's events in the JSON form of records and output."""

@@ -1,7 +1,7 @@
 """The scriptable referee: a scene's `game` block plus one shot's events -> an outcome.
 
-`termpool sim` loads its scene with `load_game_scene` (the scene with its game block checked,
-see `rules.codec`) and calls `referee` when the scene has a game block; the block and its
+`termpool sim` loads its scene and, when it has a game block, checks the block (`check_game`,
+as `load_game_scene` does: see `rules.codec`) and calls `referee`; the block and its
 meaning are documented in docs/scenes.md.
 """
 
@@ -28,7 +28,12 @@ def judge(state: State, summary: ShotSummary) -> tuple[Outcome, State]:
 def load_game_scene(src: str | os.PathLike | dict) -> Scene:
     """`scene.load_scene`, and the scene's game block (if any) validated and normalized;
     SceneError, one line naming the key, for a bad one."""
-    scene = load_scene(src)
+    return check_game(load_scene(src))
+
+
+def check_game(scene: Scene) -> Scene:
+    """Validate and normalize a loaded scene's game block, if it has one, in place (as
+    `load_game_scene` does); SceneError, one line naming the key, for a bad one."""
     if scene.game is not None:
         shot = scene.raw.get("shot")
         struck = None if shot is None else ball_id(shot.get("ball", "cue"), "shot.ball")
