@@ -16,6 +16,9 @@ from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
 from termpool.physics.vec import norm as _norm
 
+# Candidates (row x ball) a chunk of `predict_many` works on at once: bounds its temporaries
+# (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
+CHUNK = 16384
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -64,6 +67,7 @@ class Schedule:
         assert np.shares_memory(self.t_pair, times)  # a view, not a copy
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
+        self.chunk = CHUNK
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
@@ -85,7 +89,7 @@ class Schedule:
 
     def predict_many(self, b: np.ndarray, i: np.ndarray) -> None:
         """`predict` on arrays."""
-        balls, feat = self.balls, self.features
+        balls = self.balls
         t = self.tb[b]
         st = balls.state[b, i]
         moving = _MOVING[st]
@@ -101,6 +105,18 @@ class Schedule:
             if m.size == 0:
                 return
             b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+        # In chunks of rows, so that the temporaries (each row's candidates against every
+        # ball of its table) stay bounded however many tables renew at once; every row's
+        # predictions are its own, so chunks give the same times as one piece.
+        step = max(1, self.chunk // self.N)
+        for s in range(0, b.size, step):
+            self._predict_rows(b[s:s + step], i[s:s + step], t[s:s + step], end[s:s + step],
+                               moving[s:s + step])
+
+    def _predict_rows(self, b, i, t, end, moving) -> None:
+        """`predict_many`'s contact predictions for live balls (b, i) at clocks t, whose
+        motions hold until `end`, their own predictions already cleared."""
+        balls, feat = self.balls, self.features
         # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
         M = b.size
         rows = np.arange(M)
