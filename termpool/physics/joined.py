@@ -257,8 +257,11 @@ class Groups:
         balls in resting contacts (rows ra, rc_, rn, bend as in slow.SlowContacts' cluster
         solve) move as a group held by the contacts' forces; the others move freely."""
         balls = self.balls
-        held = np.unique(np.concatenate([ra, rc_[rc_ >= 0]]))
-        free = mem[~np.isin(mem, held)]
+        # (In plain ints: a group has a few balls, and np.unique and np.isin cost more.)
+        in_rows = set(ra.tolist())
+        in_rows.update(x for x in rc_.tolist() if x >= 0)
+        held = np.array(sorted(in_rows), dtype=np.int64)
+        free = np.array([x for x in mem.tolist() if x not in in_rows], dtype=np.int64)
         self.label[b, mem] = -1
         if free.size:
             balls.set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free], w[free])

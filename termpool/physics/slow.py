@@ -161,10 +161,15 @@ class SlowContacts:
         if not clusters:  # the usual pass
             return _NOTHING
         out = Solved()
-        for n, seeds, every, own in clusters:
-            b = int(tabs[n])
+        tables = [int(tabs[n]) for n, _, _, _ in clusters]
+        # Each table has one event a pass, so its cluster is its own: the tables' balls and
+        # their contacts are evaluated for all the clusters at once.
+        assert len(set(tables)) == len(tables)
+        near = self._touching(tables)
+        for c, (n, seeds, every, own) in enumerate(clusters):
+            b = tables[c]
             before = self.balls.state[b].copy()
-            members, moved = self._cluster(b, seeds, every)
+            members, moved = self._cluster(b, seeds, every, *(x[c] for x in near))
             out.sizes.append(len(members))
             if own and not moved:
                 out.quiet.add(n)
@@ -282,31 +287,49 @@ class SlowContacts:
         acc = ((dv * dv).sum(axis=1) + (d * a).sum(axis=1)) / r - pv * pv / r ** 3
         return (np.abs(pv) <= V_MIN * r) & (acc < -A_MIN)
 
-    def _cluster(self, b: int, seeds: list[int], every: bool = False):
+    def _touching(self, tables: list[int]) -> tuple:
+        """For each of `tables` (distinct) at its clock: its balls' (N, 2) positions and
+        velocities and (N, 3) spins, and for every two of its balls b from a: the (N, N, 2)
+        offset, (N, N) distance, whether they touch (within CLUSTER_GAP, neither pocketed),
+        and how fast they close; each with a leading axis over the tables."""
+        N = self.balls.N
+        C = len(tables)
+        tb = np.repeat(np.array(tables, dtype=np.int64), N)
+        p, v, w = self.balls.eval(tb, np.tile(np.arange(N), C), self.tb[tb])
+        p, v, w = p.reshape(C, N, 2), v.reshape(C, N, 2), w.reshape(C, N, 3)
+        R = self.balls.radius[tables]
+        live = self.balls.state[tables] != POCKETED
+        d = p[:, None, :, :] - p[:, :, None, :]
+        dist = _norm(d)
+        touch = ((dist - (R[:, :, None] + R[:, None, :]) < CLUSTER_GAP)
+                 & live[:, :, None] & live[:, None, :])
+        k = np.arange(N)
+        touch[:, k, k] = False
+        closing = -((v[:, None] - v[:, :, None]) * d).sum(axis=3) / np.where(dist > 0, dist, 1)
+        return p, v, w, d, dist, touch, closing
+
+    def _cluster(self, b: int, seeds: list[int], every: bool, p, v, w, d, dist, touch,
+                 closing):
         """Resolve a slow contact together with every ball and cushion touching its cluster
-        (with `every`, fast contacts too: the work bound's inelastic fallback)."""
+        (with `every`, fast contacts too: the work bound's inelastic fallback); the table's
+        balls and contacts as `_touching` gives them."""
         N, tab = self.balls.N, self.features.table
         t = self.tb[b]
-        k = np.arange(N)
-        p, v, w = self.balls.eval(np.full(N, b), k, np.full(N, t))
         p0, v_in = p.copy(), v.copy()
         R, m = self.balls.radius[b], self.balls.mass[b]
-        live = self.balls.state[b] != POCKETED
-        d = p[None, :, :] - p[:, None, :]
-        dist = _norm(d)
-        touch = (dist - (R[:, None] + R[None, :]) < CLUSTER_GAP) & live[:, None] & live[None, :]
-        np.fill_diagonal(touch, False)
         # A contact that closes fast is a collision of its own, handled pair by pair (this is
         # what carries a cradle's wave down the row); only slow contacts join the cluster.
-        closing = -((v[None, :, :] - v[:, None, :]) * d).sum(axis=2) / np.where(dist > 0, dist, 1)
         cap = np.inf if every else self.physics.v_inelastic
-        touch &= closing <= cap
-        near = touch.tolist()
+        touch = touch & (closing <= cap)
+        near: list[list[int]] = [[] for _ in range(N)]
+        ia, ic = np.nonzero(touch)
+        for a, c in zip(ia.tolist(), ic.tolist(), strict=True):
+            near[a].append(c)
         members = list(dict.fromkeys(seeds))
         seen = set(members)
         for a in members:  # grows while we walk it
-            for c in range(N):
-                if near[a][c] and c not in seen:
+            for c in near[a]:
+                if c not in seen:
                     seen.add(c)
                     members.append(c)
         mem = np.array(members)
