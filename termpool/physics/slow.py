@@ -25,6 +25,7 @@ from termpool.physics.params import Physics
 from termpool.physics.respond import Responses
 from termpool.physics.roots import A_MIN, V_MIN
 from termpool.physics.schedule import Due, Schedule
+from termpool.physics.slow_many import solve_clusters
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
@@ -58,6 +59,10 @@ class Solved:
 
 
 _NOTHING = Solved()  # what solving no cluster does (only ever read)
+# Clusters of a pass solved together from this many on (slow_many; one alone is solved here),
+# and at most MANY_CLUSTERS at a time.
+MANY = 2
+MANY_CLUSTERS = 64
 
 
 class SlowContacts:
@@ -68,6 +73,7 @@ class SlowContacts:
                  groups: Groups, respond: Responses, tb: np.ndarray) -> None:
         self.physics, self.balls, self.features, self.schedule = physics, balls, features, schedule
         self.groups, self.respond, self.tb = groups, respond, tb
+        self.many = MANY  # clusters solved together from this many (tests vary it)
 
     def cushions(self, tabs, i, cu, busy, any_busy: bool) -> tuple[list[Cluster], set[int]]:
         """Balls i[cu] of tables tabs[cu] meeting a cushion feature or a hole (busy: over the
@@ -162,14 +168,27 @@ class SlowContacts:
             return _NOTHING
         out = Solved()
         tables = [int(tabs[n]) for n, _, _, _ in clusters]
-        # Each table has one event a pass, so its cluster is its own: the tables' balls and
-        # their contacts are evaluated for all the clusters at once.
+        # Each table has one event a pass, so its cluster is its own: the clusters are solved
+        # together (slow_many), MANY_CLUSTERS at a time to bound the temporaries, or one
+        # alone as here.
         assert len(set(tables)) == len(tables)
-        near = self._touching(tables)
-        for c, (n, seeds, every, own) in enumerate(clusters):
+        solved: list = []
+        for s in range(0, len(clusters), MANY_CLUSTERS):
+            part = tables[s:s + MANY_CLUSTERS]
+            near = self._touching(part)
+            chunk = clusters[s:s + MANY_CLUSTERS]
+            before = self.balls.state[part].copy()
+            if len(part) >= self.many:
+                found = solve_clusters(self.physics, self.balls, self.features, self.groups,
+                                       self.tb, part, [c.seeds for c in chunk],
+                                       [c.every for c in chunk], near)
+            else:
+                found = [self._cluster(b, c.seeds, c.every, *(x[q] for x in near))
+                         for q, (b, c) in enumerate(zip(part, chunk, strict=True))]
+            solved += [(f, st) for f, st in zip(found, before, strict=True)]
+        for c, (n, _, _, own) in enumerate(clusters):
             b = tables[c]
-            before = self.balls.state[b].copy()
-            members, moved = self._cluster(b, seeds, every, *(x[c] for x in near))
+            (members, moved), before = solved[c]
             out.sizes.append(len(members))
             if own and not moved:
                 out.quiet.add(n)
