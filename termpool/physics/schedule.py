@@ -18,7 +18,7 @@ from termpool.physics.vec import norm as _norm
 
 # Candidates (row x ball) a chunk of `predict_many` works on at once: bounds its temporaries
 # (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
-CHUNK = 4096
+CHUNK = 16384
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
