@@ -125,3 +125,24 @@ def test_chunks_bound_the_memory_of_a_big_renewal(monkeypatch):
         tracemalloc.stop()
     chunked, whole = peaks
     assert chunked * 3 < whole
+
+
+def test_renewing_many_balls_at_once_is_renewing_them_one_by_one(monkeypatch):
+    """All balls of the six tables renewed in one call, some listed twice (an event's ball is
+    also its cluster's): the same times and features, bit for bit, as renewing each ball alone
+    in plain floats, in turn. A pair of renewed balls is met once in the call, and each
+    alone meets it from its own side: both sides give the same bits."""
+    scene, pos, vel = _tables()
+    many, one = (_engine(scene, pos, vel, schedule.CHUNK, monkeypatch) for _ in range(2))
+    B, n = many.B, many.N
+    b, i = np.divmod(np.arange(B * n), n)
+    twice = np.array([0, 5, 17, 40, 95])
+    for eng in (many, one):
+        eng.tb[:] = 0.01 * np.arange(B)
+    with np.errstate(all="ignore"):
+        many.schedule.predict_many(np.concatenate([b, b[twice]]), np.concatenate([i, i[twice]]))
+        for bb, ii in zip(b.tolist(), i.tolist(), strict=True):
+            one.schedule.predict_few(np.array([bb]), np.array([ii]))
+    assert many.schedule.times.tobytes() == one.schedule.times.tobytes()
+    assert np.array_equal(many.f_cush, one.f_cush)
+    assert np.isfinite(many.schedule.t_pair).sum() > 20
