@@ -62,7 +62,7 @@ _NOTHING = Solved()  # what solving no cluster does (only ever read)
 # Clusters of a pass solved together from this many on (slow_many; one alone is solved here),
 # and at most MANY_CLUSTERS at a time.
 MANY = 2
-MANY_CLUSTERS = 64
+MANY_CLUSTERS = 256
 
 
 class SlowContacts:
