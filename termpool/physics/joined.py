@@ -422,11 +422,12 @@ class Groups:
             self.label[b, sorted(members)] = -1
             self.count[b] = int((self.label[b] >= 0).sum())
             if rest:
-                k = np.array(rest)
-                bb, tt = np.full(k.size, b), np.full(k.size, self.tb[b])
-                self.balls.set(bb, k, tt, *self.balls.eval(bb, k, tt))
-                out_b.append(bb)
-                out_i.append(k)
+                out_b.append(np.full(len(rest), b))
+                out_i.append(np.array(rest))
+        if out_b:  # every table's freed balls started at once (each table's own balls)
+            bb, k = np.concatenate(out_b), np.concatenate(out_i)
+            tt = self.tb[bb]
+            self.balls.set(bb, k, tt, *self.balls.eval(bb, k, tt))
         return out_b, out_i
 
     def join(self, b: int, mem, t: float, p, v, w, ra, rc_, rn, bend) -> None:
