@@ -189,7 +189,8 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
         j = np.arange(top)
         idx = np.where(j < ct[:, None], st[:, None] + j, 0)  # padding: any row, then cut off
         a, c, n, ball = J.a[idx], J.c[idx], J.n[idx], J.ball[idx]
-        nn = (n[:, :, None] * n[:, None, :]).sum(axis=3)
+        # n_i . n_j as numpy's two-term sum adds it (from 0.0: -0.0 comes out 0.0)
+        nn = (0.0 + n[:, :, None, 0] * n[:, None, :, 0]) + n[:, :, None, 1] * n[:, None, :, 1]
         by_a = (a[:, None, :] == a[:, :, None]).astype(float) - (c[:, None, :] == a[:, :, None])
         by_c = (c[:, None, :] == c[:, :, None]).astype(float) - (a[:, None, :] == c[:, :, None])
         kc = np.where(ball, k[np.maximum(c, 0)], 0.0)
