@@ -183,8 +183,11 @@ class SlowContacts:
                                        self.tb, part, [c.seeds for c in chunk],
                                        [c.every for c in chunk], near)
             else:
-                found = [self._cluster(b, c.seeds, c.every, *(x[q] for x in near))
-                         for q, (b, c) in enumerate(zip(part, chunk, strict=True))]
+                p, v, w, q, *pairs = near
+                ends = np.searchsorted(q, np.arange(len(part) + 1))
+                found = [self._cluster(b, c.seeds, c.every, p[n], v[n], w[n],
+                                       *(x[ends[n]:ends[n + 1]] for x in pairs))
+                         for n, (b, c) in enumerate(zip(part, chunk, strict=True))]
             solved += [(f, st) for f, st in zip(found, before, strict=True)]
         for c, (n, _, _, own) in enumerate(clusters):
             b = tables[c]
@@ -308,9 +311,9 @@ class SlowContacts:
 
     def _touching(self, tables: list[int]) -> tuple:
         """For each of `tables` (distinct) at its clock: its balls' (N, 2) positions and
-        velocities and (N, 3) spins, and for every two of its balls b from a: the (N, N, 2)
-        offset, (N, N) distance, whether they touch (within CLUSTER_GAP, neither pocketed),
-        and how fast they close; each with a leading axis over the tables."""
+        velocities and (N, 3) spins (with a leading axis over the tables), and its touching
+        pairs (within CLUSTER_GAP, neither pocketed), each way round: (table's place q, ball
+        a, ball c, offset c - a (K, 2), distance, how fast they close), ordered by q, a, c."""
         N = self.balls.N
         C = len(tables)
         tb = np.repeat(np.array(tables, dtype=np.int64), N)
@@ -318,20 +321,23 @@ class SlowContacts:
         p, v, w = p.reshape(C, N, 2), v.reshape(C, N, 2), w.reshape(C, N, 3)
         R = self.balls.radius[tables]
         live = self.balls.state[tables] != POCKETED
-        d = p[:, None, :, :] - p[:, :, None, :]
-        dist = _norm(d)
+        dist = np.hypot(p[:, None, :, 0] - p[:, :, None, 0], p[:, None, :, 1] - p[:, :, None, 1])
         touch = ((dist - (R[:, :, None] + R[:, None, :]) < CLUSTER_GAP)
                  & live[:, :, None] & live[:, None, :])
         k = np.arange(N)
         touch[:, k, k] = False
-        closing = -((v[:, None] - v[:, :, None]) * d).sum(axis=3) / np.where(dist > 0, dist, 1)
-        return p, v, w, d, dist, touch, closing
+        q, a, c = np.nonzero(touch)
+        d = p[q, c] - p[q, a]
+        dist = dist[q, a, c]
+        closing = -((v[q, c] - v[q, a]) * d).sum(axis=1) / np.where(dist > 0, dist, 1)
+        return p, v, w, q, a, c, d, dist, closing
 
-    def _cluster(self, b: int, seeds: list[int], every: bool, p, v, w, d, dist, touch,
+    def _cluster(self, b: int, seeds: list[int], every: bool, p, v, w, a_, c_, d_, dist_,
                  closing):
         """Resolve a slow contact together with every ball and cushion touching its cluster
         (with `every`, fast contacts too: the work bound's inelastic fallback); the table's
-        balls and contacts as `_touching` gives them."""
+        balls and touching pairs (a_, c_, offsets, distances, closing speeds) as `_touching`
+        gives them."""
         N, tab = self.balls.N, self.features.table
         t = self.tb[b]
         p0, v_in = p.copy(), v.copy()
@@ -339,10 +345,10 @@ class SlowContacts:
         # A contact that closes fast is a collision of its own, handled pair by pair (this is
         # what carries a cradle's wave down the row); only slow contacts join the cluster.
         cap = np.inf if every else self.physics.v_inelastic
-        touch = touch & (closing <= cap)
+        slow = closing <= cap
+        a_, c_, d_, dist_ = a_[slow], c_[slow], d_[slow], dist_[slow]
         near: list[list[int]] = [[] for _ in range(N)]
-        ia, ic = np.nonzero(touch)
-        for a, c in zip(ia.tolist(), ic.tolist(), strict=True):
+        for a, c in zip(a_.tolist(), c_.tolist(), strict=True):
             near[a].append(c)
         members = list(dict.fromkeys(seeds))
         seen = set(members)
@@ -352,10 +358,15 @@ class SlowContacts:
                     seen.add(c)
                     members.append(c)
         mem = np.array(members)
-        # Contact rows: ball a, ball c (or -1: a cushion), normal pushing a away, gap.
-        ia, ic = np.nonzero(np.triu(touch[np.ix_(mem, mem)]))
-        a, c = mem[ia], mem[ic]
-        ra, rc_, rn, rg = [a], [c], [-d[a, c] / dist[a, c][:, None]], [np.zeros(a.size)]
+        # Contact rows: ball a, ball c (or -1: a cushion), normal pushing a away, gap; the
+        # pairs of members in the order of their places among the members.
+        place = np.full(N, -1)
+        place[mem] = np.arange(mem.size)
+        pa, pc = place[a_], place[c_]
+        k = np.flatnonzero((pa >= 0) & (pa < pc))
+        k = k[np.lexsort((pc[k], pa[k]))]
+        a, c = a_[k], c_[k]
+        ra, rc_, rn, rg = [a], [c], [-d_[k] / dist_[k][:, None]], [np.zeros(a.size)]
         rkind = [np.zeros(a.size, dtype=np.int64)]  # 0 ball, 1 rail or jaw, 2 jaw tip
         pm, rcm = p[mem], self.balls.rc[b, mem]
 

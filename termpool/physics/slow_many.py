@@ -38,15 +38,16 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     `seeds` (with `every`: fast contacts too), as `SlowContacts` does one at a time; `near`
     is `SlowContacts._touching` of the tables. Returns each cluster's (members, balls the
     solve moved)."""
-    p, v, w, d, dist, touch, closing = near
+    p, v, w, pq, pa, pc, pd, pdist, closing = near
     C, N = len(tables), balls.N
     tab = features.table
     tarr = np.array(tables, dtype=np.int64)
     cap = np.where(every, np.inf, ph.v_inelastic)
     # Each cluster grown from its seeds over its table's slow contacts.
-    touch = touch & (closing <= cap[:, None, None])
+    slow = closing <= cap[pq]
+    pq, pa, pc, pd, pdist = pq[slow], pa[slow], pc[slow], pd[slow], pdist[slow]
     adj: list[list[list[int]]] = [[[] for _ in range(N)] for _ in range(C)]
-    for q, a, c in zip(*(x.tolist() for x in np.nonzero(touch)), strict=True):
+    for q, a, c in zip(pq.tolist(), pa.tolist(), pc.tolist(), strict=True):
         adj[q][a].append(c)
     members: list[list[int]] = []
     for q in range(C):
@@ -64,17 +65,16 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     gm = mq * N + mb
     P, V, W = p.reshape(C * N, 2), v.reshape(C * N, 2).copy(), w.reshape(C * N, 3)
     P0, V_in = P.copy(), V.copy()
-    # Contact rows, cluster by cluster: its balls in the order of its members, then its
-    # rails and jaws, then its jaw tips.
-    perm = np.full((C, int(sizes.max())), N)
-    perm[mq, np.concatenate([np.arange(n) for n in sizes.tolist()])] = mb
-    padded = np.zeros((C, N + 1, N + 1), dtype=bool)
-    padded[:, :N, :N] = touch
-    sub = padded[np.arange(C)[:, None, None], perm[:, :, None], perm[:, None, :]]
-    bq, ia, ic = np.nonzero(np.triu(sub))
-    a, c = perm[bq, ia], perm[bq, ic]
+    # Contact rows, cluster by cluster: its pairs of balls in the order of their places
+    # among its members, then its rails and jaws, then its jaw tips.
+    place = np.full((C, N), -1)
+    place[mq, mb] = np.concatenate([np.arange(n) for n in sizes.tolist()])
+    ia, ic = place[pq, pa], place[pq, pc]
+    k = np.flatnonzero((ia >= 0) & (ia < ic))
+    k = k[np.lexsort((ic[k], ia[k], pq[k]))]
+    bq, a, c = pq[k], pa[k], pc[k]
     rq, ra, rc_ = [bq], [a], [c]
-    rn, rg = [-d[bq, a, c] / dist[bq, a, c][:, None]], [np.zeros(a.size)]
+    rn, rg = [-pd[k] / pdist[k][:, None]], [np.zeros(a.size)]
     rkind = [np.zeros(a.size, dtype=np.int64)]
     seg_gap, beside, tip_gap, tip_dir = features.gaps(P[gm], balls.rc[tarr[mq], mb])
     capm = cap[mq][:, None]
