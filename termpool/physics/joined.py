@@ -33,6 +33,7 @@ from termpool.physics.params import Physics
 from termpool.physics.roots import A_MIN
 from termpool.physics.schedule import Due
 from termpool.physics.state import EPS_V, EPS_W, ROLLING, SLIDING, SPINNING, STATIONARY
+from termpool.physics.vec import any_by
 from termpool.physics.vec import norm as _norm
 from termpool.physics.vec import perp as _perp
 
@@ -200,11 +201,6 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
     return out
 
 
-def _any(mask: np.ndarray, owner: np.ndarray, count: int) -> np.ndarray:
-    """(count,) True where any element of `mask` belonging to that owner is True."""
-    return np.bincount(owner[mask], minlength=count) > 0
-
-
 class Sets:
     """Groups pushed at once: ball b belongs to group `ball_group[b]`, the rows of group q
     are J's rows starts[q] to starts[q] + counts[q]."""
@@ -239,7 +235,7 @@ class Sets:
         """`_resting` of every group."""
         J = self.J
         u = J.speeds(v)
-        need = _any(np.abs(u) > EPS_V, self.row_group, self.count)
+        need = any_by(np.abs(u) > EPS_V, self.row_group, self.count)
         if not need.any():
             return v
         q_list = np.flatnonzero(need)
@@ -284,17 +280,17 @@ def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.nd
     every = np.ones(sets.count, dtype=bool)
     acc = sets.solve(free, inv, bend, every)
     brake = -(v * acc).sum(axis=1)
-    again = _any(rolling & (brake > 0) & (vs * vs < brake * SETTLE), grp, sets.count)
+    again = any_by(rolling & (brake > 0) & (vs * vs < brake * SETTLE), grp, sets.count)
     held = np.zeros(len(m), dtype=bool)
     resisted = np.zeros(len(m), dtype=bool)
     # The pushed balls at rest, group by group, each for as many rounds as `push` allows.
-    live = _any(rest, grp, sets.count)
+    live = any_by(rest, grp, sets.count)
     limit = 2 * np.bincount(grp, minlength=sets.count) + 2
     rounds = 0
     while live.any():
         start = rest & ~held & ~resisted & (_norm(acc) > A_MIN) & (ph.mu_roll > 0)
         stop = resisted & ~held & ((free * acc).sum(axis=1) >= 0)
-        live &= _any(start | stop, grp, sets.count) & (rounds < limit)
+        live &= any_by(start | stop, grp, sets.count) & (rounds < limit)
         if not live.any():
             break
         mine = live[grp]
@@ -323,7 +319,7 @@ def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.nd
     duration, straight = _renewal(moving, rate_of, turn)
     duration = np.where(sliding | roll, duration, np.inf)
     turning = (sliding | rolling) & ~straight & np.isfinite(duration)
-    bent = _any(turning, grp, sets.count)
+    bent = any_by(turning, grp, sets.count)
     if bent.any():
         mine = bent[grp][:, None]
         mid = moving + rate_of * (0.5 * np.where(turning, duration, 0.0))[:, None]

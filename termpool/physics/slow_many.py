@@ -22,13 +22,9 @@ from termpool.physics.motion import Col, snap
 from termpool.physics.params import Physics
 from termpool.physics.roots import V_MIN
 from termpool.physics.state import CLUSTER_GAP, EPS_U
-from termpool.physics.vec import dots
+from termpool.physics.vec import any_by, dots
 from termpool.physics.vec import norm as _norm
 from termpool.physics.vec import perp as _perp
-
-
-def _any(mask: np.ndarray, owner: np.ndarray, count: int) -> np.ndarray:
-    return np.bincount(owner[mask], minlength=count) > 0
 
 
 def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups,
@@ -105,7 +101,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     live = np.ones(C, dtype=bool)
     for _ in range(20):
         u0 = J.speeds(V)
-        live &= _any(u0 < -V_MIN, rq_, C)
+        live &= any_by(u0 < -V_MIN, rq_, C)
         if not live.any():
             break
         lam = np.zeros(len(J))
@@ -123,7 +119,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         gaps = np.empty(len(J))
         gaps[ball] = _norm(P[gc[ball]] - P[ga[ball]]) - Rf[ga[ball]] - Rf[gc[ball]]
         gaps[cush] = rg_[cush] + ((P[ga[cush]] - P0[ga[cush]]) * rn_[cush]).sum(axis=1)
-        live &= _any(gaps < -1e-12, rq_, C)
+        live &= any_by(gaps < -1e-12, rq_, C)
         if not live.any():
             break
         lam = np.zeros(len(J))
