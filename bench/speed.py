@@ -162,6 +162,16 @@ def time_batch(scene, dt: float, batch: int) -> dict:
     }
 
 
+def batch_memory(batch: int) -> dict:
+    """Peak memory of the batch to rest, per table (bench/memory.py: a fresh interpreter,
+    the growth of its peak resident size); the target is for 4096 tables, where the figure
+    is smaller (benchmarks/memory.py measures it there)."""
+    from bench.memory import batch_peak
+
+    r = batch_peak(batch, "rss")
+    return {"batch_peak_kb_per_table": r["kb_per_table"], "batch_peak_mb": r["peak_bytes"] / 1e6}
+
+
 def time_import(runs: int = IMPORT_RUNS) -> dict:
     """Median time to import the core in a fresh interpreter (as measured inside it)."""
     import termpool
@@ -277,6 +287,7 @@ def speed_figures(dt: float, repeat: int, batch: int, games: int = 0,
     out: dict[str, Any] = {"dt": dt, "repeat": repeat}
     out.update(time_break(scene, dt, repeat))
     out.update(time_batch(scene, dt, batch))
+    out.update(batch_memory(batch))
     out.update(time_import())
     out.update(time_sim_start())
     out.update(time_record(scene, batch))
@@ -323,6 +334,13 @@ def format_speed(r: dict) -> str:
             f"{r['batch_stepped_wall_s']:.2f} s (CPU {r['batch_stepped_cpu_s']:.2f} s), "
             f"{r['batch_steps']} steps, "
             f"{r['batch_stepped_passes']} passes; same tables: {r['batch_same_result']}",
+        ),
+        (
+            "  peak memory",
+            f"{r['batch_peak_kb_per_table']:.0f} KB",
+            ("", float("nan")),
+            None,
+            f"a table of the batch (peak RSS +{r['batch_peak_mb']:.1f} MB, fresh interpreter)",
         ),
         (
             "import core",

@@ -47,6 +47,9 @@ def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert result["batch"] == 4
     assert result["repeat"] == 1
     assert result["batch_at_rest"] == 4
+    # The batch's peak memory, from a fresh interpreter (RSS: may not grow at all for 4).
+    assert math.isfinite(result["batch_peak_kb_per_table"])
+    assert result["batch_peak_kb_per_table"] >= 0 and result["batch_peak_mb"] >= 0
     assert result["break_ms_min"] <= result["break_ms"] <= result["break_ms_max"]
     assert sum(result["events"].values()) == result["events_total"]
     assert result["events"].get("ball_ball", 0) > 0
@@ -144,3 +147,15 @@ def test_numpy_calls_counted_under_valgrind(tmp_path) -> None:
     one, three = (npcalls.numpy_calls(npcalls.callgrind(tmp_path, "run.py", k), points)
                   for k in (1, 3))
     assert three - one == 2 * 5  # a ufunc, a function, a write, a read, a method a round
+
+
+def test_batch_memory_counts_what_a_batch_allocates() -> None:
+    """bench/memory.py: tracemalloc sees the engine of a small batch allocate (its arrays),
+    the figure is per table, and an unknown method is refused by name."""
+    from bench.memory import batch_peak
+
+    r = batch_peak(4, "tracemalloc")
+    assert r["at_rest"] == 4 and r["peak_bytes"] > 4 * 5_000  # at least its state arrays
+    assert r["kb_per_table"] == pytest.approx(r["peak_bytes"] / 4 / 1e3)
+    with pytest.raises(ValueError, match="method"):
+        batch_peak(4, "guess")

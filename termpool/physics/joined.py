@@ -33,6 +33,7 @@ from termpool.physics.params import Physics
 from termpool.physics.roots import A_MIN
 from termpool.physics.schedule import Due
 from termpool.physics.state import EPS_V, EPS_W, ROLLING, SLIDING, SPINNING, STATIONARY
+from termpool.physics.vec import any_by
 from termpool.physics.vec import norm as _norm
 from termpool.physics.vec import perp as _perp
 
@@ -41,6 +42,7 @@ TURN_ROLL = 0.2  # rad: the same for a rolling ball's resistance, 20 times weake
 ROLL_MASS = 1.4  # a rolling ball pushed through its centre answers as if 7/5 as heavy
 EPS_SLIP = 1e-7  # m/s: a slip this small is completed at once (within 50 ns here, where a
 # pressed ball slides to the end of its slip, unlike state.EPS_U for free balls)
+BLOCKS = 64  # groups whose contact matrices are built at once (bounds the temporaries)
 SETTLE = 1e-3  # s: a rolling ball in a group that would be braked to rest this soon rests
 
 
@@ -177,6 +179,178 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     return v, acc, alpha, state, duration, w
 
 
+def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> list:
+    """`Rows.matrix(k)` of each of several sets of rows at once: the rows of set q are
+    J's rows starts[q] to starts[q] + counts[q], and touch no ball of another set. Element
+    for element the same operations as `Rows.matrix`, so the same bits."""
+    out = []
+    for s in range(0, len(starts), BLOCKS):
+        st, ct = starts[s:s + BLOCKS], counts[s:s + BLOCKS]
+        top = int(ct.max()) if ct.size else 0
+        j = np.arange(top)
+        idx = np.where(j < ct[:, None], st[:, None] + j, 0)  # padding: any row, then cut off
+        a, c, n, ball = J.a[idx], J.c[idx], J.n[idx], J.ball[idx]
+        # n_i . n_j as numpy's two-term sum adds it (from 0.0: -0.0 comes out 0.0)
+        nn = (0.0 + n[:, :, None, 0] * n[:, None, :, 0]) + n[:, :, None, 1] * n[:, None, :, 1]
+        by_a = (a[:, None, :] == a[:, :, None]).astype(float) - (c[:, None, :] == a[:, :, None])
+        by_c = (c[:, None, :] == c[:, :, None]).astype(float) - (a[:, None, :] == c[:, :, None])
+        kc = np.where(ball, k[np.maximum(c, 0)], 0.0)
+        A = (k[a][:, :, None] * (nn * by_a)
+             + kc[:, :, None] * (nn * np.where(ball[:, :, None], by_c, 0.0)))
+        out += [A[q, :r, :r] for q, r in enumerate(ct.tolist())]
+    return out
+
+
+class Sets:
+    """Groups pushed at once: ball b belongs to group `ball_group[b]`, the rows of group q
+    are J's rows starts[q] to starts[q] + counts[q]."""
+
+    def __init__(self, J: Rows, ball_group: np.ndarray, row_group: np.ndarray,
+                 count: int) -> None:
+        self.J, self.ball_group, self.row_group, self.count = J, ball_group, row_group, count
+        self.counts = np.bincount(row_group, minlength=count)
+        self.starts = np.concatenate([[0], np.cumsum(self.counts)[:-1]]).astype(np.int64)
+
+    def rows(self, q: int) -> slice:
+        return slice(int(self.starts[q]), int(self.starts[q] + self.counts[q]))
+
+    def solve(self, free, k, bend, chosen: np.ndarray) -> np.ndarray:
+        """`_solve` for the groups `chosen` (bools per group): their balls' accelerations,
+        each group's contact forces found on its own (other balls: anything)."""
+        J = self.J
+        q_list = np.flatnonzero(chosen)
+        mats = blocks(J, self.starts[q_list], self.counts[q_list], k)
+        b = J.speeds(free) + bend
+        lam = np.zeros(len(J))
+        for q, A in zip(q_list.tolist(), mats, strict=True):
+            live = np.abs(A).sum(axis=1) > 0
+            if live.any():
+                rows = self.rows(q)
+                part = np.zeros(A.shape[0])
+                part[live] = solve_inelastic(A[np.ix_(live, live)], b[rows][live])
+                lam[rows] = part
+        return free + J.spread(lam, k)
+
+    def resting(self, v, k) -> np.ndarray:
+        """`_resting` of every group."""
+        J = self.J
+        u = J.speeds(v)
+        need = any_by(np.abs(u) > EPS_V, self.row_group, self.count)
+        if not need.any():
+            return v
+        q_list = np.flatnonzero(need)
+        lam = np.zeros(len(J))
+        for q, A in zip(q_list.tolist(), blocks(J, self.starts[q_list], self.counts[q_list], k),
+                        strict=True):
+            rows = self.rows(q)
+            lam[rows] = solve_psd(A, -u[rows])
+        return np.where(need[self.ball_group][:, None], v + J.spread(lam, k), v)
+
+
+def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray,
+              rate: np.ndarray, sets: Sets, bend: np.ndarray) -> tuple:
+    """`push` of several groups at once: balls and rows as `sets` orders them (group by
+    group; a row's balls are its group's), with the contacts' bends. The same operations
+    ball by ball and row by row, each group's forces solved on its own, so the same bits as
+    `push` group by group; a group whose rolling balls the forces brake to rest (the rare
+    second round of `push`) is pushed by `push` itself. Returns `push`'s arrays."""
+    g = ph.g
+    J, grp = sets.J, sets.ball_group
+    v_in, w_in = v, w
+    u = v + R[:, None] * _perp(w[:, :2])
+    us = _norm(u)
+    small = ((us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))[:, None]
+    v = np.where(small, v - u / 3.5, v)
+    w = w.copy()
+    w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
+    settled = np.zeros(len(m), dtype=bool)
+    rolled = _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
+    v = sets.resting(v, np.where(settled, 0.0, 1.0 / m))
+    w[:, :2] = np.where(rolled[:, None], _perp(v) / R[:, None], w[:, :2])
+    u = v + R[:, None] * _perp(w[:, :2])
+    us, vs = _norm(u), _norm(v)
+    sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
+    rolling = ~sliding & (vs > EPS_V)
+    rest = ~sliding & ~rolling
+    safe_u = np.where(sliding, us, 1.0)[:, None]
+    safe_v = np.where(rolling, vs, 1.0)[:, None]
+    free = np.where(sliding[:, None], -ph.mu_slide * g * u / safe_u,
+                    np.where(rolling[:, None], -ph.mu_roll * g * v / safe_v, 0.0))
+    inv = np.where(sliding, 1.0, 1.0 / ROLL_MASS) / m
+    every = np.ones(sets.count, dtype=bool)
+    acc = sets.solve(free, inv, bend, every)
+    brake = -(v * acc).sum(axis=1)
+    again = any_by(rolling & (brake > 0) & (vs * vs < brake * SETTLE), grp, sets.count)
+    held = np.zeros(len(m), dtype=bool)
+    resisted = np.zeros(len(m), dtype=bool)
+    # The pushed balls at rest, group by group, each for as many rounds as `push` allows.
+    live = any_by(rest, grp, sets.count)
+    limit = 2 * np.bincount(grp, minlength=sets.count) + 2
+    rounds = 0
+    while live.any():
+        start = rest & ~held & ~resisted & (_norm(acc) > A_MIN) & (ph.mu_roll > 0)
+        stop = resisted & ~held & ((free * acc).sum(axis=1) >= 0)
+        live &= any_by(start | stop, grp, sets.count) & (rounds < limit)
+        if not live.any():
+            break
+        mine = live[grp]
+        start &= mine
+        stop &= mine
+        size = np.where(start, _norm(acc), 1.0)[:, None]
+        free = np.where(start[:, None], -ph.mu_roll * g * acc / size, free)
+        resisted |= start
+        held |= stop
+        free = np.where(held[:, None], 0.0, free)
+        acc = np.where(mine[:, None], sets.solve(free, np.where(held, 0.0, inv), bend, live),
+                       acc)
+        rounds += 1
+    pushed = rest & ~held & (_norm(acc) > A_MIN)
+    acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
+    v = np.where(rest[:, None], 0.0, v)
+    w = w.copy()
+    roll = rolling | pushed
+    w[:, :2] = np.where(roll[:, None], _perp(v) / R[:, None],
+                        np.where((rest & ~pushed)[:, None], 0.0, w[:, :2]))
+    uhat = u / safe_u
+    spin_acc = (2.5 * ph.mu_slide * g / R)[:, None] * _perp(uhat)
+    slip_rate = acc + R[:, None] * _perp(spin_acc)
+    moving, rate_of = np.where(sliding[:, None], u, v), np.where(sliding[:, None], slip_rate, acc)
+    turn = np.where(sliding, TURN, TURN_ROLL)
+    duration, straight = _renewal(moving, rate_of, turn)
+    duration = np.where(sliding | roll, duration, np.inf)
+    turning = (sliding | rolling) & ~straight & np.isfinite(duration)
+    bent = any_by(turning, grp, sets.count)
+    if bent.any():
+        mine = bent[grp][:, None]
+        mid = moving + rate_of * (0.5 * np.where(turning, duration, 0.0))[:, None]
+        size = np.where(turning, _norm(mid), 1.0)[:, None]
+        mu = np.where(sliding, ph.mu_slide, ph.mu_roll)[:, None]
+        free = np.where(turning[:, None], -mu * g * mid / size, free)
+        acc = np.where(mine, sets.solve(free, np.where(held, 0.0, inv), bend, bent), acc)
+        acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
+        mid_hat = mid / size
+        spin_acc = np.where(turning[:, None],
+                            (2.5 * ph.mu_slide * g / R)[:, None] * _perp(mid_hat), spin_acc)
+    alpha = np.where(sliding[:, None], spin_acc, _perp(acc) / R[:, None])
+    wz = np.abs(w[:, 2])
+    spinning = rest & ~pushed & (wz > EPS_W)
+    duration = np.where(spinning, wz / rate, duration)
+    w[:, 2] = np.where(rest & ~pushed & ~spinning, 0.0, w[:, 2])
+    state = np.where(sliding, SLIDING, np.where(roll, ROLLING,
+                                                np.where(spinning, SPINNING, STATIONARY)))
+    out = [v, acc, alpha, state, duration, w]
+    for q in np.flatnonzero(again).tolist():  # push's second round: push itself
+        balls = np.flatnonzero(grp == q)
+        rows = sets.rows(q)
+        first = int(balls[0])
+        one = [(int(a) - first, int(c) - first if c >= 0 else -1, n, bb) for a, c, n, bb in
+               zip(J.a[rows], J.c[rows], J.n[rows], bend[rows], strict=True)]
+        for x, y in zip(out, push(ph, v_in[balls], w_in[balls], R[balls], m[balls],
+                                  rate[balls], one), strict=True):
+            x[balls] = y
+    return tuple(out)
+
+
 def _resting(v, k, J: Rows) -> np.ndarray:
     """v with the contacts' normal speeds (a micrometre per second at most, left by the
     solve of slow contacts) taken out by the least change weighted by inverse masses k:
@@ -245,11 +419,12 @@ class Groups:
             self.label[b, sorted(members)] = -1
             self.count[b] = int((self.label[b] >= 0).sum())
             if rest:
-                k = np.array(rest)
-                bb, tt = np.full(k.size, b), np.full(k.size, self.tb[b])
-                self.balls.set(bb, k, tt, *self.balls.eval(bb, k, tt))
-                out_b.append(bb)
-                out_i.append(k)
+                out_b.append(np.full(len(rest), b))
+                out_i.append(np.array(rest))
+        if out_b:  # every table's freed balls started at once (each table's own balls)
+            bb, k = np.concatenate(out_b), np.concatenate(out_i)
+            tt = self.tb[bb]
+            self.balls.set(bb, k, tt, *self.balls.eval(bb, k, tt))
         return out_b, out_i
 
     def join(self, b: int, mem, t: float, p, v, w, ra, rc_, rn, bend) -> None:
@@ -257,8 +432,11 @@ class Groups:
         balls in resting contacts (rows ra, rc_, rn, bend as in slow.SlowContacts' cluster
         solve) move as a group held by the contacts' forces; the others move freely."""
         balls = self.balls
-        held = np.unique(np.concatenate([ra, rc_[rc_ >= 0]]))
-        free = mem[~np.isin(mem, held)]
+        # (In plain ints: a group has a few balls, and np.unique and np.isin cost more.)
+        in_rows = set(ra.tolist())
+        in_rows.update(x for x in rc_.tolist() if x >= 0)
+        held = np.array(sorted(in_rows), dtype=np.int64)
+        free = np.array([x for x in mem.tolist() if x not in in_rows], dtype=np.int64)
         self.label[b, mem] = -1
         if free.size:
             balls.set(np.full(free.size, b), free, np.full(free.size, t), p[free], v[free], w[free])

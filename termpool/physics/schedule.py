@@ -16,6 +16,9 @@ from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
 from termpool.physics.vec import norm as _norm
 
+# Candidates (row x ball) a chunk of `predict_many` works on at once: bounds its temporaries
+# (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
+CHUNK = 16384
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -64,6 +67,8 @@ class Schedule:
         assert np.shares_memory(self.t_pair, times)  # a view, not a copy
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
+        self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
+        self.chunk = CHUNK
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
@@ -85,7 +90,12 @@ class Schedule:
 
     def predict_many(self, b: np.ndarray, i: np.ndarray) -> None:
         """`predict` on arrays."""
-        balls, feat = self.balls, self.features
+        balls = self.balls
+        if b.size > 1:  # a ball renewed twice (an event's ball, and its cluster's): once
+            first = np.unique(b * self.N + i, return_index=True)[1]
+            if first.size < b.size:
+                first.sort()
+                b, i = b[first], i[first]
         t = self.tb[b]
         st = balls.state[b, i]
         moving = _MOVING[st]
@@ -101,24 +111,45 @@ class Schedule:
             if m.size == 0:
                 return
             b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
-        # Every ball of the tables involved, evaluated once: row r holds ball i[r]'s table.
+        # In chunks of rows, so that the temporaries (each row's candidates against every
+        # ball of its table) stay bounded however many tables renew at once; every row's
+        # predictions are its own, so chunks give the same times as one piece.
+        step = max(1, self.chunk // self.N)
+        self._row[b, i] = np.arange(b.size)
+        try:
+            for s in range(0, b.size, step):
+                self._predict_rows(b[s:s + step], i[s:s + step], t[s:s + step],
+                                   end[s:s + step], moving[s:s + step], s)
+        finally:
+            self._row[b, i] = -1
+
+    def _predict_rows(self, b, i, t, end, moving, first: int) -> None:
+        """`predict_many`'s contact predictions for live balls (b, i) at clocks t, whose
+        motions hold until `end`, their own predictions already cleared; they are rows
+        `first` on of the renewal (`_row`)."""
+        balls, feat = self.balls, self.features
+        # Every ball of the tables involved, evaluated once a table (row r holds ball i[r]
+        # of table u[r]).
         M = b.size
-        rows = np.arange(M)
-        tc = t[:, None]
-        P, V, _ = balls.eval(b[:, None], self._balls, tc, spin=False)
-        A = balls.acc[b]
-        p, v, a = P[rows, i], V[rows, i], A[rows, i]
-        # Pairs: every other ball on the table, where at least one of the two moves.
-        stk = balls.state[b]
-        valid = _LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
-        mi = np.nonzero(valid)[0]
-        R = balls.radius[b]
-        end_k = np.minimum(self.t_trans[b], self.t_check[b])
-        rel_p = [(P - p[:, None])[valid]]
-        rel_v = [(V - v[:, None])[valid]]
-        rel_a = [(A - a[:, None])[valid]]
-        dist = [(R + R[rows, i][:, None])[valid]]
-        horizon = [(np.minimum(end[:, None], end_k) - tc)[valid]]
+        tabs, u = np.unique(b, return_inverse=True)
+        P, V, _ = balls.eval(tabs[:, None], self._balls, self.tb[tabs][:, None], spin=False)
+        A = balls.acc[tabs]
+        p, v, a = P[u, i], V[u, i], A[u, i]
+        # Pairs: every other ball on the table, where at least one of the two moves. Two
+        # renewed balls meet as the first one's pair only: their times are the same bits
+        # either way round (each difference the other's negated, each product the same).
+        stk = balls.state[tabs][u]
+        renewed = self._row[b]
+        valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
+                 & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
+        mi, kk = np.nonzero(valid)
+        um = u[mi]
+        end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
+        rel_p = [P[um, kk] - p[mi]]
+        rel_v = [V[um, kk] - v[mi]]
+        rel_a = [A[um, kk] - a[mi]]
+        dist = [balls.radius[tabs][um, kk] + balls.radius[b, i][mi]]
+        horizon = [np.minimum(end[mi], end_k[um, kk]) - t[mi]]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses or a hole within their window (a ball in open felt costs nothing here); tips
         # and holes are the same quartic as a pair. A corner hole may reach into the table
@@ -150,7 +181,7 @@ class Schedule:
         npair = mi.size
         if npair:
             tp = t[mi] + found[:npair]
-            bb, ii, kk = b[mi], i[mi], np.nonzero(valid)[1]
+            bb, ii = b[mi], i[mi]
             self.t_pair[bb, ii, kk] = tp
             self.t_pair[bb, kk, ii] = tp
         if mv.size:

@@ -25,6 +25,7 @@ from termpool.physics.params import Physics
 from termpool.physics.respond import Responses
 from termpool.physics.roots import A_MIN, V_MIN
 from termpool.physics.schedule import Due, Schedule
+from termpool.physics.slow_many import solve_clusters
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
@@ -58,6 +59,10 @@ class Solved:
 
 
 _NOTHING = Solved()  # what solving no cluster does (only ever read)
+# Clusters of a pass solved together from this many on (slow_many; one alone is solved here),
+# and at most MANY_CLUSTERS at a time.
+MANY = 2
+MANY_CLUSTERS = 256
 
 
 class SlowContacts:
@@ -68,6 +73,7 @@ class SlowContacts:
                  groups: Groups, respond: Responses, tb: np.ndarray) -> None:
         self.physics, self.balls, self.features, self.schedule = physics, balls, features, schedule
         self.groups, self.respond, self.tb = groups, respond, tb
+        self.many = MANY  # clusters solved together from this many (tests vary it)
 
     def cushions(self, tabs, i, cu, busy, any_busy: bool) -> tuple[list[Cluster], set[int]]:
         """Balls i[cu] of tables tabs[cu] meeting a cushion feature or a hole (busy: over the
@@ -161,10 +167,31 @@ class SlowContacts:
         if not clusters:  # the usual pass
             return _NOTHING
         out = Solved()
-        for n, seeds, every, own in clusters:
-            b = int(tabs[n])
-            before = self.balls.state[b].copy()
-            members, moved = self._cluster(b, seeds, every)
+        tables = [int(tabs[n]) for n, _, _, _ in clusters]
+        # Each table has one event a pass, so its cluster is its own: the clusters are solved
+        # together (slow_many), MANY_CLUSTERS at a time to bound the temporaries, or one
+        # alone as here.
+        assert len(set(tables)) == len(tables)
+        solved: list = []
+        for s in range(0, len(clusters), MANY_CLUSTERS):
+            part = tables[s:s + MANY_CLUSTERS]
+            near = self._touching(part)
+            chunk = clusters[s:s + MANY_CLUSTERS]
+            before = self.balls.state[part].copy()
+            if len(part) >= self.many:
+                found = solve_clusters(self.physics, self.balls, self.features, self.groups,
+                                       self.tb, part, [c.seeds for c in chunk],
+                                       [c.every for c in chunk], near)
+            else:
+                p, v, w, q, *pairs = near
+                ends = np.searchsorted(q, np.arange(len(part) + 1))
+                found = [self._cluster(b, c.seeds, c.every, p[n], v[n], w[n],
+                                       *(x[ends[n]:ends[n + 1]] for x in pairs))
+                         for n, (b, c) in enumerate(zip(part, chunk, strict=True))]
+            solved += [(f, st) for f, st in zip(found, before, strict=True)]
+        for c, (n, _, _, own) in enumerate(clusters):
+            b = tables[c]
+            (members, moved), before = solved[c]
             out.sizes.append(len(members))
             if own and not moved:
                 out.quiet.add(n)
@@ -282,38 +309,64 @@ class SlowContacts:
         acc = ((dv * dv).sum(axis=1) + (d * a).sum(axis=1)) / r - pv * pv / r ** 3
         return (np.abs(pv) <= V_MIN * r) & (acc < -A_MIN)
 
-    def _cluster(self, b: int, seeds: list[int], every: bool = False):
+    def _touching(self, tables: list[int]) -> tuple:
+        """For each of `tables` (distinct) at its clock: its balls' (N, 2) positions and
+        velocities and (N, 3) spins (with a leading axis over the tables), and its touching
+        pairs (within CLUSTER_GAP, neither pocketed), each way round: (table's place q, ball
+        a, ball c, offset c - a (K, 2), distance, how fast they close), ordered by q, a, c."""
+        N = self.balls.N
+        C = len(tables)
+        tb = np.repeat(np.array(tables, dtype=np.int64), N)
+        p, v, w = self.balls.eval(tb, np.tile(np.arange(N), C), self.tb[tb])
+        p, v, w = p.reshape(C, N, 2), v.reshape(C, N, 2), w.reshape(C, N, 3)
+        R = self.balls.radius[tables]
+        live = self.balls.state[tables] != POCKETED
+        dist = np.hypot(p[:, None, :, 0] - p[:, :, None, 0], p[:, None, :, 1] - p[:, :, None, 1])
+        touch = ((dist - (R[:, :, None] + R[:, None, :]) < CLUSTER_GAP)
+                 & live[:, :, None] & live[:, None, :])
+        k = np.arange(N)
+        touch[:, k, k] = False
+        q, a, c = np.nonzero(touch)
+        d = p[q, c] - p[q, a]
+        dist = dist[q, a, c]
+        closing = -((v[q, c] - v[q, a]) * d).sum(axis=1) / np.where(dist > 0, dist, 1)
+        return p, v, w, q, a, c, d, dist, closing
+
+    def _cluster(self, b: int, seeds: list[int], every: bool, p, v, w, a_, c_, d_, dist_,
+                 closing):
         """Resolve a slow contact together with every ball and cushion touching its cluster
-        (with `every`, fast contacts too: the work bound's inelastic fallback)."""
+        (with `every`, fast contacts too: the work bound's inelastic fallback); the table's
+        balls and touching pairs (a_, c_, offsets, distances, closing speeds) as `_touching`
+        gives them."""
         N, tab = self.balls.N, self.features.table
         t = self.tb[b]
-        k = np.arange(N)
-        p, v, w = self.balls.eval(np.full(N, b), k, np.full(N, t))
         p0, v_in = p.copy(), v.copy()
         R, m = self.balls.radius[b], self.balls.mass[b]
-        live = self.balls.state[b] != POCKETED
-        d = p[None, :, :] - p[:, None, :]
-        dist = _norm(d)
-        touch = (dist - (R[:, None] + R[None, :]) < CLUSTER_GAP) & live[:, None] & live[None, :]
-        np.fill_diagonal(touch, False)
         # A contact that closes fast is a collision of its own, handled pair by pair (this is
         # what carries a cradle's wave down the row); only slow contacts join the cluster.
-        closing = -((v[None, :, :] - v[:, None, :]) * d).sum(axis=2) / np.where(dist > 0, dist, 1)
         cap = np.inf if every else self.physics.v_inelastic
-        touch &= closing <= cap
-        near = touch.tolist()
+        slow = closing <= cap
+        a_, c_, d_, dist_ = a_[slow], c_[slow], d_[slow], dist_[slow]
+        near: list[list[int]] = [[] for _ in range(N)]
+        for a, c in zip(a_.tolist(), c_.tolist(), strict=True):
+            near[a].append(c)
         members = list(dict.fromkeys(seeds))
         seen = set(members)
         for a in members:  # grows while we walk it
-            for c in range(N):
-                if near[a][c] and c not in seen:
+            for c in near[a]:
+                if c not in seen:
                     seen.add(c)
                     members.append(c)
         mem = np.array(members)
-        # Contact rows: ball a, ball c (or -1: a cushion), normal pushing a away, gap.
-        ia, ic = np.nonzero(np.triu(touch[np.ix_(mem, mem)]))
-        a, c = mem[ia], mem[ic]
-        ra, rc_, rn, rg = [a], [c], [-d[a, c] / dist[a, c][:, None]], [np.zeros(a.size)]
+        # Contact rows: ball a, ball c (or -1: a cushion), normal pushing a away, gap; the
+        # pairs of members in the order of their places among the members.
+        place = np.full(N, -1)
+        place[mem] = np.arange(mem.size)
+        pa, pc = place[a_], place[c_]
+        k = np.flatnonzero((pa >= 0) & (pa < pc))
+        k = k[np.lexsort((pc[k], pa[k]))]
+        a, c = a_[k], c_[k]
+        ra, rc_, rn, rg = [a], [c], [-d_[k] / dist_[k][:, None]], [np.zeros(a.size)]
         rkind = [np.zeros(a.size, dtype=np.int64)]  # 0 ball, 1 rail or jaw, 2 jaw tip
         pm, rcm = p[mem], self.balls.rc[b, mem]
 

@@ -27,6 +27,12 @@ def perp(v: np.ndarray) -> np.ndarray:
     return v[..., ::-1] * _FLIP
 
 
+def any_by(mask: np.ndarray, owner: np.ndarray, count: int) -> np.ndarray:
+    """(count,) True for each owner 0..count-1 that any True element of `mask` belongs to
+    (`owner` gives each element's owner)."""
+    return np.bincount(owner[mask], minlength=count) > 0
+
+
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise a x b of (K, 3) arrays."""
     ax, ay, az = a[:, 0], a[:, 1], a[:, 2]

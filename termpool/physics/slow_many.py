@@ -1,0 +1,191 @@
+"""The cluster solves of slow contacts (slow.SlowContacts) for many tables at once.
+
+In a batch of similar tables the clusters come together: after a break every table's rack
+settles in the same pass. Solved one table at a time, each solve is a few hundred numpy calls
+on arrays of a few balls; here one pass's clusters (one a table) go through the same steps
+together: every ball and contact row of all of them in one array, each cluster's
+complementarity problems still solved on their own (in plain floats), and the groups their
+resting contacts form pushed together (joined.push_many). Every operation is the one-table
+solve's, element for element and row for row in the same order, so the results are the
+same bits (tests/test_slow_many.py holds them to it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from termpool.physics.balls import Balls
+from termpool.physics.cluster import Rows, solve_inelastic
+from termpool.physics.features import Features
+from termpool.physics.joined import Groups, Sets, blocks, push_many
+from termpool.physics.motion import Col, snap
+from termpool.physics.params import Physics
+from termpool.physics.roots import V_MIN
+from termpool.physics.state import CLUSTER_GAP, EPS_U
+from termpool.physics.vec import any_by, dots
+from termpool.physics.vec import norm as _norm
+from termpool.physics.vec import perp as _perp
+
+
+def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups,
+                   tb: np.ndarray, tables: list[int], seeds: list[list[int]],
+                   every: list[bool], near: tuple) -> list[tuple[list[int], list[int]]]:
+    """Resolve the slow contacts of clusters on distinct `tables`, each grown from its
+    `seeds` (with `every`: fast contacts too), as `SlowContacts` does one at a time; `near`
+    is `SlowContacts._touching` of the tables. Returns each cluster's (members, balls the
+    solve moved)."""
+    p, v, w, pq, pa, pc, pd, pdist, closing = near
+    C, N = len(tables), balls.N
+    tab = features.table
+    tarr = np.array(tables, dtype=np.int64)
+    cap = np.where(every, np.inf, ph.v_inelastic)
+    # Each cluster grown from its seeds over its table's slow contacts.
+    slow = closing <= cap[pq]
+    pq, pa, pc, pd, pdist = pq[slow], pa[slow], pc[slow], pd[slow], pdist[slow]
+    adj: list[list[list[int]]] = [[[] for _ in range(N)] for _ in range(C)]
+    for q, a, c in zip(pq.tolist(), pa.tolist(), pc.tolist(), strict=True):
+        adj[q][a].append(c)
+    members: list[list[int]] = []
+    for q in range(C):
+        mem = list(dict.fromkeys(seeds[q]))
+        seen = set(mem)
+        for a in mem:
+            for c in adj[q][a]:
+                if c not in seen:
+                    seen.add(c)
+                    mem.append(c)
+        members.append(mem)
+    sizes = np.array([len(x) for x in members])
+    mq = np.repeat(np.arange(C), sizes)  # each member's cluster, ball and place among all
+    mb = np.array([k for x in members for k in x], dtype=np.int64)
+    gm = mq * N + mb
+    P, V, W = p.reshape(C * N, 2), v.reshape(C * N, 2).copy(), w.reshape(C * N, 3)
+    P0, V_in = P.copy(), V.copy()
+    # Contact rows, cluster by cluster: its pairs of balls in the order of their places
+    # among its members, then its rails and jaws, then its jaw tips.
+    place = np.full((C, N), -1)
+    place[mq, mb] = np.concatenate([np.arange(n) for n in sizes.tolist()])
+    ia, ic = place[pq, pa], place[pq, pc]
+    k = np.flatnonzero((ia >= 0) & (ia < ic))
+    k = k[np.lexsort((ic[k], ia[k], pq[k]))]
+    bq, a, c = pq[k], pa[k], pc[k]
+    rq, ra, rc_ = [bq], [a], [c]
+    rn, rg = [-pd[k] / pdist[k][:, None]], [np.zeros(a.size)]
+    rkind = [np.zeros(a.size, dtype=np.int64)]
+    seg_gap, beside, tip_gap, tip_dir = features.gaps(P[gm], balls.rc[tarr[mq], mb])
+    capm = cap[mq][:, None]
+    slow = dots(V[gm], tab.seg_n) >= -capm
+    x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
+    for z, val in ((rq, mq[x]), (ra, mb[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
+                   (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
+        z.append(val)
+    slow = (V[gm][:, None] * tip_dir).sum(axis=2) >= -capm
+    x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
+    for z, val in ((rq, mq[x]), (ra, mb[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
+                   (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
+        z.append(val)
+    rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
+    order = np.argsort(rq_ * 3 + rk_, kind="stable")
+    rq_, ra_, rc0, rn_, rg_, rk_ = (z[order] for z in (rq_, ra_, rc0, rn_, rg_, rk_))
+    ga = rq_ * N + ra_
+    gc = np.where(rc0 >= 0, rq_ * N + rc0, -1)
+    J = Rows(ga, gc, rn_, C * N)
+    counts = np.bincount(rq_, minlength=C)
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+    Rf, mf = balls.radius[tarr].ravel(), balls.mass[tarr].ravel()
+    slip = _norm(V + Rf[:, None] * _perp(W[:, :2]))
+    snaps = (slip <= EPS_U) & (ph.mu_slide > 0)
+    A = blocks(J, starts, counts, np.where(snaps, 5.0 / 7.0, 1.0) / mf)
+    inv_m = 1.0 / mf
+    # Velocities: each cluster until none of its contacts closes.
+    live = np.ones(C, dtype=bool)
+    for _ in range(20):
+        u0 = J.speeds(V)
+        live &= any_by(u0 < -V_MIN, rq_, C)
+        if not live.any():
+            break
+        lam = np.zeros(len(J))
+        for q in np.flatnonzero(live).tolist():
+            s = slice(int(starts[q]), int(starts[q] + counts[q]))
+            lam[s] = solve_inelastic(A[q], u0[s])
+        k = gm[live[mq]]
+        V[k] = (V + J.spread(lam, inv_m))[k]
+        _, V[k], W[k], _ = snap(ph, P[k], V[k], W[k], Rf[k], None, move=False)
+    # Positions: undo sinks, each cluster until none of its contacts overlaps.
+    ball = J.ball
+    cush = ~ball
+    live = np.ones(C, dtype=bool)
+    for _ in range(3):
+        gaps = np.empty(len(J))
+        gaps[ball] = _norm(P[gc[ball]] - P[ga[ball]]) - Rf[ga[ball]] - Rf[gc[ball]]
+        gaps[cush] = rg_[cush] + ((P[ga[cush]] - P0[ga[cush]]) * rn_[cush]).sum(axis=1)
+        live &= any_by(gaps < -1e-12, rq_, C)
+        if not live.any():
+            break
+        lam = np.zeros(len(J))
+        qs = np.flatnonzero(live)
+        for q, M in zip(qs.tolist(), blocks(J, starts[qs], counts[qs], inv_m), strict=True):
+            s = slice(int(starts[q]), int(starts[q] + counts[q]))
+            lam[s] = solve_inelastic(M, np.minimum(gaps[s], 0.0))
+        k = gm[live[mq]]
+        P = P.copy()
+        P[k] = (P + J.spread(lam, inv_m))[k]
+    # Resting contacts and their bends, then the groups they form.
+    rest = J.speeds(V) <= V_MIN
+    bend = np.zeros(len(J))
+    rel = V[ga] - np.where(ball[:, None], V[np.maximum(gc, 0)], 0.0)
+    tang = rel - (rel * rn_).sum(axis=1)[:, None] * rn_
+    reach = np.where(ball, Rf[ga] + Rf[np.maximum(gc, 0)], balls.rc[tarr[rq_], ra_])
+    curved = ball | (rk_ == 2)
+    bend[curved] = (tang[curved] ** 2).sum(axis=1) / reach[curved]
+    _join(ph, balls, groups, tb, tarr, members, mq, gm, P, V, W, rq_[rest], ga[rest],
+          gc[rest], rn_[rest], bend[rest])
+    row = balls.motion[tarr[mq], mb]
+    moved = (row[:, Col.V] != V_in[gm]).any(axis=1) | (row[:, Col.P] != P0[gm]).any(axis=1)
+    out = []
+    for q, mem in enumerate(members):
+        hit = moved[mq == q]
+        out.append((mem, [k for k, h in zip(mem, hit.tolist(), strict=True) if h]))
+    return out
+
+
+def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.ndarray,
+          members: list[list[int]], mq, gm, P, V, W, rq, ga, gc, rn, bend) -> None:
+    """`Groups.join` of every cluster: each cluster's balls in resting contacts (rows rq:
+    cluster, ga and gc: balls as cluster * N + ball, normals rn, bends) move as a group, the
+    others freely. Balls are numbered cluster * N + ball."""
+    N = balls.N
+    C = len(members)
+    held_by = [set() for _ in range(C)]
+    for q, x, y in zip(rq.tolist(), ga.tolist(), gc.tolist(), strict=True):
+        held_by[q].add(x)
+        if y >= 0:
+            held_by[q].add(y)
+    held = [sorted(h) for h in held_by]  # global numbers, by ball within each cluster
+    free = [k for k in gm.tolist() if k not in held_by[k // N]]
+    groups.label[tarr[mq], gm % N] = -1
+    if free:
+        fb = np.array(free, dtype=np.int64)
+        bt, bi = tarr[fb // N], fb % N
+        balls.set(bt, bi, tb[bt], P[fb], V[fb], W[fb])
+    if any(held):
+        hb = np.array([k for h in held for k in h], dtype=np.int64)
+        where = {k: n for n, k in enumerate(hb.tolist())}
+        hq = hb // N
+        J = Rows(np.array([where[x] for x in ga.tolist()], dtype=np.int64),
+                 np.array([where.get(y, -1) for y in gc.tolist()], dtype=np.int64), rn,
+                 hb.size)
+        bt, bi = tarr[hq], hb % N
+        vj, acc, alpha, state, duration, wj = push_many(
+            ph, V[hb], W[hb], balls.radius[bt, bi], balls.mass[bt, bi], balls.spin_rate[bt, bi],
+            Sets(J, hq, rq, C), bend)
+        t = tb[bt]
+        balls.state[bt, bi] = state
+        balls.t_trans[bt, bi] = t + duration
+        balls.motion[bt, bi, :Col.RATE] = np.concatenate(
+            [t[:, None], P[hb], vj, acc, wj, alpha], axis=1)
+    for q, h in enumerate(held):
+        b = int(tarr[q])
+        if h:
+            groups.label[b, [k % N for k in h]] = h[0] % N
+        groups.count[b] = int((groups.label[b] >= 0).sum())
