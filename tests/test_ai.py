@@ -849,3 +849,46 @@ def test_the_computer_is_a_player_with_the_game_s_level_names():
     assert cpu.place(m) == ai.choose_placement(*args, "kitchen", level="hard", seed=seed)
     m.option = "shoot_or_pass"
     assert cpu.answer(m) == "shoot"
+
+
+def test_cue_cushions_counts_the_cue_ball_s_cushions_only():
+    # The cue ball alone, sent straight at the foot rail: one cushion, back up the table;
+    # then a second table where it also knocks an object ball into the side rail.
+    eng = Engine(TABLE, PHYS, [[[0.6, 0.635], [2.0, 0.3]], [[0.6, 0.3], [0.9, 0.3]]],
+                 [[[1.2, 0.0], [0.0, 0.0]], [[0.0, 0.0], [0.0, 0.0]]], record="light")
+    eng.run_events()
+    assert ai.scoring.cue_cushions(eng.log, 0) == [1, 0]
+    assert ai.scoring.cue_cushions(eng.log, 1) == [0, 0]
+
+
+def test_each_cushion_the_cue_ball_meets_risks_a_scratch(monkeypatch):
+    # Scored with the risk, every pot (and win) scores what it scored without, moved towards
+    # a foul (a loss, as the 8 drops) by 1 - (1 - RAIL_SCRATCH)^k for its k cue-ball
+    # cushions; safeties and misses keep their scores.
+    lay, _ = after_break()
+    state = State(mode="8ball", groups={0: "solids", 1: "stripes"})
+    rails: list[list[int]] = []
+    count = ai.scoring.cue_cushions
+
+    def spy(logs, cue):
+        rails.append(count(logs, cue))
+        return rails[-1]
+
+    q = ai.scoring.RAIL_SCRATCH
+    assert 0 < q < 1
+    monkeypatch.setattr(ai.scoring, "cue_cushions", spy)
+    with_risk = ai.score_shots(*lay.args(), state, level="hard", max_candidates=64)
+    monkeypatch.setattr(ai.scoring, "RAIL_SCRATCH", 0.0)
+    without = ai.score_shots(*lay.args(), state, level="hard", max_candidates=64)
+    foul = ai.scoring.FOUL - ai.LEVELS["hard"].leave
+    seen = 0
+    for plan, plain, k in zip(with_risk, without, rails[0], strict=True):
+        assert plan[:4] == plain[:4]
+        if plan.sees in ("pot", "win") and k:
+            risk = 1 - (1 - q) ** k
+            bad = ai.scoring.LOSS if plan.sees == "win" else foul  # 8-ball: the 8 and the cue
+            assert plan.score == pytest.approx((1 - risk) * plain.score + risk * bad)
+            seen += 1
+        else:
+            assert plan.score == plain.score
+    assert seen >= 10

@@ -8,6 +8,7 @@ from dataclasses import replace
 import numpy as np
 
 from termpool.physics.engine import POCKETED
+from termpool.physics.events import EventKind
 from termpool.physics.table import Table
 from termpool.rules import words
 from termpool.rules.common import State, legal_targets
@@ -25,6 +26,9 @@ LEAVE_SIGMA = 0.5  # degrees: the aim error a table left behind is valued with, 
 # shooter's next shot and for the opponent alike (a club player's, whatever the level: an
 # error as small as a pro's would call every open shot certain, and tell no leave from another)
 FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
+RAIL_SCRATCH = 0.03  # chance each cushion the cue ball meets after a pot sends it into a pocket
+# in play: the sim's cue ball missed them all, but a little off in aim or speed its path after
+# each cushion moves on, and a long path passes many pockets
 SAID = voice(("player 0", "player 1"))  # the notes' words: pockets as people say them
 
 
@@ -139,7 +143,22 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
                 scores[b] -= lv.leave
             else:
                 scores[b] -= lv.leave * value[r]
+    # The scratches a pot's exact stroke escaped in the sim: more likely the more cushions
+    # its cue ball, struck for position, met. Scratching as the 8 drops loses in 8-ball.
+    # (A safety's cue ball is struck softly, and needs its cushion.)
+    rails = cue_cushions(eng.log, t.cue)
+    lose = LOSS if state.mode == "8ball" else foul
+    for b in range(B):
+        if sees[b] in ("win", "pot") and rails[b]:
+            risk = 1.0 - (1.0 - RAIL_SCRATCH) ** rails[b]
+            scores[b] = (1.0 - risk) * scores[b] + risk * (lose if sees[b] == "win" else foul)
     return scores, calls, list(zip(notes, sees, strict=True)), flukes
+
+
+def cue_cushions(logs: list[list], cue: int) -> list[int]:
+    """How many cushions the cue ball met on each table."""
+    return [sum(ev.kind is EventKind.CUSHION and ev.balls[0] == cue for ev in log)
+            for log in logs]
 
 
 def _opponent_now(state: State, t: OnTable, pockets: geo.Pockets, table: Table) -> float:
