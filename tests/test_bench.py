@@ -36,7 +36,7 @@ def _positive_finite(x: object) -> bool:
 
 def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
     rc = bench.main(["speed", "--json", "--repeat", "1", "--batch", "4", "--no-pooltool",
-                     "--games", "0"])
+                     "--games", "0", "--memory-batch", "8"])
     out = capsys.readouterr().out
     assert rc == 0
     result = json.loads(out)  # exactly one JSON object
@@ -54,7 +54,9 @@ def test_speed_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert sum(result["events"].values()) == result["events_total"]
     assert result["events"].get("ball_ball", 0) > 0
     assert set(result["pass"]) == {"break_ms", "batch_breaks_per_s", "import_s",
-                                   "vs_pooltool_cpu", "record_light_pct", "sim_start_s"}
+                                   "vs_pooltool_cpu", "record_light_pct", "sim_start_s",
+                                   "batch_peak_kb_per_table"}
+    assert result["memory_batch"] == 8
     assert "decision_cpu_s" not in result  # no games asked for
     # The logs' costs are ratios of noisy times: finite, and a log cannot cost the whole run.
     for key in ("record_light_pct", "record_full_pct"):

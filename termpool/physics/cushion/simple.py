@@ -43,7 +43,8 @@ def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.nda
     slip_t = slip - np.einsum("ij,ij->i", slip, normal)[:, None] * normal
     speed = np.linalg.norm(slip_t, axis=1)
     jt = np.minimum(mu * p_h / cos_t, speed * m / 3.5)
-    dirn = np.where(speed[:, None] > 0, slip_t / speed[:, None], 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 where there is no slip
+        dirn = np.where(speed[:, None] > 0, slip_t / speed[:, None], 0.0)
     imp = -jt[:, None] * dirn
     v = v + imp[:, :2] / m[:, None]
     w = w + cross(arm, imp) / (0.4 * m * r * r)[:, None]
