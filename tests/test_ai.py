@@ -86,7 +86,7 @@ def test_straight_in_on_an_empty_table_goes_in():
     assert not summary.scratch
     assert out.continue_turn
     assert (plan.kind, plan.ball, plan.pocket, plan.sees) == ("pot", "1", "foot_left", "pot")
-    assert plan.note == "1 in the foot left pocket"  # for people: the pocket in words
+    assert plan.note == "1 in the left foot corner pocket"  # for people: the pocket in words
 
 
 def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -> float:

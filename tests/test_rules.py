@@ -701,7 +701,20 @@ def test_every_verdict_reads_right_in_every_voice(data) -> None:
     # The people's words are the record's with the names, pockets and groups changed.
     ann = words.reason(out.said, words.voice(("Ann", "Bob")))
     plain = record.replace("player 0", "Ann").replace("player 1", "Bob")
-    assert ann == re.sub(r"(head|side|foot)_(left|right)", r"\1 \2", plain)
+    spoken = re.sub(r"side_(left|right)", r"\1 side", plain)
+    assert ann == re.sub(r"(head|foot)_(left|right)", r"\2 \1 corner", spoken)
+
+
+def test_every_pocket_is_named_as_people_say_it() -> None:
+    from termpool.physics.table import POCKET_NAMES
+
+    v = words.voice(("Ann", "Bob"))
+    assert {p: f"the {v.pocket(p)} pocket" for p in POCKET_NAMES} == {
+        "head_right": "the right head corner pocket", "head_left": "the left head corner pocket",
+        "side_right": "the right side pocket", "side_left": "the left side pocket",
+        "foot_right": "the right foot corner pocket", "foot_left": "the left foot corner pocket"}
+    assert words.calling(v, "8", "side_right") == "calling the 8 in the right side pocket"
+    assert words.RECORD.pocket("side_right") == "side_right"  # records keep the table's names
 
 
 def test_every_reason_code_has_its_words() -> None:

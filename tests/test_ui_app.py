@@ -520,7 +520,8 @@ def test_referee_words_get_the_players_names() -> None:
         "the table is open and you continue"
     assert reason([Said(Why.POTTED_CONTINUES, balls=("3",), player=0),
                    Said(Why.SCRATCH, pocket="foot_left")], voice(app.state)) == \
-        "the 3 pocketed: you continue; scratch: the cue ball went into the foot left pocket"
+        "the 3 pocketed: you continue; scratch: the cue ball went into the left foot corner "
+        "pocket"
     assert reason([Said(Why.IN_HAND, player=0)], voice(app.state)) == \
         "You have ball in hand"
     assert foul_warning(voice(app.state), 0).startswith("You are on two fouls")
@@ -731,7 +732,7 @@ def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
     app.key(Key("enter"), 0.0)
     eight_on_the_8(app)
     assert aid.called(app.state) == ("8", "foot_left")
-    assert "calling the 8 in foot left" in screen_text(app.cells(120, 40)[0])
+    assert "calling the 8 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
     app.key(Key("c"), 1.0)  # the player picks another pocket
     assert aid.called(app.state)[1] != "foot_left"
     app.key(Key("left"), 2.0)
@@ -773,7 +774,7 @@ def test_refusals_name_pockets_in_words_and_clicks_off_the_table_are_ignored():
     app = app_for(mode="practice")
     put(app, part=Place((0.03, 0.03)))  # the head right corner's mouth
     app.key(Key("enter"), 0.0)
-    assert "head right pocket" in app.state.message[0][0]
+    assert "right head corner pocket" in app.state.message[0][0]
     app.cells(100, 32)
     before = app.state.part.cursor
     app.mouse(Mouse(50, 31, "press"), 1.0)  # the panel's last row

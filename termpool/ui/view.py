@@ -254,7 +254,7 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         line = f"{name} to {what}"
         if m.needs_call():
             ball, pocket = aid.called(s)
-            line += f" · calling the {ball} in {voice(s).pocket(pocket)} (C to change)"
+            line += f" · {words.calling(voice(s), ball, pocket)} (C to change)"
         if m.state.mode == "9ball" and not m.state.is_break:
             on = legal_targets(m.state, m.balls_on_table())
             if on:
@@ -323,7 +323,7 @@ def power_line(s: State) -> str:
     if pred is not None and pred.ball is not None:
         line += f" · first ball: the {s.match.ids[pred.ball]}"
         if pred.object is not None and pred.object.end == "pocket":
-            line += f", into the {pred.object.pocket.replace('_', ' ')} pocket"
+            line += f", into the {voice(s).pocket(pred.object.pocket)} pocket"
     return line
 
 

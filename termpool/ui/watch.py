@@ -386,7 +386,7 @@ class Watch:
             parts.append(f"tip {shot['side']:+.1f} side {shot['top']:+.1f} top")
         if shot.get("called"):
             ball, pocket = shot["called"]
-            parts.append(shown(f"calling the {ball} in {self.voice().pocket(pocket)}"))
+            parts.append(shown(words.calling(self.voice(), ball, pocket)))
         if shot.get("push_out"):
             parts.append("push-out")
         return " · ".join(parts)
