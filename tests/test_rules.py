@@ -763,3 +763,9 @@ def test_old_saves_and_blocks_read_as_the_re_spot() -> None:
         codec.read_game({"mode": "9ball", "eight_break": "rerack"}, ["cue", "9"], POCKETS)
     with pytest.raises(SceneError, match="^game.eight_break: must be one of respot, rerack"):
         codec.read_game({"mode": "8ball", "eight_break": "x"}, ["cue", "8"], POCKETS)
+
+
+def test_signed_readings_never_say_minus_zero() -> None:
+    assert [words.signed(x) for x in (-0.0, 0.0, -0.04, 0.04, -0.05, 0.3, -1.0)] == \
+        ["0.0", "0.0", "0.0", "0.0", "-0.1", "+0.3", "-1.0"]
+    assert words.tip_words(-0.01, 0.5) == "tip 0.0 side +0.5 top"

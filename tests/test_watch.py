@@ -359,3 +359,13 @@ def test_a_bad_key_script_and_stdin_twice(match_file) -> None:
     p = cli("replay", "-", "--watch", "--headless", "--keys", "-",
             stdin=match_file.read_text())
     assert p.returncode == 2 and "stdin already holds the replay" in p.stderr
+
+
+def test_a_tip_that_rounds_to_zero_reads_0_0_never_minus_0_0(record) -> None:
+    data = copy.deepcopy(record)
+    shot = data["shots"][0]["shot"]
+    shot["side"], shot["top"] = 0.3, -0.04  # a draw too small to show at one decimal
+    w = Watch(data, "mono")
+    assert "tip +0.3 side 0.0 top" in w.describe(0)
+    shot["side"], shot["top"] = -0.0, -0.3
+    assert "tip 0.0 side -0.3 top" in Watch(data, "mono").describe(0)

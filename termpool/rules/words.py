@@ -82,6 +82,18 @@ def calling(v: Voice, ball: str, pocket: str) -> str:
     return f"calling the {ball} in the {v.pocket(pocket)} pocket"
 
 
+def signed(x: float) -> str:
+    """A signed reading to one decimal ("+0.3", "-1.0"); one that rounds to zero is "0.0",
+    never "-0.0" or "+0.0"."""
+    text = f"{x:+.1f}"
+    return "0.0" if float(text) == 0.0 else text
+
+
+def tip_words(side: float, top: float) -> str:
+    """The cue tip's offset: "tip +0.3 side 0.0 top"."""
+    return f"tip {signed(side)} side {signed(top)} top"
+
+
 def voice(players: Sequence[str], theme: str = "standard") -> Voice:
     """A person's voice: the players' names, pockets in words, the theme's groups."""
     return Voice((players[0], players[1]), theme, plain=False)

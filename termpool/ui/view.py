@@ -234,8 +234,8 @@ def _spin_block(side: float, top: float):
     rows = face[0].shape[0]
     text = blank_cells(SPIN_TEXT_COLS, rows, False)
     for r, (line, colour) in enumerate((("spin", DIM_TEXT_C.rgb),
-                                        (f"side {side:+.1f}", TEXT_C.rgb),
-                                        (f"top  {top:+.1f}", TEXT_C.rgb))):
+                                        (f"side {words.signed(side)}", TEXT_C.rgb),
+                                        (f"top  {words.signed(top)}", TEXT_C.rgb))):
         if r < rows:
             put_text(text, r, 0, line, colour, (0, 0, 0))
     return tuple(np.concatenate([a, b], axis=1) for a, b in zip(text, face, strict=True))
@@ -294,7 +294,7 @@ def _tip_words(s: State) -> str | None:
     st = s.stroke
     if not (st.side or st.top):
         return None
-    return f"tip {st.side:+.1f} side {st.top:+.1f} top"
+    return words.tip_words(st.side, st.top)
 
 
 def power_hint(s: State) -> tuple[str, str]:

@@ -383,7 +383,7 @@ class Watch:
         shot = self.shots[i]["shot"]
         parts = [f"power {round(100 * speed_to_power(shot['speed']))}%"]
         if shot["side"] or shot["top"]:
-            parts.append(f"tip {shot['side']:+.1f} side {shot['top']:+.1f} top")
+            parts.append(words.tip_words(shot['side'], shot['top']))
         if shot.get("called"):
             ball, pocket = shot["called"]
             parts.append(shown(words.calling(self.voice(), ball, pocket)))
