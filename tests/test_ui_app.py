@@ -520,8 +520,8 @@ def test_referee_words_get_the_players_names() -> None:
         "the table is open and you continue"
     assert reason([Said(Why.POTTED_CONTINUES, balls=("3",), player=0),
                    Said(Why.SCRATCH, pocket="foot_left")], voice(app.state)) == \
-        "the 3 pocketed: you continue; scratch: the cue ball went into the left foot corner "
-        "pocket"
+        ("the 3 pocketed: you continue; scratch: the cue ball went into the left foot corner "
+         "pocket")
     assert reason([Said(Why.IN_HAND, player=0)], voice(app.state)) == \
         "You have ball in hand"
     assert foul_warning(voice(app.state), 0).startswith("You are on two fouls")
@@ -1419,3 +1419,34 @@ def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
     app.state.match.state = app.state.match.state.__class__(mode="8ball", shooter=0,
                                                 groups={0: "solids", 1: "stripes"})
     assert panel_info(app.state).legend == []
+
+
+def test_each_player_starts_their_turn_at_their_own_power_never_the_other_s() -> None:
+    for power in ("hold", "digits"):
+        app = app_for(mode="8ball", opponent="human", power=power)
+        run_script(app, "enter 9 space wait 20")  # player 1 breaks at 90% ...
+        m = app.state.match
+        m.state = replace(m.state, shooter=1, is_break=False)  # ... and the turn passes
+        m.ball_in_hand = None
+        app.state = start_turn(app.state)
+        charge = app.state.controls.charge
+        # Player 2 has not shot: the default power, not the 90% of player 1's break.
+        assert charge.preset_level == (0.5 if power == "digits" else None)
+        assert app.state.last_power == 0.5 and not app.state.shot_power_set
+        assert "90%" not in screen_text(app.cells(120, 40)[0])
+        app.key(Key("3"), 50.0)
+        app.key(Key("space"), 50.1)  # a soft 30% ...
+        app.key(Key("space", kind="release"), 50.2)
+        t = 50.2
+        while app.state.phase is Phase.RUN:
+            t += 1 / 30
+            app.tick(t)
+        assert shots(app)[-1]["speed"] == power_to_speed(0.3)
+        m.state = replace(m.state, shooter=0)  # ... and player 1's turn again: their 90%
+        m.ball_in_hand = None
+        app.state = start_turn(app.state)
+        assert app.state.controls.charge.preset_level == 0.9
+        assert app.state.last_power == 0.9
+        m.state = replace(m.state, shooter=1)  # player 2's 30% is theirs
+        app.state = start_turn(app.state)
+        assert app.state.controls.charge.preset_level == 0.3

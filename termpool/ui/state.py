@@ -87,6 +87,15 @@ class Phase(enum.Enum):
     OVER = "over"
 
 
+@dataclass(frozen=True)
+class Power:
+    """A player's power as they left it: the level set with a digit (None: hold) and their
+    last shot's, which the aid predicts at."""
+
+    preset: float | None
+    last: float
+
+
 # ------------------------------------------------------------------------ the phases' parts
 @dataclass(frozen=True)
 class Menu:
@@ -286,6 +295,8 @@ class State:
     stroke: Stroke = Stroke()
     last_power: float = DEFAULT_POWER  # the last shot's power: the aid's until another
     shot_power_set: bool = False  # ... once this match has a shot of the keys'
+    powers: tuple[Power | None, Power | None] = (None, None)  # each player's, kept for
+    # their next turn (None: the default power, before their first shot)
     aid: AidJob = AidJob()
     # the words on show
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
