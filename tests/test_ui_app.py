@@ -1450,3 +1450,30 @@ def test_each_player_starts_their_turn_at_their_own_power_never_the_other_s() ->
         m.state = replace(m.state, shooter=1)  # player 2's 30% is theirs
         app.state = start_turn(app.state)
         assert app.state.controls.charge.preset_level == 0.3
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (60, 20), (80, 24), (120, 40)])
+@pytest.mark.parametrize("name", ["Ann", "Maximilian Alexander von Habsburg-Lothringen"])
+def test_whose_turn_and_the_verdict_always_show(cols, rows, name) -> None:
+    app = app_for(mode="8ball", opponent="human", player1=name, player2=name + " II")
+    run_script(app, "enter space-hold 1.3 wait 12")
+    s = app.state
+    assert s.phase in (Phase.AIM, Phase.PLACE, Phase.OPTION) and s.message
+    if s.phase is Phase.OPTION:
+        return
+    text = " ".join(screen_text(app.cells(cols, rows)[0]).split())
+    shooter = s.match.players[s.match.shooter]
+    what = "to shoot" if s.phase is Phase.AIM else "to shoot · ball in hand"
+    whose = f"{shooter} {what}"
+    verdict = s.message[-1][0]
+    for said in (whose, verdict):  # each in view, whole or cut to its first row ("…")
+        head = said[:cols - 20].rsplit(" ", 1)[0]
+        assert head in text, (said, text)
+
+
+def test_a_name_too_long_for_its_half_of_the_row_shows_as_much_as_fits() -> None:
+    name = "Maximilian Alexander von Habsburg-Lothringen"
+    app = app_for(mode="8ball", opponent="human", player1=name, player2="Bob")
+    run_script(app, "enter space-hold 1.3 wait 12")
+    text = screen_text(app.cells(50, 16)[0])
+    assert "Maximilian Alex" in text and "▶ Bob" in text

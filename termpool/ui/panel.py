@@ -117,6 +117,28 @@ def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str,
     return [*lines[:room - 1], (text + "…", tone)]
 
 
+def fit_status(status: Sequence[tuple[str, str]], room: int,
+               width: int) -> list[tuple[str, str]]:
+    """The status lines (text, tone) for `room` rows `width` wide. Where they do not all fit
+    wrapped whole, each keeps its first row (cut with "…"), and the rows to spare go to
+    them in order; where even a row each is too many, "dim" lines go first, from the last,
+    then the last lines: whose turn it is and the verdict stay in view."""
+    wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
+    if sum(len(w) for w in wrapped) <= room:
+        return [line for w in wrapped for line in w]
+    keep = list(range(len(wrapped)))
+    while len(keep) > max(room, 0):
+        dim = [k for k in keep if status[k][1] == "dim"]
+        keep.remove(dim[-1] if dim else keep[-1])
+    spare = room - len(keep)
+    out = []
+    for k in keep:
+        n = min(len(wrapped[k]), 1 + spare)
+        spare -= n - 1
+        out += _cut(wrapped[k], n, width)
+    return out
+
+
 def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
     chars, fg, bg = cells
     chars[row:row + nrows, col:col + ncols] = " "
@@ -131,9 +153,9 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     group, frames and fouls, then the balls still to pot (and, dim, those down). Where that is
     too long it is said more shortly, in turn: without the balls down, without the group's
     word (the balls show it; in mono they lose their glyphs), with the frames and fouls as
-    "1/3" and "F2", without them; only
-    a line that still does not fit is cut, at a piece, with "…". With `keep_score`, a line
-    that cannot keep the frames and fouls is None instead."""
+    "1/3" and "F2", without them; only a line that still does not fit is cut, at a piece
+    (a name too long, within itself), with "…". With `keep_score`, a line that cannot keep
+    the frames and fouls is None instead."""
     name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
              BACKDROP_C.rgb)]
     todo = ball_tokens(info.ids, p.balls, mono, info.theme)
@@ -162,6 +184,8 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     out, used = [], 0
     for t, fg, bg in forms[-1]:
         if used + len(t) > width - 1:
+            if not out:  # a name too long for the line: as much of it as fits
+                out.append((t[:max(width - 1, 0)], fg, bg))
             out.append(("…", DIM_TEXT_C.rgb, BACKDROP_C.rgb))
             break
         out.append((t, fg, bg))
@@ -240,10 +264,7 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         for p in players:
             _put_line(cells, r, c0, player_line(p, info, mono, w))
             r += 1
-    lines = []
-    for text, tone in info.status:
-        lines += [(s, tone) for s in _wrap(text, w)]
-    for s, tone in _cut(lines, r0 + nrows - 1 - r, w):
+    for s, tone in fit_status(info.status, r0 + nrows - 1 - r, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
     if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
@@ -269,8 +290,7 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
             _put_line(cells, r, c0, player_line(balls, info, mono, width)[1:])
             r += 1
         r += 1
-    lines = [(s, tone) for text, tone in info.status for s in _wrap(text, width)]
-    for s, tone in _cut(lines, end - 1 - r, width):
+    for s, tone in fit_status(info.status, end - 1 - r, width):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
     r += 1
