@@ -1477,3 +1477,46 @@ def test_a_name_too_long_for_its_half_of_the_row_shows_as_much_as_fits() -> None
     run_script(app, "enter space-hold 1.3 wait 12")
     text = screen_text(app.cells(50, 16)[0])
     assert "Maximilian Alex" in text and "▶ Bob" in text
+
+
+def aid_done(app: App) -> str:
+    """The aid's prediction of the aim run to its end; the 120x40 screen's text."""
+    app.state = aid.refresh(app.state)
+    while not app.state.aid.job.done:
+        app.state.aid.job.run(1000)
+    return " ".join(screen_text(app.cells(120, 40)[0]).split())
+
+
+def test_the_aid_warns_of_a_shot_that_loses_the_game_or_fouls() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)  # the solids cleared: the 8 is next, called where the aim sends it
+    m = app.state.match
+    m.state = replace(m.state, pocketed=tuple("1234567"))  # as the referee keeps them
+    hole = m.table.hole_c.reshape(-1, 2)[list(m.table.hole_names).index("head_left")]
+    u = np.array([-1.0, 1.0]) / math.sqrt(2.0)  # cue, 8 and the corner's centre in line
+    m.pos[m.index("8")] = hole - 0.35 * u
+    m.pos[0] = hole - 0.85 * u
+    stroke(app, angle=135.0)
+    assert "As aimed" not in aid_done(app)  # the 8 in the called pocket: a win, no warning
+    assert aid.foreseen(app.state).winner == 0
+    app.key(Key("c"), 1.0)  # another pocket called: the 8 in this one loses
+    text = aid_done(app)
+    assert "As aimed: the 8 went into the left head corner pocket, not the called" in text
+    m.on_table[m.index("1")] = True  # a solid still on: the 8 is not the shooter's ball
+    m.state = replace(m.state, pocketed=tuple("234567"))
+    m.pos[m.index("1")] = (1.2, 0.3)
+    text = aid_done(app)
+    assert aid.foreseen(app.state).winner == 1
+    assert "As aimed: the cue ball hit the 8 first, not one of the solids; the 8 went down on " \
+           "a foul: Player 1 loses" in text
+    m.state = replace(m.state, groups=None)  # an open table: the 8 first is a foul too
+    assert "As aimed: the cue ball hit the 8 first, which is not allowed on an open table; " \
+           "the 8 went down on a foul: Player 1 loses" in aid_done(app)
+    m.pos[m.index("8")] = (1.2, 0.6)  # the 1 where the 8 was: the aim meets it ...
+    m.pos[m.index("1")] = hole - 0.35 * u
+    m.state = replace(m.state, groups={0: "stripes", 1: "solids"})  # ... not the shooter's
+    text = aid_done(app)
+    assert "As aimed, a foul: the cue ball hit the 1 first, not one of the stripes" in text
+    m.state = replace(m.state, groups={0: "solids", 1: "stripes"})
+    assert "As aimed" not in aid_done(app)  # their own ball: no warning

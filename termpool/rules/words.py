@@ -249,6 +249,19 @@ def verdict(outcome, v: Voice) -> tuple[str, str]:
     return text, "good" if outcome.continue_turn else "plain"
 
 
+def aid_warning(outcome, v: Voice, shooter: int) -> str | None:
+    """What the aim aid warns of, from the referee's outcome of the shot as the aid sees it:
+    "As aimed: the 8 went down early (...): you lose" for a shot that loses the game, "As
+    aimed, a foul: the cue ball hit the 8 first, not one of the solids" for a foul; None for
+    a legal shot."""
+    fouls = outcome.said[:len(outcome.fouls)]
+    if outcome.winner is not None and outcome.winner != shooter:
+        return "As aimed: " + reason((*fouls, outcome.said[-1]), v)
+    if outcome.foul is not None:
+        return "As aimed, a foul: " + reason(fouls, v)
+    return None
+
+
 # ---------------------------------------------------------------------------- the match's news
 
 

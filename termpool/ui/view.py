@@ -272,6 +272,11 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         else:
             tip = _tip_words(s) if spin_words else None
             out.append((line + (f" · {tip}" if tip else ""), "turn"))
+            foreseen = aid.foreseen(s)
+            warning = None if foreseen is None else \
+                words.aid_warning(foreseen, voice(s), m.shooter)
+            if warning:  # a shot the aid sees foul or lose, next to whose turn it is
+                out.append((warning, "foul"))
             out.append((power_line(s), "dim"))
     elif s.phase is Phase.PLACE:
         where = KITCHEN if m.ball_in_hand == "kitchen" else "anywhere"
