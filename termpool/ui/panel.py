@@ -121,15 +121,16 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
                width: int) -> list[tuple[str, str]]:
     """The status lines (text, tone) for `room` rows `width` wide. Where they do not all fit
     wrapped whole, each keeps its first row (cut with "…"), and the rows to spare go to
-    them in order; where even a row each is too many, "dim" lines go first, from the last,
-    then the last lines: whose turn it is and the verdict stay in view."""
+    them in order; where even a row each is too many, lines go from the last, the first
+    (what to do now) and the verdicts and warnings ("plain", "good", "foul") last: whose
+    turn it is and the verdict stay in view."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
     if sum(len(w) for w in wrapped) <= room:
         return [line for w in wrapped for line in w]
     keep = list(range(len(wrapped)))
     while len(keep) > max(room, 0):
-        dim = [k for k in keep if status[k][1] == "dim"]
-        keep.remove(dim[-1] if dim else keep[-1])
+        lesser = [k for k in keep[1:] if status[k][1] not in ("plain", "good", "foul")]
+        keep.remove(lesser[-1] if lesser else keep[-1])
     spare = room - len(keep)
     out = []
     for k in keep:
