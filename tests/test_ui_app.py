@@ -30,6 +30,7 @@ from termpool.ui.state import (
     Place,
     Quit,
     Run,
+    Stats,
     Thinking,
     shooter_is_cpu,
     shot_clock,
@@ -1295,10 +1296,13 @@ def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
     text = screen_text(app.cells(120, 40)[0])
     assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
     run_script(app, "space-hold 0.6 wait 20")
-    while app.state.phase is not Phase.AIM:  # the next shooter may have ball in hand
-        app.key(Key("enter"), app.state.now + 1.0)
-    text = screen_text(app.cells(120, 40)[0])
-    assert "aid at 50% power (the last shot's)" in text
+    m = app.state.match
+    for shooter, said in ((0, "aid at 50% power (the last shot's)"),  # the breaker's own
+                          (1, "aid at 50% power (until you give one)")):  # not the other's
+        m.state = replace(m.state, shooter=shooter)
+        m.ball_in_hand = None
+        app.state = start_turn(app.state)
+        assert said in screen_text(app.cells(120, 40)[0])
 
 
 # -------------------------------------------------------------- what the panel keeps in view
@@ -1520,3 +1524,48 @@ def test_the_aid_warns_of_a_shot_that_loses_the_game_or_fouls() -> None:
     assert "As aimed, a foul: the cue ball hit the 1 first, not one of the stripes" in text
     m.state = replace(m.state, groups={0: "solids", 1: "stripes"})
     assert "As aimed" not in aid_done(app)  # their own ball: no warning
+
+
+SMALL_SIZES = [(50, 16), (60, 20), (80, 24)]
+
+
+@pytest.mark.parametrize(("cols", "rows"), SMALL_SIZES)
+@pytest.mark.parametrize("in_game", [False, True])
+def test_the_settings_screen_loses_nothing_on_a_small_screen(cols, rows, in_game) -> None:
+    from termpool.ui.phases.boxes import open_settings
+    from termpool.ui.settings import SETTINGS
+
+    app = app_for(mode="8ball", opponent="human") if in_game else App(Options(colors="mono"))
+    app.state = open_settings(app.state)
+    for k, setting in enumerate(SETTINGS):
+        put(app, box=replace(app.state.box, index=k))
+        text = screen_text(app.cells(cols, rows)[0])
+        lines = [x[x.index("│") + 1:x.rindex("│")].strip() for x in text.splitlines()
+                 if x.count("│") >= 2]  # the box's insides
+        assert any(x.startswith("▶ " + setting.label) for x in lines), (k, text)
+        assert "↑↓ choose · ←→ change · Esc done" in text
+        said = " ".join(x for x in lines if x)  # what the setting does, whole
+        assert " ".join(setting.help.split()) in said or setting.kind == "name", (k, text)
+        shown_ = sum(any(x.lstrip("▶ ").startswith(s.label) for x in lines) for s in SETTINGS)
+        if shown_ < len(SETTINGS):  # a hint that there is more
+            assert "↑ more" in text or "↓ more" in text
+        if in_game:
+            assert "those marked * from the next game." in said
+
+
+def test_the_stats_screen_scrolls_both_ways_and_says_so() -> None:
+    text = ("a" * 60 + " THE END", *(f"line {n}" for n in range(30)))
+    app = App(Options(colors="mono"))
+    put(app, box=Stats(text))
+    first = screen_text(app.cells(50, 16)[0])
+    assert "THE END" not in first and "line 29" not in first
+    assert "↑↓ ←→" in first and "more" in first  # the hint: more down and to the right
+    for t in range(5):
+        app.key(Key("right"), float(t))
+    assert "THE END" in screen_text(app.cells(50, 16)[0])
+    app.key(Key("end"), 10.0)
+    for t in range(5):
+        app.key(Key("left"), 10.0 + t / 10)
+    assert "line 29" in screen_text(app.cells(50, 16)[0])
+    app.key(Key("x"), 11.0)  # any other key closes it
+    assert app.state.box is None

@@ -201,11 +201,13 @@ class Settings:
 
 @dataclass(frozen=True)
 class Stats:
-    """The Stats screen (ui.screens): its lines, read when it opened, from line `top`."""
+    """The Stats screen (ui.screens): its lines, read when it opened, from line `top` and
+    column `left` (where the screen is narrower than they are)."""
 
     text: tuple[str, ...]
     back: Pause | None = None
     top: int = 0
+    left: int = 0
 
 
 Box = Help | Pause | Quit | Settings | Stats
