@@ -134,7 +134,7 @@ def _parser() -> Parser:
                    help="play the match on screen as it was played (Space pauses, ← → step "
                         "a shot, F ×4, H help, Q quits)")
     r.add_argument("--colors", choices=BY_KEY["colors"].values,
-                   default=None, help="--watch: colour depth (default: from the terminal)")
+                   default=None, help="--watch: colour depth (default: the settings', as play)")
     r.add_argument("--headless", action="store_true",
                    help="--watch without a terminal: play --keys on a virtual screen, print "
                         "the last screen")
@@ -268,8 +268,6 @@ def _replay(args: argparse.Namespace) -> int:
             return _fail("--json: not with --watch")
         from termpool.ui.watch import WatchError, run
 
-        if args.colors is None:
-            args.colors = "auto"
         try:
             return run(args)
         except WatchError as e:
