@@ -1569,3 +1569,31 @@ def test_the_stats_screen_scrolls_both_ways_and_says_so() -> None:
     assert "line 29" in screen_text(app.cells(50, 16)[0])
     app.key(Key("x"), 11.0)  # any other key closes it
     assert app.state.box is None
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24), (120, 40)])
+def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(cols, rows):
+    app = app_for(mode="9ball", opponent="human")
+    run_script(app, "enter space-hold 1.2 wait 20")
+    if app.state.phase is Phase.PLACE:
+        app.key(Key("enter"), 100.0)
+    run_script(app, "o space-hold 0.3 wait 20")
+    assert app.state.phase is Phase.OPTION
+    m = app.state.match
+    centre = np.array([m.table.length / 2, m.table.width / 2])
+    c = m.ids.index("cue")
+    m.pos[c] = centre  # where a box in the middle of the screen would hide it
+    lay = layout(cols, rows, m.table)
+    x, y = lay.to_pixels(*centre)
+    rx, ry = m.radius[c] * lay.sx, m.radius[c] * lay.sy
+    cue = (int(x - rx), int(y - ry) // 2, int(x + rx) - int(x - rx) + 1,
+           int(y + ry) // 2 - int(y - ry) // 2 + 1)  # the cue ball's cells
+    chars = app.cells(cols, rows)[0]
+    text = screen_text(chars)
+    assert "s: shoot from here" in text and "p: pass the shot back" in text
+    top = next(r for r, line in enumerate(text.splitlines()) if "┌" in line)
+    left = text.splitlines()[top].index("┌")
+    bottom = next(r for r, line in enumerate(text.splitlines()) if "┘" in line)
+    right = text.splitlines()[bottom].index("┘")
+    kc, kr, kw, kh = cue
+    assert (bottom < kr or kr + kh <= top or right < kc or kc + kw <= left), (cue, text)

@@ -341,12 +341,7 @@ def _paste(cells, block, r: int, c: int) -> None:
         bg[r:r + h, c:c + w] = bb[:h, :w]
 
 
-def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
-             wrap: bool = True) -> None:
-    """A framed box of text in the middle of the screen (help, pause, questions). Lines too
-    long for the screen are wrapped, or (wrap=False, for columns) cut with an ellipsis."""
-    chars, fg, bg = cells
-    rows, cols = chars.shape
+def _box_body(cols: int, lines: Sequence[str], title: str, wrap: bool) -> tuple[int, list]:
     width = min(cols - 2, max([len(s) for s in lines] + [len(title) + 4]) + 4)
     room = width - 4
     body = []
@@ -355,8 +350,46 @@ def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
             body.append(s)
         else:
             body += _wrap(s, room) if wrap else [s[:room - 1] + "…"]
+    return width, body
+
+
+def box_clear_of(cells, lines: Sequence[str], keep: tuple[int, int, int, int],
+                 title: str = "", wrap: bool = True,
+                 within: tuple[int, int] | None = None) -> tuple[int, int] | None:
+    """Where (top row, left column) a box of these lines goes so that it leaves the cells
+    `keep` (col, row, cols, rows: the cue ball and the balls about it) in view: in the
+    middle if it does, else the nearest place to the middle that does, inside the first
+    `within` (cols, rows) of the screen if given; None where no place does (then it goes
+    in the middle)."""
+    rows, cols = cells[0].shape
+    width, body = _box_body(cols, lines, title, wrap)
+    height = min(rows, len(body) + 2)
+    kc, kr, kw, kh = keep
+    mid_top, mid_left = max(0, (rows - height) // 2), max(0, (cols - width) // 2)
+    best = None
+    most_cols, most_rows = within or (cols, rows)
+    for top in range(0, min(rows, most_rows) - height + 1):
+        for left in range(0, min(cols, most_cols) - width + 1):
+            clear = (top + height <= kr or kr + kh <= top or left + width <= kc
+                     or kc + kw <= left)
+            far = abs(top - mid_top) + abs(left - mid_left) / 2  # cells are tall
+            if clear and (best is None or far < best[0]):
+                best = (far, top, left)
+    return None if best is None else best[1:]
+
+
+def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
+             wrap: bool = True, at: tuple[int, int] | None = None) -> None:
+    """A framed box of text in the middle of the screen (help, pause, questions), or with
+    its top left corner `at` (row, column). Lines too long for the screen are wrapped, or
+    (wrap=False, for columns) cut with an ellipsis."""
+    chars, fg, bg = cells
+    rows, cols = chars.shape
+    width, body = _box_body(cols, lines, title, wrap)
     height = min(rows, len(body) + 2)
     top, left = max(0, (rows - height) // 2), max(0, (cols - width) // 2)
+    if at is not None:
+        top, left = at
     chars[top:top + height, left:left + width] = " "
     if bg is not None:
         bg[top:top + height, left:left + width] = BOX_BG
