@@ -83,7 +83,7 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
         room = width - len("saved in ")
         files.append(f"saved in {path if len(path) <= room else '…' + path[1 - room:]}")
         if prefs.warnings:
-            files.append(cut(shown(prefs.warnings[0]), width))
+            files += textwrap.wrap(shown(prefs.warnings[0]), width)
     note = textwrap.wrap(LATER_NOTE, width) if later else []
     # Where the screen is short the settings scroll about the one chosen (a few always in
     # view), what the chosen one does is said whole if it can be, and the rest comes in
