@@ -252,7 +252,7 @@ def test_risky_pots_rank_below_safe_ones():
     plans = ai.score_shots(*lay.args(), state)
     # The pots the batch saw drop where they were sent.
     one = [p.score for p in plans if (p.kind, p.ball, p.pocket, p.sees, p.note) ==
-           ("pot", "1", "head_right", "pot", "1 in the head right pocket")]
+           ("pot", "1", "head_right", "pot", "1 in the right head corner pocket")]
     two = [p.score for p in plans if (p.kind, p.ball, p.sees) == ("pot", "2", "pot")]
     assert one and two
     assert min(one) > max(two)

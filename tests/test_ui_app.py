@@ -773,7 +773,7 @@ def test_refusals_name_pockets_in_words_and_clicks_off_the_table_are_ignored():
     from termpool.ui.keys import Mouse
 
     app = app_for(mode="practice")
-    put(app, part=Place((0.03, 0.03)))  # the head right corner's mouth
+    put(app, part=Place((0.03, 0.03)))  # the right head corner's mouth
     app.key(Key("enter"), 0.0)
     assert "right head corner pocket" in app.state.message[0][0]
     app.cells(100, 32)
@@ -806,7 +806,8 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
     def plan(*a, **k):
         return ai.Plan(2.0, 10.0, 0.0, 0.0, None, 1.0,
-                       "the 9 went into the head right pocket on a legal shot: player 1 wins",
+                       "the 9 went into the right head corner pocket on a legal shot: "
+                       "player 1 wins",
                        "pot", "9", "head_right", "win")
 
     monkeypatch.setattr(ai.Computer, "shot", plan)
@@ -918,7 +919,7 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
 
 # -------------------------------------------------------------------- the computer's turn
 
-def cpu_to_shoot(monkeypatch, note="3 in the foot left pocket"):
+def cpu_to_shoot(monkeypatch, note="3 in the left foot corner pocket"):
     """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
     from termpool import ai
 
@@ -939,20 +940,20 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
         app.tick(t)
         screen = screen_text(app.cells(120, 40)[0])
         if isinstance(app.state.part, Aiming):
-            assert "Computer: 3 in the foot left pocket" in screen
+            assert "Computer: 3 in the left foot corner pocket" in screen
             assert aid.prediction(app.state) is not None and "o" in screen  # its ghost ball
             if aimed is None and app.state.stroke.angle == plan.angle:
                 aimed = t
         t += 1 / 60
     assert aimed is not None and app.state.part.struck_at - aimed >= 1.2
     while app.state.phase is Phase.RUN:  # its words stay up while the shot runs ...
-        assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+        assert "Computer: 3 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
         app.tick(t)
         t += 1 / 60
     # ... and when it is over, beside the verdict, until the next shot
-    assert app.state.message[0][0] == "Computer: 3 in the foot left pocket"
+    assert app.state.message[0][0] == "Computer: 3 in the left foot corner pocket"
     assert len(app.state.message) == 2
-    assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+    assert "Computer: 3 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
 
 
 def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monkeypatch):
@@ -1188,7 +1189,7 @@ def test_at_200x60_the_spin_readout_shows() -> None:
     for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
                          ("mono", ("tip +0.3 side -0.1 top",))):
         app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
-        put(app, message=(("Computer: 12 in the head right pocket", "dim"),
+        put(app, message=(("Computer: 12 in the right head corner pocket", "dim"),
                           ("legal break: the 6 and the 7 pocketed; the table is open",
                            "plain")))
         stroke(app, side=0.3, top=-0.1)
@@ -1219,7 +1220,7 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
 def test_game_over_says_you_win_and_q_quits_at_once() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     app.state.match.winner = 0
-    put(app, message=(("the 8 went into the foot left pocket: You win", "good"),))
+    put(app, message=(("the 8 went into the left foot corner pocket: You win", "good"),))
     app.state = start_turn(app.state)
     assert app.state.phase is Phase.OVER
     text = screen_text(app.cells(120, 40)[0])
@@ -1370,7 +1371,7 @@ def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> No
     app = app_for(mode="8ball", opponent="cpu", seed=4)
     app.key(Key("enter"), 0.0)
     run_script(app, "")
-    note = (("Computer: 3 in the side right pocket", "turn"),)
+    note = (("Computer: 3 in the right side pocket", "turn"),)
     put(app, shot_note=note, message=(*note, ("nothing pocketed: your turn", "plain")))
     assert app.state.phase in (Phase.AIM, Phase.PLACE)
     put(app, part=Aim())
