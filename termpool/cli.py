@@ -100,7 +100,7 @@ def _replay_arguments(p: argparse.ArgumentParser) -> None:
     from termpool.ui.settings import BY_KEY
 
     p.add_argument("--colors", choices=BY_KEY["colors"].values,
-                   default=None, help="--watch: colour depth (default: from the terminal)")
+                   default=None, help="--watch: colour depth (default: the settings', as play)")
     p.add_argument("--headless", action="store_true",
                    help="--watch without a terminal: play --keys on a virtual screen, print "
                         "the last screen")
@@ -298,8 +298,6 @@ def _replay(args: argparse.Namespace) -> int:
             return _fail("--json: not with --watch")
         from termpool.ui.watch import WatchError, run
 
-        if args.colors is None:
-            args.colors = "auto"
         try:
             return run(args)
         except WatchError as e:

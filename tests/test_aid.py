@@ -11,6 +11,7 @@ import pytest
 
 from termpool.game import Match, Shot, record
 from termpool.physics.params import BALL_RADIUS
+from termpool.rules import words
 from termpool.ui import aid as ui_aid
 from termpool.ui.app import App, Options
 from termpool.ui.keys import Key
@@ -393,7 +394,8 @@ def test_the_status_line_names_the_pocket_the_aid_shows():
     turn_to(app, math.degrees(math.atan2(*(obj - cue)[::-1])) % 360)
     app.key(Key("4"), 1.0)
     assert FullAid.pocket(app, o, None) == pocket
-    assert power_line(app.state).endswith(f"the 3, into the {pocket.replace('_', ' ')} pocket")
+    said = words.spoken_pocket(pocket)  # as people say it: "left foot corner"
+    assert power_line(app.state).endswith(f"the 3, into the {said} pocket")
     turn_to(app, app.state.stroke.angle + 20.0)  # off the 3: it names no pocket
     finish(app)
     assert "into the" not in power_line(app.state)

@@ -323,3 +323,27 @@ def test_the_keys_page_lists_the_power_digits_unless_they_are_bound() -> None:
     bound = App(Options(mode="8ball", opponent="human", seed=0, colors="mono"),
                 keymap=KeyMap({"rerack": ["1"]}))
     assert "1-9, 0" not in _keys_page(bound)  # "1" re-racks: the row would be wrong
+
+
+def _within(entry: list[str], pages: list[list[str]]) -> bool:
+    n = len(entry)
+    return any(p[k:k + n] == entry for p in pages for k in range(len(p) - n + 1))
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (60, 20), (80, 24), (120, 40)])
+def test_no_key_or_paragraph_is_split_across_pages_where_it_fits_one(cols, rows) -> None:
+    from termpool.ui.app import App, Options
+    from termpool.ui.help import BOX_ROWS, key_entries, keymap_rows, rules_lines
+    from termpool.ui.state import help_of
+
+    for mode in ("8ball", "9ball"):
+        app = App(Options(mode=mode, opponent="human", colors="mono"))
+        pages = [lines[:-2] for _, lines in help_of(app.state, cols, rows)]  # no footers
+        height = rows - BOX_ROWS
+        keys = key_entries(keymap_rows(app.state.keymap), cols, height)
+        how = {"three_foul": False} if mode == "9ball" else {"eight_break": "respot"}
+        paragraphs = [p.split("\n") for p in
+                      "\n".join(rules_lines(mode, cols - 6, theme="standard", **how))
+                      .split("\n\n")]
+        for entry in keys + paragraphs:
+            assert len(entry) > height or _within(entry, pages), entry

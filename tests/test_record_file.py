@@ -410,3 +410,19 @@ def test_m_in_the_quit_question_goes_to_the_menu_and_keeps_the_match(capsys,
     app.key(Key("q"), 101.0)
     assert app.done
     assert leave(app, capsys, tmp_path) == [f"termpool: record saved to {rec} (1 shot)"]
+
+
+def test_record_to_stdout_is_json_lines_a_replay_reads_line_by_line(capsys, tmp_path) -> None:
+    two = "enter space-hold 1.0 wait 1 q m down*4 enter enter space-hold 0.5 wait 1"
+    rc = cli.main([*PLAY, "--keys", keys(tmp_path, two), "--record", "-"])
+    out, err = capsys.readouterr()
+    assert rc == 0 and err == ""
+    lines = [x for x in out.splitlines() if x.startswith("{")]
+    matches = [json.loads(x) for x in lines]  # each line one whole JSON object
+    assert len(matches) == 2 and all(len(m["shots"]) == 1 for m in matches)
+    assert matches[0]["shots"][0]["shot"] != matches[1]["shots"][0]["shot"]
+    for line in lines:  # `termpool replay -` reads a line of it from stdin
+        p = subprocess.run([sys.executable, "-m", "termpool", "replay", "-"], input=line + "\n",
+                           capture_output=True, text=True, timeout=120)
+        assert p.returncode == 0, p.stderr
+        assert "all identical" in p.stdout

@@ -701,7 +701,20 @@ def test_every_verdict_reads_right_in_every_voice(data) -> None:
     # The people's words are the record's with the names, pockets and groups changed.
     ann = words.reason(out.said, words.voice(("Ann", "Bob")))
     plain = record.replace("player 0", "Ann").replace("player 1", "Bob")
-    assert ann == re.sub(r"(head|side|foot)_(left|right)", r"\1 \2", plain)
+    spoken = re.sub(r"side_(left|right)", r"\1 side", plain)
+    assert ann == re.sub(r"(head|foot)_(left|right)", r"\2 \1 corner", spoken)
+
+
+def test_every_pocket_is_named_as_people_say_it() -> None:
+    from termpool.physics.table import POCKET_NAMES
+
+    v = words.voice(("Ann", "Bob"))
+    assert {p: f"the {v.pocket(p)} pocket" for p in POCKET_NAMES} == {
+        "head_right": "the right head corner pocket", "head_left": "the left head corner pocket",
+        "side_right": "the right side pocket", "side_left": "the left side pocket",
+        "foot_right": "the right foot corner pocket", "foot_left": "the left foot corner pocket"}
+    assert words.calling(v, "8", "side_right") == "calling the 8 in the right side pocket"
+    assert words.RECORD.pocket("side_right") == "side_right"  # records keep the table's names
 
 
 def test_every_reason_code_has_its_words() -> None:
@@ -750,3 +763,9 @@ def test_old_saves_and_blocks_read_as_the_re_spot() -> None:
         codec.read_game({"mode": "9ball", "eight_break": "rerack"}, ["cue", "9"], POCKETS)
     with pytest.raises(SceneError, match="^game.eight_break: must be one of respot, rerack"):
         codec.read_game({"mode": "8ball", "eight_break": "x"}, ["cue", "8"], POCKETS)
+
+
+def test_signed_readings_never_say_minus_zero() -> None:
+    assert [words.signed(x) for x in (-0.0, 0.0, -0.04, 0.04, -0.05, 0.3, -1.0)] == \
+        ["0.0", "0.0", "0.0", "0.0", "-0.1", "+0.3", "-1.0"]
+    assert words.tip_words(-0.01, 0.5) == "tip 0.0 side +0.5 top"

@@ -30,6 +30,7 @@ from termpool.ui.state import (
     Place,
     Quit,
     Run,
+    Stats,
     Thinking,
     shooter_is_cpu,
     shot_clock,
@@ -520,7 +521,8 @@ def test_referee_words_get_the_players_names() -> None:
         "the table is open and you continue"
     assert reason([Said(Why.POTTED_CONTINUES, balls=("3",), player=0),
                    Said(Why.SCRATCH, pocket="foot_left")], voice(app.state)) == \
-        "the 3 pocketed: you continue; scratch: the cue ball went into the foot left pocket"
+        ("the 3 pocketed: you continue; scratch: the cue ball went into the left foot corner "
+         "pocket")
     assert reason([Said(Why.IN_HAND, player=0)], voice(app.state)) == \
         "You have ball in hand"
     assert foul_warning(voice(app.state), 0).startswith("You are on two fouls")
@@ -731,7 +733,7 @@ def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
     app.key(Key("enter"), 0.0)
     eight_on_the_8(app)
     assert aid.called(app.state) == ("8", "foot_left")
-    assert "calling the 8 in foot left" in screen_text(app.cells(120, 40)[0])
+    assert "calling the 8 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
     app.key(Key("c"), 1.0)  # the player picks another pocket
     assert aid.called(app.state)[1] != "foot_left"
     app.key(Key("left"), 2.0)
@@ -771,9 +773,9 @@ def test_refusals_name_pockets_in_words_and_clicks_off_the_table_are_ignored():
     from termpool.ui.keys import Mouse
 
     app = app_for(mode="practice")
-    put(app, part=Place((0.03, 0.03)))  # the head right corner's mouth
+    put(app, part=Place((0.03, 0.03)))  # the right head corner's mouth
     app.key(Key("enter"), 0.0)
-    assert "head right pocket" in app.state.message[0][0]
+    assert "right head corner pocket" in app.state.message[0][0]
     app.cells(100, 32)
     before = app.state.part.cursor
     app.mouse(Mouse(50, 31, "press"), 1.0)  # the panel's last row
@@ -804,7 +806,8 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
     def plan(*a, **k):
         return ai.Plan(2.0, 10.0, 0.0, 0.0, None, 1.0,
-                       "the 9 went into the head right pocket on a legal shot: player 1 wins",
+                       "the 9 went into the right head corner pocket on a legal shot: "
+                       "player 1 wins",
                        "pot", "9", "head_right", "win")
 
     monkeypatch.setattr(ai.Computer, "shot", plan)
@@ -916,7 +919,7 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
 
 # -------------------------------------------------------------------- the computer's turn
 
-def cpu_to_shoot(monkeypatch, note="3 in the foot left pocket"):
+def cpu_to_shoot(monkeypatch, note="3 in the left foot corner pocket"):
     """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
     from termpool import ai
 
@@ -937,20 +940,20 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
         app.tick(t)
         screen = screen_text(app.cells(120, 40)[0])
         if isinstance(app.state.part, Aiming):
-            assert "Computer: 3 in the foot left pocket" in screen
+            assert "Computer: 3 in the left foot corner pocket" in screen
             assert aid.prediction(app.state) is not None and "o" in screen  # its ghost ball
             if aimed is None and app.state.stroke.angle == plan.angle:
                 aimed = t
         t += 1 / 60
     assert aimed is not None and app.state.part.struck_at - aimed >= 1.2
     while app.state.phase is Phase.RUN:  # its words stay up while the shot runs ...
-        assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+        assert "Computer: 3 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
         app.tick(t)
         t += 1 / 60
     # ... and when it is over, beside the verdict, until the next shot
-    assert app.state.message[0][0] == "Computer: 3 in the foot left pocket"
+    assert app.state.message[0][0] == "Computer: 3 in the left foot corner pocket"
     assert len(app.state.message) == 2
-    assert "Computer: 3 in the foot left pocket" in screen_text(app.cells(120, 40)[0])
+    assert "Computer: 3 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
 
 
 def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monkeypatch):
@@ -1186,7 +1189,7 @@ def test_at_200x60_the_spin_readout_shows() -> None:
     for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
                          ("mono", ("tip +0.3 side -0.1 top",))):
         app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
-        put(app, message=(("Computer: 12 in the head right pocket", "dim"),
+        put(app, message=(("Computer: 12 in the right head corner pocket", "dim"),
                           ("legal break: the 6 and the 7 pocketed; the table is open",
                            "plain")))
         stroke(app, side=0.3, top=-0.1)
@@ -1217,7 +1220,7 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
 def test_game_over_says_you_win_and_q_quits_at_once() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     app.state.match.winner = 0
-    put(app, message=(("the 8 went into the foot left pocket: You win", "good"),))
+    put(app, message=(("the 8 went into the left foot corner pocket: You win", "good"),))
     app.state = start_turn(app.state)
     assert app.state.phase is Phase.OVER
     text = screen_text(app.cells(120, 40)[0])
@@ -1294,10 +1297,13 @@ def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
     text = screen_text(app.cells(120, 40)[0])
     assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
     run_script(app, "space-hold 0.6 wait 20")
-    while app.state.phase is not Phase.AIM:  # the next shooter may have ball in hand
-        app.key(Key("enter"), app.state.now + 1.0)
-    text = screen_text(app.cells(120, 40)[0])
-    assert "aid at 50% power (the last shot's)" in text
+    m = app.state.match
+    for shooter, said in ((0, "aid at 50% power (the last shot's)"),  # the breaker's own
+                          (1, "aid at 50% power (until you give one)")):  # not the other's
+        m.state = replace(m.state, shooter=shooter)
+        m.ball_in_hand = None
+        app.state = start_turn(app.state)
+        assert said in screen_text(app.cells(120, 40)[0])
 
 
 # -------------------------------------------------------------- what the panel keeps in view
@@ -1365,7 +1371,7 @@ def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> No
     app = app_for(mode="8ball", opponent="cpu", seed=4)
     app.key(Key("enter"), 0.0)
     run_script(app, "")
-    note = (("Computer: 3 in the side right pocket", "turn"),)
+    note = (("Computer: 3 in the right side pocket", "turn"),)
     put(app, shot_note=note, message=(*note, ("nothing pocketed: your turn", "plain")))
     assert app.state.phase in (Phase.AIM, Phase.PLACE)
     put(app, part=Aim())
@@ -1418,3 +1424,177 @@ def test_an_open_table_names_its_balls_in_a_spare_row_at_80x24():
     app.state.match.state = app.state.match.state.__class__(mode="8ball", shooter=0,
                                                 groups={0: "solids", 1: "stripes"})
     assert panel_info(app.state).legend == []
+
+
+def test_each_player_starts_their_turn_at_their_own_power_never_the_other_s() -> None:
+    for power in ("hold", "digits"):
+        app = app_for(mode="8ball", opponent="human", power=power)
+        run_script(app, "enter 9 space wait 20")  # player 1 breaks at 90% ...
+        m = app.state.match
+        m.state = replace(m.state, shooter=1, is_break=False)  # ... and the turn passes
+        m.ball_in_hand = None
+        app.state = start_turn(app.state)
+        charge = app.state.controls.charge
+        # Player 2 has not shot: the default power, not the 90% of player 1's break.
+        assert charge.preset_level == (0.5 if power == "digits" else None)
+        assert app.state.last_power == 0.5 and not app.state.shot_power_set
+        assert "90%" not in screen_text(app.cells(120, 40)[0])
+        app.key(Key("3"), 50.0)
+        app.key(Key("space"), 50.1)  # a soft 30% ...
+        app.key(Key("space", kind="release"), 50.2)
+        t = 50.2
+        while app.state.phase is Phase.RUN:
+            t += 1 / 30
+            app.tick(t)
+        assert shots(app)[-1]["speed"] == power_to_speed(0.3)
+        m.state = replace(m.state, shooter=0)  # ... and player 1's turn again: their 90%
+        m.ball_in_hand = None
+        app.state = start_turn(app.state)
+        assert app.state.controls.charge.preset_level == 0.9
+        assert app.state.last_power == 0.9
+        m.state = replace(m.state, shooter=1)  # player 2's 30% is theirs
+        app.state = start_turn(app.state)
+        assert app.state.controls.charge.preset_level == 0.3
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (60, 20), (80, 24), (120, 40)])
+@pytest.mark.parametrize("name", ["Ann", "Maximilian Alexander von Habsburg-Lothringen"])
+def test_whose_turn_and_the_verdict_always_show(cols, rows, name) -> None:
+    app = app_for(mode="8ball", opponent="human", player1=name, player2=name + " II")
+    run_script(app, "enter space-hold 1.3 wait 12")
+    s = app.state
+    assert s.phase in (Phase.AIM, Phase.PLACE, Phase.OPTION) and s.message
+    if s.phase is Phase.OPTION:
+        return
+    text = " ".join(screen_text(app.cells(cols, rows)[0]).split())
+    shooter = s.match.players[s.match.shooter]
+    what = "to shoot" if s.phase is Phase.AIM else "to shoot · ball in hand"
+    whose = f"{shooter} {what}"
+    verdict = s.message[-1][0]
+    for said in (whose, verdict):  # each in view, whole or cut to its first row ("…")
+        head = said[:cols - 20].rsplit(" ", 1)[0]
+        assert head in text, (said, text)
+
+
+def test_a_name_too_long_for_its_half_of_the_row_shows_as_much_as_fits() -> None:
+    name = "Maximilian Alexander von Habsburg-Lothringen"
+    app = app_for(mode="8ball", opponent="human", player1=name, player2="Bob")
+    run_script(app, "enter space-hold 1.3 wait 12")
+    text = screen_text(app.cells(50, 16)[0])
+    assert "Maximilian Alex" in text and "▶ Bob" in text
+
+
+def aid_done(app: App) -> str:
+    """The aid's prediction of the aim run to its end; the 120x40 screen's text."""
+    app.state = aid.refresh(app.state)
+    while not app.state.aid.job.done:
+        app.state.aid.job.run(1000)
+    return " ".join(screen_text(app.cells(120, 40)[0]).split())
+
+
+def test_the_aid_warns_of_a_shot_that_loses_the_game_or_fouls() -> None:
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)  # the solids cleared: the 8 is next, called where the aim sends it
+    m = app.state.match
+    m.state = replace(m.state, pocketed=tuple("1234567"))  # as the referee keeps them
+    hole = m.table.hole_c.reshape(-1, 2)[list(m.table.hole_names).index("head_left")]
+    u = np.array([-1.0, 1.0]) / math.sqrt(2.0)  # cue, 8 and the corner's centre in line
+    m.pos[m.index("8")] = hole - 0.35 * u
+    m.pos[0] = hole - 0.85 * u
+    stroke(app, angle=135.0)
+    assert "As aimed" not in aid_done(app)  # the 8 in the called pocket: a win, no warning
+    assert aid.foreseen(app.state).winner == 0
+    app.key(Key("c"), 1.0)  # another pocket called: the 8 in this one loses
+    text = aid_done(app)
+    assert "As aimed: the 8 went into the left head corner pocket, not the called" in text
+    m.on_table[m.index("1")] = True  # a solid still on: the 8 is not the shooter's ball
+    m.state = replace(m.state, pocketed=tuple("234567"))
+    m.pos[m.index("1")] = (1.2, 0.3)
+    text = aid_done(app)
+    assert aid.foreseen(app.state).winner == 1
+    assert "As aimed: the cue ball hit the 8 first, not one of the solids; the 8 went down on " \
+           "a foul: Player 1 loses" in text
+    m.state = replace(m.state, groups=None)  # an open table: the 8 first is a foul too
+    assert "As aimed: the cue ball hit the 8 first, which is not allowed on an open table; " \
+           "the 8 went down on a foul: Player 1 loses" in aid_done(app)
+    m.pos[m.index("8")] = (1.2, 0.6)  # the 1 where the 8 was: the aim meets it ...
+    m.pos[m.index("1")] = hole - 0.35 * u
+    m.state = replace(m.state, groups={0: "stripes", 1: "solids"})  # ... not the shooter's
+    text = aid_done(app)
+    assert "As aimed, a foul: the cue ball hit the 1 first, not one of the stripes" in text
+    m.state = replace(m.state, groups={0: "solids", 1: "stripes"})
+    assert "As aimed" not in aid_done(app)  # their own ball: no warning
+
+
+SMALL_SIZES = [(50, 16), (60, 20), (80, 24)]
+
+
+@pytest.mark.parametrize(("cols", "rows"), SMALL_SIZES)
+@pytest.mark.parametrize("in_game", [False, True])
+def test_the_settings_screen_loses_nothing_on_a_small_screen(cols, rows, in_game) -> None:
+    from termpool.ui.phases.boxes import open_settings
+    from termpool.ui.settings import SETTINGS
+
+    app = app_for(mode="8ball", opponent="human") if in_game else App(Options(colors="mono"))
+    app.state = open_settings(app.state)
+    for k, setting in enumerate(SETTINGS):
+        put(app, box=replace(app.state.box, index=k))
+        text = screen_text(app.cells(cols, rows)[0])
+        lines = [x[x.index("│") + 1:x.rindex("│")].strip() for x in text.splitlines()
+                 if x.count("│") >= 2]  # the box's insides
+        assert any(x.startswith("▶ " + setting.label) for x in lines), (k, text)
+        assert "↑↓ choose · ←→ change · Esc done" in text
+        said = " ".join(x for x in lines if x)  # what the setting does, whole
+        assert " ".join(setting.help.split()) in said or setting.kind == "name", (k, text)
+        shown_ = sum(any(x.lstrip("▶ ").startswith(s.label) for x in lines) for s in SETTINGS)
+        if shown_ < len(SETTINGS):  # a hint that there is more
+            assert "↑ more" in text or "↓ more" in text
+        if in_game:
+            assert "those marked * from the next game." in said
+
+
+def test_the_stats_screen_scrolls_both_ways_and_says_so() -> None:
+    text = ("a" * 60 + " THE END", *(f"line {n}" for n in range(30)))
+    app = App(Options(colors="mono"))
+    put(app, box=Stats(text))
+    first = screen_text(app.cells(50, 16)[0])
+    assert "THE END" not in first and "line 29" not in first
+    assert "↑↓ ←→" in first and "more" in first  # the hint: more down and to the right
+    for t in range(5):
+        app.key(Key("right"), float(t))
+    assert "THE END" in screen_text(app.cells(50, 16)[0])
+    app.key(Key("end"), 10.0)
+    for t in range(5):
+        app.key(Key("left"), 10.0 + t / 10)
+    assert "line 29" in screen_text(app.cells(50, 16)[0])
+    app.key(Key("x"), 11.0)  # any other key closes it
+    assert app.state.box is None
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24), (120, 40)])
+def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(cols, rows):
+    app = app_for(mode="9ball", opponent="human")
+    run_script(app, "enter space-hold 1.2 wait 20")
+    if app.state.phase is Phase.PLACE:
+        app.key(Key("enter"), 100.0)
+    run_script(app, "o space-hold 0.3 wait 20")
+    assert app.state.phase is Phase.OPTION
+    m = app.state.match
+    centre = np.array([m.table.length / 2, m.table.width / 2])
+    c = m.ids.index("cue")
+    m.pos[c] = centre  # where a box in the middle of the screen would hide it
+    lay = layout(cols, rows, m.table)
+    x, y = lay.to_pixels(*centre)
+    rx, ry = m.radius[c] * lay.sx, m.radius[c] * lay.sy
+    cue = (int(x - rx), int(y - ry) // 2, int(x + rx) - int(x - rx) + 1,
+           int(y + ry) // 2 - int(y - ry) // 2 + 1)  # the cue ball's cells
+    chars = app.cells(cols, rows)[0]
+    text = screen_text(chars)
+    assert "s: shoot from here" in text and "p: pass the shot back" in text
+    top = next(r for r, line in enumerate(text.splitlines()) if "┌" in line)
+    left = text.splitlines()[top].index("┌")
+    bottom = next(r for r, line in enumerate(text.splitlines()) if "┘" in line)
+    right = text.splitlines()[bottom].index("┘")
+    kc, kr, kw, kh = cue
+    assert (bottom < kr or kr + kh <= top or right < kc or kc + kw <= left), (cue, text)

@@ -359,3 +359,48 @@ def test_a_bad_key_script_and_stdin_twice(match_file) -> None:
     p = cli("replay", "-", "--watch", "--headless", "--keys", "-",
             stdin=match_file.read_text())
     assert p.returncode == 2 and "stdin already holds the replay" in p.stderr
+
+
+def test_a_tip_that_rounds_to_zero_reads_0_0_never_minus_0_0(record) -> None:
+    data = copy.deepcopy(record)
+    shot = data["shots"][0]["shot"]
+    shot["side"], shot["top"] = 0.3, -0.04  # a draw too small to show at one decimal
+    w = Watch(data, "mono")
+    assert "tip +0.3 side 0.0 top" in w.describe(0)
+    shot["side"], shot["top"] = -0.0, -0.3
+    assert "tip 0.0 side -0.3 top" in Watch(data, "mono").describe(0)
+
+
+@pytest.mark.parametrize(("conf", "flag", "env", "want"), [
+    ("colors = 16\n", None, {}, "16"),  # the settings file's choice, as play takes it
+    ("colors = 16\n", "256", {}, "256"),  # --colors over it
+    ("", None, {"NO_COLOR": "1", "TERM": "xterm-256color"}, "mono"),  # auto: NO_COLOR
+    ("", None, {"TERM": "xterm-256color"}, "256"),  # auto: the terminal
+])
+def test_watching_takes_the_colour_depth_as_play_does(monkeypatch, tmp_path, match_file, conf,
+                                                     flag, env, want) -> None:
+    import argparse
+
+    from termpool.ui import watch as watch_mod
+
+    (tmp_path / "termpool").mkdir()
+    (tmp_path / "termpool" / "settings.conf").write_text(conf)
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
+    for name in ("NO_COLOR", "COLORTERM", "TERM_PROGRAM"):
+        monkeypatch.delenv(name, raising=False)
+    for name, value in env.items():
+        monkeypatch.setenv(name, value)
+    seen = {}
+    real = watch_mod.Watch.from_file
+
+    def from_file(path, colors):
+        w = real(path, colors)
+        seen["depth"] = w.depth
+        raise watch_mod.WatchError("stop here")
+
+    monkeypatch.setattr(watch_mod.Watch, "from_file", staticmethod(from_file))
+    args = argparse.Namespace(file=str(match_file), headless=True, size=None, keys="-",
+                              colors=flag)
+    with pytest.raises(watch_mod.WatchError, match="stop here"):
+        watch_mod.run(args)
+    assert seen["depth"] == want

@@ -4,8 +4,9 @@ match's news and the rules page, written once here.
 A `Voice` says how players, pockets and groups are named. `RECORD` is the record's voice:
 "player 0" and "player 1", the rules' names of pockets ("foot_left") and groups ("solids");
 records and `termpool sim` keep verdicts in it. `voice(players, theme)` is a person's: the
-players' names (a player called "You" is spoken to: "you continue", "your turn"), pockets in
-words ("foot left") and the theme's groups ("reds" for solids in the classic theme).
+players' names (a player called "You" is spoken to: "you continue", "your turn"), pockets as
+people say them ("the left foot corner pocket", "the right side pocket") and the theme's
+groups ("reds" for solids in the classic theme).
 """
 
 from __future__ import annotations
@@ -38,7 +39,9 @@ class Voice:
     plain: bool = True  # pockets as the table names them ("foot_left"), else in words
 
     def pocket(self, name: str) -> str:
-        return name if self.plain else name.replace("_", " ")
+        """A pocket's name before the word "pocket": "foot_left" in the record's voice, "left
+        foot corner" in a person's ("side_right": "right side")."""
+        return name if self.plain else spoken_pocket(name)
 
     def group(self, group: str) -> str:
         return group_label(group, self.theme)
@@ -62,6 +65,33 @@ class Voice:
 
 
 RECORD = Voice()
+
+
+def spoken_pocket(name: str) -> str:
+    """A table's pocket name ("end_side", as `physics.table.POCKET_NAMES`) as people say it
+    before "pocket": "left side", "right foot corner", "left head corner". A name of another
+    form is said with its underscores as spaces."""
+    end, _, side = name.partition("_")
+    if side not in ("left", "right"):
+        return name.replace("_", " ")
+    return f"{side} side" if end == "side" else f"{side} {end} corner"
+
+
+def calling(v: Voice, ball: str, pocket: str) -> str:
+    """The call of a shot: "calling the 8 in the right side pocket"."""
+    return f"calling the {ball} in the {v.pocket(pocket)} pocket"
+
+
+def signed(x: float) -> str:
+    """A signed reading to one decimal ("+0.3", "-1.0"); one that rounds to zero is "0.0",
+    never "-0.0" or "+0.0"."""
+    text = f"{x:+.1f}"
+    return "0.0" if float(text) == 0.0 else text
+
+
+def tip_words(side: float, top: float) -> str:
+    """The cue tip's offset: "tip +0.3 side 0.0 top"."""
+    return f"tip {signed(side)} side {signed(top)} top"
 
 
 def voice(players: Sequence[str], theme: str = "standard") -> Voice:
@@ -219,6 +249,19 @@ def verdict(outcome, v: Voice) -> tuple[str, str]:
     return text, "good" if outcome.continue_turn else "plain"
 
 
+def aid_warning(outcome, v: Voice, shooter: int) -> str | None:
+    """What the aim aid warns of, from the referee's outcome of the shot as the aid sees it:
+    "As aimed: the 8 went down early (...): you lose" for a shot that loses the game, "As
+    aimed, a foul: the cue ball hit the 8 first, not one of the solids" for a foul; None for
+    a legal shot."""
+    fouls = outcome.said[:len(outcome.fouls)]
+    if outcome.winner is not None and outcome.winner != shooter:
+        return "As aimed: " + reason((*fouls, outcome.said[-1]), v)
+    if outcome.foul is not None:
+        return "As aimed, a foul: " + reason(fouls, v)
+    return None
+
+
 # ---------------------------------------------------------------------------- the match's news
 
 
@@ -283,12 +326,14 @@ def rules_page(mode: str, *, three_foul: bool | None = None, eight_break: str | 
     return [*page, POCKETS]
 
 
-# The pockets' names, as verdicts and the computer's plans say them ("the foot left pocket").
+# The pockets' names, as verdicts and the computer's plans say them ("the left foot corner
+# pocket", "the right side pocket").
 POCKETS = ("Pockets", "the head is the end you break from (the left end on screen), the foot "
-                      "the far end, where the balls are racked; the two side pockets are "
-                      "halfway along. Left and right are as seen from the head: the left "
-                      "pockets are along the top of the screen, the right ones along the "
-                      "bottom.")
+                      "the far end, where the balls are racked; the four corner pockets are "
+                      "named by their end (\"the left foot corner\"), and the two side "
+                      "pockets are halfway along. Left and right are as seen from the head: "
+                      "the left pockets are along the top of the screen, the right ones along "
+                      "the bottom.")
 
 
 def _fouls(after: str) -> str:

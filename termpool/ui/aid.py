@@ -15,6 +15,9 @@ import numpy as np
 
 from termpool.game import Shot
 from termpool.physics.table import POCKET_NAMES
+from termpool.rules.common import Outcome
+from termpool.rules.events import ShotSummary
+from termpool.rules.referee import judge
 from termpool.ui.predict import Prediction, Predictor
 from termpool.ui.shots import power_to_speed
 from termpool.ui.state import AidJob, Aiming, Phase, State, cue_index, trace
@@ -124,3 +127,26 @@ def called(s: State) -> tuple[str, str]:
     update refreshes it first)."""
     k = s.stroke.called_k if s.stroke.call_picked else aimed_pocket(s)
     return "8", POCKET_NAMES[k % len(POCKET_NAMES)]
+
+
+def foreseen(s: State) -> Outcome | None:
+    """The referee's outcome of the player's shot as the aid sees it (its first ball, that
+    ball into a pocket, the cue ball into one after the hit; a cushion counted as reached,
+    which the aid does not follow that far), or None without a ball hit to judge (the aid
+    off, still running, no ball in its path; the break, whose rack it does not follow)."""
+    m = s.match
+    pred = prediction(s) if s.phase is Phase.AIM and not m.state.is_break else None
+    if pred is None or pred.ball is None:
+        return None
+    first = m.ids[pred.ball]
+    pocketed = {}
+    if pred.object is not None and pred.object.end == "pocket":
+        pocketed[first] = pred.object.pocket
+    if pred.after is not None and pred.after.end == "pocket":
+        pocketed["cue"] = pred.after.pocket
+    on = tuple(b for b, here in zip(m.ids, m.on_table, strict=True) if here)
+    summary = ShotSummary(first_contact=first, cushions_after_contact=1, rail_balls=on,
+                          pocketed=pocketed, scratch="cue" in pocketed)
+    state = replace(m.state, called=called(s) if m.needs_call() else None,
+                    push_out="declared" if s.stroke.push_out else m.state.push_out)
+    return judge(state, summary)[0]

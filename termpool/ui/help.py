@@ -59,26 +59,41 @@ def _wrapped(rows: Sequence[tuple[str, str]], width: int) -> list[list[str]]:
 
 
 def key_lines(rows: Sequence[tuple[str, str]], cols: int, height: int) -> list[str]:
-    """The keys as lines for a box on a screen `cols` wide: one column, or, when that is
-    taller than `height` and the screen is wide enough, two (split where they come out most
-    even). What a key does is wrapped under itself where it is too long (the pages then take
-    the rest), never cut."""
+    """The keys as lines for a box on a screen `cols` wide (see `key_entries`)."""
+    return [line for entry in key_entries(rows, cols, height) for line in entry]
+
+
+def key_entries(rows: Sequence[tuple[str, str]], cols: int, height: int) -> list[list[str]]:
+    """The keys as lines for a box on a screen `cols` wide, in entries that a page must not
+    split: one column (an entry a key), or, when that is taller than `height` and the screen
+    is wide enough, two (split where they come out most even; an entry then runs from a row
+    where both columns start a key to the next). What a key does is wrapped under itself
+    where it is too long (the pages then take the rest), never cut."""
     width = max(20, cols - BOX_EDGE)
-    one = [line for entry in _wrapped(rows, width) for line in entry]
+    one = _wrapped(rows, width)
     half = (cols - 10) // 2
-    if len(one) <= height or half < TWO_COLUMNS:
+    if sum(len(e) for e in one) <= height or half < TWO_COLUMNS:
         return one
     best = None
     for n in range(1, len(rows)):
-        left = [line for e in _wrapped(rows[:n], half) for line in e]
-        right = [line for e in _wrapped(rows[n:], half) for line in e]
-        if best is None or max(len(left), len(right)) < max(len(best[0]), len(best[1])):
-            best = (left, right)
-    left, right = best
-    tall = max(len(left), len(right))
-    left += [""] * (tall - len(left))
-    right += [""] * (tall - len(right))
-    return [f"{a:<{half}}  {b}".rstrip() for a, b in zip(left, right, strict=True)]
+        left, right = _wrapped(rows[:n], half), _wrapped(rows[n:], half)
+        tall = max(sum(len(e) for e in left), sum(len(e) for e in right))
+        if best is None or tall < best[0]:
+            best = (tall, left, right)
+    tall, left, right = best
+
+    def column(entries):  # its lines, padded, and the rows where it may break
+        lines = [line for e in entries for line in e]
+        starts, at = set(), 0
+        for e in entries:
+            starts.add(at)
+            at += len(e)
+        return lines + [""] * (tall - len(lines)), starts | set(range(len(lines), tall))
+
+    (a, sa), (b, sb) = column(left), column(right)
+    lines = [f"{x:<{half}}  {y}".rstrip() for x, y in zip(a, b, strict=True)]
+    cuts = [k for k in range(tall) if k in sa and k in sb] + [tall]
+    return [lines[i:j] for i, j in zip(cuts, cuts[1:], strict=False) if j > i]
 
 
 def rules_lines(mode: str, width: int, **how) -> list[str]:
@@ -93,21 +108,39 @@ def rules_lines(mode: str, width: int, **how) -> list[str]:
 
 
 def paginate(lines: list[str], height: int) -> list[list[str]]:
-    """Lines in pages of at most `height`, broken at a blank line where one is near the end
-    of the page (a paragraph is not split if it fits a page), never starting with a blank."""
-    pages, rest = [], list(lines)
-    while rest:
-        while rest and not rest[0]:
-            rest.pop(0)
-        if not rest:
-            break
-        cut = min(height, len(rest))
-        if cut < len(rest):
-            blanks = [k for k in range(1, cut + 1) if k < len(rest) and not rest[k]]
-            if blanks and blanks[-1] >= cut // 2:
-                cut = blanks[-1]
-        pages.append(rest[:cut])
-        rest = rest[cut:]
+    """Lines in pages of at most `height`, the paragraphs (between blank lines) kept whole on
+    a page where they fit one (see `paginate_entries`)."""
+    entries, entry = [], []
+    for line in [*lines, ""]:
+        if line:
+            entry.append(line)
+        elif entry:
+            entries.append(entry)
+            entry = []
+    return paginate_entries(entries, height, gap=True)
+
+
+def paginate_entries(entries: list[list[str]], height: int,
+                     gap: bool = False) -> list[list[str]]:
+    """Entries (lists of lines) in pages of at most `height` lines, a blank line between two
+    entries with `gap`: an entry goes whole to the next page rather than be split, unless it
+    is taller than a page on its own. No line is lost; no page starts with a blank."""
+    pages: list[list[str]] = []
+    page: list[str] = []
+    for entry in entries:
+        sep = [""] if gap and page else []
+        if page and len(page) + len(sep) + len(entry) > height:
+            pages.append(page)
+            page, sep = [], []
+        page += sep
+        rest = list(entry)
+        while len(page) + len(rest) > height:  # taller than a page: it must be split
+            room = height - len(page)
+            pages.append(page + rest[:room])
+            page, rest = [], rest[room:]
+        page += rest
+    if page:
+        pages.append(page)
     return pages or [[]]
 
 
@@ -118,7 +151,7 @@ def help_pages(keys: Sequence[tuple[str, str]], mode: str | None, cols: int, row
     box. `how` goes to `rules_page` (three_foul, eight_break, theme)."""
     width = max(20, cols - BOX_EDGE)
     height = max(3, rows - BOX_ROWS)
-    pages = [("keys", p) for p in paginate(key_lines(keys, cols, height), height)]
+    pages = [("keys", p) for p in paginate_entries(key_entries(keys, cols, height), height)]
     for m in [mode] if mode is not None else list(MODE_NAMES):
         title = f"{MODE_NAMES[m]} rules"
         pages += [(title, p) for p in paginate(rules_lines(m, width, **how), height)]

@@ -117,6 +117,29 @@ def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str,
     return [*lines[:room - 1], (text + "…", tone)]
 
 
+def fit_status(status: Sequence[tuple[str, str]], room: int,
+               width: int) -> list[tuple[str, str]]:
+    """The status lines (text, tone) for `room` rows `width` wide. Where they do not all fit
+    wrapped whole, each keeps its first row (cut with "…"), and the rows to spare go to
+    them in order; where even a row each is too many, lines go from the last, the first
+    (what to do now) and the verdicts and warnings ("plain", "good", "foul") last: whose
+    turn it is and the verdict stay in view."""
+    wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
+    if sum(len(w) for w in wrapped) <= room:
+        return [line for w in wrapped for line in w]
+    keep = list(range(len(wrapped)))
+    while len(keep) > max(room, 0):
+        lesser = [k for k in keep[1:] if status[k][1] not in ("plain", "good", "foul")]
+        keep.remove(lesser[-1] if lesser else keep[-1])
+    spare = room - len(keep)
+    out = []
+    for k in keep:
+        n = min(len(wrapped[k]), 1 + spare)
+        spare -= n - 1
+        out += _cut(wrapped[k], n, width)
+    return out
+
+
 def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
     chars, fg, bg = cells
     chars[row:row + nrows, col:col + ncols] = " "
@@ -131,9 +154,9 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     group, frames and fouls, then the balls still to pot (and, dim, those down). Where that is
     too long it is said more shortly, in turn: without the balls down, without the group's
     word (the balls show it; in mono they lose their glyphs), with the frames and fouls as
-    "1/3" and "F2", without them; only
-    a line that still does not fit is cut, at a piece, with "…". With `keep_score`, a line
-    that cannot keep the frames and fouls is None instead."""
+    "1/3" and "F2", without them; only a line that still does not fit is cut, at a piece
+    (a name too long, within itself), with "…". With `keep_score`, a line that cannot keep
+    the frames and fouls is None instead."""
     name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
              BACKDROP_C.rgb)]
     todo = ball_tokens(info.ids, p.balls, mono, info.theme)
@@ -162,6 +185,8 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     out, used = [], 0
     for t, fg, bg in forms[-1]:
         if used + len(t) > width - 1:
+            if not out:  # a name too long for the line: as much of it as fits
+                out.append((t[:max(width - 1, 0)], fg, bg))
             out.append(("…", DIM_TEXT_C.rgb, BACKDROP_C.rgb))
             break
         out.append((t, fg, bg))
@@ -240,10 +265,7 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         for p in players:
             _put_line(cells, r, c0, player_line(p, info, mono, w))
             r += 1
-    lines = []
-    for text, tone in info.status:
-        lines += [(s, tone) for s in _wrap(text, w)]
-    for s, tone in _cut(lines, r0 + nrows - 1 - r, w):
+    for s, tone in fit_status(info.status, r0 + nrows - 1 - r, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
     if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
@@ -269,8 +291,7 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
             _put_line(cells, r, c0, player_line(balls, info, mono, width)[1:])
             r += 1
         r += 1
-    lines = [(s, tone) for text, tone in info.status for s in _wrap(text, width)]
-    for s, tone in _cut(lines, end - 1 - r, width):
+    for s, tone in fit_status(info.status, end - 1 - r, width):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
     r += 1
@@ -320,12 +341,7 @@ def _paste(cells, block, r: int, c: int) -> None:
         bg[r:r + h, c:c + w] = bb[:h, :w]
 
 
-def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
-             wrap: bool = True) -> None:
-    """A framed box of text in the middle of the screen (help, pause, questions). Lines too
-    long for the screen are wrapped, or (wrap=False, for columns) cut with an ellipsis."""
-    chars, fg, bg = cells
-    rows, cols = chars.shape
+def _box_body(cols: int, lines: Sequence[str], title: str, wrap: bool) -> tuple[int, list]:
     width = min(cols - 2, max([len(s) for s in lines] + [len(title) + 4]) + 4)
     room = width - 4
     body = []
@@ -334,8 +350,46 @@ def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
             body.append(s)
         else:
             body += _wrap(s, room) if wrap else [s[:room - 1] + "…"]
+    return width, body
+
+
+def box_clear_of(cells, lines: Sequence[str], keep: tuple[int, int, int, int],
+                 title: str = "", wrap: bool = True,
+                 within: tuple[int, int] | None = None) -> tuple[int, int] | None:
+    """Where (top row, left column) a box of these lines goes so that it leaves the cells
+    `keep` (col, row, cols, rows: the cue ball and the balls about it) in view: in the
+    middle if it does, else the nearest place to the middle that does, inside the first
+    `within` (cols, rows) of the screen if given; None where no place does (then it goes
+    in the middle)."""
+    rows, cols = cells[0].shape
+    width, body = _box_body(cols, lines, title, wrap)
+    height = min(rows, len(body) + 2)
+    kc, kr, kw, kh = keep
+    mid_top, mid_left = max(0, (rows - height) // 2), max(0, (cols - width) // 2)
+    best = None
+    most_cols, most_rows = within or (cols, rows)
+    for top in range(0, min(rows, most_rows) - height + 1):
+        for left in range(0, min(cols, most_cols) - width + 1):
+            clear = (top + height <= kr or kr + kh <= top or left + width <= kc
+                     or kc + kw <= left)
+            far = abs(top - mid_top) + abs(left - mid_left) / 2  # cells are tall
+            if clear and (best is None or far < best[0]):
+                best = (far, top, left)
+    return None if best is None else best[1:]
+
+
+def draw_box(cells, lines: Sequence[str], title: str = "", tone: str = "plain",
+             wrap: bool = True, at: tuple[int, int] | None = None) -> None:
+    """A framed box of text in the middle of the screen (help, pause, questions), or with
+    its top left corner `at` (row, column). Lines too long for the screen are wrapped, or
+    (wrap=False, for columns) cut with an ellipsis."""
+    chars, fg, bg = cells
+    rows, cols = chars.shape
+    width, body = _box_body(cols, lines, title, wrap)
     height = min(rows, len(body) + 2)
     top, left = max(0, (rows - height) // 2), max(0, (cols - width) // 2)
+    if at is not None:
+        top, left = at
     chars[top:top + height, left:left + width] = " "
     if bg is not None:
         bg[top:top + height, left:left + width] = BOX_BG

@@ -7,8 +7,9 @@ later still has it. A file that was there before play is replaced only with --fo
 one is checked before play); a file this session wrote is its own to rewrite. A file that
 cannot be written sends its match to the data directory instead (`files.write_fallback`).
 Nothing is printed while the game holds the terminal: the lines saying where each match went
-are kept for the end (`lines`). With FILE "-" the matches go to standard output at the end,
-one JSON document after another.
+are kept for the end (`lines`). With FILE "-" the matches go to standard output at the end
+as JSON Lines: each match one JSON object on a line of its own, in the order played (one line
+is a replay file: `termpool replay -` reads it from stdin).
 """
 
 from __future__ import annotations
@@ -96,9 +97,9 @@ class Records:
 
     def finish(self, current=None) -> tuple[list[str], int]:
         """After play: the lines to say, one per match in order (with "-", standard output
-        gets the matches themselves), and the status: 0, or 1 if a match did not go where
-        asked. A session whose only match (`current`) has no shot yet still saves it: its
-        rack and settings are a record too."""
+        gets the matches themselves, a JSON line each), and the status: 0, or 1 if a match
+        did not go where asked. A session whose only match (`current`) has no shot yet still
+        saves it: its rack and settings are a record too."""
         if not self.path:
             return [], 0
         if not self._kept and current is not None:
@@ -109,7 +110,7 @@ class Records:
             lines = []
             for x in self._kept:
                 try:
-                    sys.stdout.write(files.to_json(x.match.to_json(), indent=1) + "\n")
+                    sys.stdout.write(files.to_json(x.match.to_json()) + "\n")  # a line
                 except ValueError as e:
                     lines.append(f"cannot write the record: {e}: it is lost")
             sys.stdout.flush()

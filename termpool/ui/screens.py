@@ -10,6 +10,7 @@ import textwrap
 from typing import Any
 
 from termpool.text import shown
+from termpool.ui.help import BOX_EDGE
 from termpool.ui.settings import SETTINGS
 from termpool.ui.state import Settings, State, Stats
 
@@ -19,8 +20,12 @@ GROUPS = (("The game", ("level", "table", "frames", "theme", "colors")),
 USUAL_NAME = {"player1": "You / Player 1", "player2": "Player 2"}
 TITLES = {Settings: "settings", Stats: "stats"}
 
+LATER_NOTE = "Changes apply at once; those marked * from the next game."
+SETTINGS_SEEN = 5  # settings always in view (around the one chosen) on a short screen
 BOX_TEXT_COLS = 70  # the Settings box's text width (less on a narrow screen)
 STATS_ROWS = 24  # the screen's height the Stats screen pages by before it is first drawn
+STATS_COLS = 80  # ... and its width
+SIDE_STEP = 8  # columns ← and → scroll the Stats screen by
 
 
 def current(s: State, key: str) -> Any:
@@ -69,20 +74,57 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
         help_ = f"{setting.help} · Enter: type it"
     else:
         help_ = f"{setting.allowed()} · {setting.help}"
-    tail = ["", *(cut(x, width) for x in textwrap.wrap(help_, width)[:2])]
-    tail.append("↑↓ choose · ←→ change · Esc done")
+    about = textwrap.wrap(help_, width)
+    keys = "↑↓ choose · ←→ change · Esc done"
     prefs = s.files.prefs
+    files = []
     if prefs is not None:
         path = shown(prefs.path)
         room = width - len("saved in ")
-        tail.append(f"saved in {path if len(path) <= room else '…' + path[1 - room:]}")
+        files.append(f"saved in {path if len(path) <= room else '…' + path[1 - room:]}")
         if prefs.warnings:
-            tail.append(cut(shown(prefs.warnings[0]), width))
-    head = ["Changes apply at once; those marked * from the next game.", ""] if later else []
-    rows_left = rows - 2 - len(tail) - len(head)
-    middle = headed if len(headed) <= rows_left else body
-    out = [*head, *middle, *tail]
+            files += textwrap.wrap(shown(prefs.warnings[0]), width)
+    note = textwrap.wrap(LATER_NOTE, width) if later else []
+    # Where the screen is short the settings scroll about the one chosen (a few always in
+    # view), what the chosen one does is said whole if it can be, and the rest comes in
+    # this order while there is room: the blank line above it, the note, the file's lines.
+    space = rows - 2
+    least = min(len(body), SETTINGS_SEEN)
+    if len(about) > max(1, space - 1 - least):
+        about = about[:max(1, space - 1 - least)]
+        about[-1] = cut(about[-1] + " …", width)
+    left = space - 1 - len(about) - least
+    extra = {}
+    for name, lines in (("gap", [""]), ("note", [*note, ""] if note else []), ("files", files)):
+        if len(lines) <= left:
+            extra[name] = lines
+            left -= len(lines)
+    rows_left = max(1, space - 1 - len(about) - sum(map(len, extra.values())))
+    chosen = next(k for k, x in enumerate(body) if x.startswith("▶"))
+    middle = headed if len(headed) <= rows_left else scrolled(body, chosen, rows_left)
+    out = [*extra.get("note", []), *middle, *extra.get("gap", []), *about, keys,
+           *extra.get("files", [])]
     return [out[0].ljust(width), *out[1:]]
+
+
+def scrolled(lines: list[str], chosen: int, room: int) -> list[str]:
+    """`room` of the lines, the chosen one among them, with "↑ more" and "↓ more" in place
+    of the first and last where lines are hidden that way (room for them allowing)."""
+    if len(lines) <= room:
+        return lines
+    start = min(max(0, chosen - room // 2), len(lines) - room)
+    if room < 3:
+        return lines[start:start + room]
+    while True:
+        above, below = start > 0, start + room < len(lines)
+        first, last = start + above, start + room - below  # the lines shown whole
+        if chosen < first:
+            start -= 1
+        elif chosen >= last:
+            start += 1
+        else:
+            return [*(["  ↑ more"] if above else []), *lines[first:last],
+                    *(["  ↓ more"] if below else [])]
 
 
 def stats_room(rows: int) -> int:
@@ -90,25 +132,50 @@ def stats_room(rows: int) -> int:
     return max(1, rows - 4)  # the frame, a blank line and the keys
 
 
+def stats_width(cols: int) -> int:
+    """Columns of the Stats screen's text a screen `cols` wide shows."""
+    return max(1, cols - BOX_EDGE)
+
+
 def stats_top(box: Stats, rows: int) -> int:
     """The first line shown: the one asked for, or less where the rest fits above it."""
     return min(box.top, max(0, len(box.text) - stats_room(rows)))
 
 
-def stats_lines(box: Stats, rows: int) -> list[str]:
-    room = stats_room(rows)
-    top = stats_top(box, rows)
-    window = box.text[top:top + room]
-    more = len(box.text) > room
-    keys = (f"↑↓ PgUp PgDn: lines {top + 1}-{top + len(window)} of {len(box.text)} · "
-            "Esc closes") if more else "any key closes this"
-    return [*window, "", keys]
+def stats_left(box: Stats, cols: int) -> int:
+    """The first column shown: the one asked for, or less where the rest fits left of it."""
+    widest = max((len(x) for x in box.text), default=0)
+    return min(box.left, max(0, widest - stats_width(cols)))
+
+
+def stats_lines(box: Stats, cols: int, rows: int) -> list[str]:
+    """The page of the stats on show, as wide as the screen has room for, and a line of keys
+    that says where it is when there is more than the screen shows (lines below or above,
+    columns to the right or left)."""
+    room, width = stats_room(rows), stats_width(cols)
+    top, left = stats_top(box, rows), stats_left(box, cols)
+    window = [x[left:left + width] for x in box.text[top:top + room]]
+    tall = len(box.text) > room
+    widest = max((len(x) for x in box.text), default=0)
+    wide = widest > width
+    if not (tall or wide):
+        return [*window, "", "any key closes this"]
+    arrows = ("↑↓ " if tall else "") + ("←→ " if wide else "")
+    where = []
+    if tall:
+        where.append(f"lines {top + 1}-{top + len(window)} of {len(box.text)}")
+    if wide:
+        where.append(f"columns {left + 1}-{min(widest, left + width)} of {widest}")
+    forms = [f"{arrows}PgUp PgDn: {', '.join(where)} · Esc closes",
+             f"{arrows}more: {', '.join(where)} · Esc",
+             f"{arrows}more · Esc closes", f"{arrows}more"]
+    return [*window, "", next((f for f in forms if len(f) <= width), forms[-1])]
 
 
 def box_lines(s: State, box: Settings | Stats, cols: int, rows: int) -> list[str]:
     if isinstance(box, Settings):
         return settings_lines(s, box, cols, rows)
-    return stats_lines(box, rows)
+    return stats_lines(box, cols, rows)
 
 
 def cut(text: str, width: int) -> str:

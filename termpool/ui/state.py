@@ -87,6 +87,15 @@ class Phase(enum.Enum):
     OVER = "over"
 
 
+@dataclass(frozen=True)
+class Power:
+    """A player's power as they left it: the level set with a digit (None: hold) and their
+    last shot's, which the aid predicts at."""
+
+    preset: float | None
+    last: float
+
+
 # ------------------------------------------------------------------------ the phases' parts
 @dataclass(frozen=True)
 class Menu:
@@ -192,11 +201,13 @@ class Settings:
 
 @dataclass(frozen=True)
 class Stats:
-    """The Stats screen (ui.screens): its lines, read when it opened, from line `top`."""
+    """The Stats screen (ui.screens): its lines, read when it opened, from line `top` and
+    column `left` (where the screen is narrower than they are)."""
 
     text: tuple[str, ...]
     back: Pause | None = None
     top: int = 0
+    left: int = 0
 
 
 Box = Help | Pause | Quit | Settings | Stats
@@ -286,6 +297,8 @@ class State:
     stroke: Stroke = Stroke()
     last_power: float = DEFAULT_POWER  # the last shot's power: the aid's until another
     shot_power_set: bool = False  # ... once this match has a shot of the keys'
+    powers: tuple[Power | None, Power | None] = (None, None)  # each player's, kept for
+    # their next turn (None: the default power, before their first shot)
     aid: AidJob = AidJob()
     # the words on show
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel

@@ -26,6 +26,7 @@ from termpool.ui.panel import (
     PanelInfo,
     PlayerLine,
     blank_cells,
+    box_clear_of,
     draw_box,
     draw_panel,
     message_cells,
@@ -73,7 +74,7 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
         else:
             out = _table_cells(s, lay, view, mono)
             draw_panel(out, lay, panel_info(s, lay), mono)
-            _question(s, out)
+            _question(s, out, lay)
     box = s.box
     if isinstance(box, Help):
         pages = help_of(s, cols, rows)
@@ -163,15 +164,41 @@ def called_pocket(s: State) -> int | None:
     return None
 
 
-def _question(s: State, cells) -> None:
+NEAR_BALLS = 3.0  # the question box keeps clear of the balls this many ball diameters from
+# the cue ball, where the screen allows (else of the cue ball alone)
+
+
+def _question(s: State, cells, lay: Layout) -> None:
     m = s.match
     if s.phase is Phase.OPTION:
-        draw_box(cells, words.option_lines(m.option), "your call")
+        lines = words.option_lines(m.option)
+        c = cue_index(s)
+        at = None
+        if m.on_table[c]:
+            near = np.hypot(*(m.pos - m.pos[c]).T) <= NEAR_BALLS * 2 * m.radius[c]
+            col, row, _, _ = lay.panel_rect  # off the panel too, where there is room
+            table = (lay.cols, row) if lay.panel == "bottom" else (col, lay.rows)
+            for which, within in ((near & m.on_table, table), (near & m.on_table, None),
+                                  (np.arange(len(m.ids)) == c, None)):
+                keep = _cells_of(lay, m.pos[which], m.radius[which])
+                at = box_clear_of(cells, lines, keep, "your call", within=within)
+                if at is not None:
+                    break
+        draw_box(cells, lines, "your call", at=at)
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
         draw_box(cells, [words.game_won(voice(s), m.winner), why, "",
                          "n: new game   m: menu   q: quit", "w: watch this match"],
                  "game over", "good")
+
+
+def _cells_of(lay: Layout, pos, radius) -> tuple[int, int, int, int]:
+    """The cells (col, row, cols, rows) that balls at `pos` of `radius` are drawn in."""
+    x, y = lay.to_pixels(pos[:, 0], pos[:, 1])
+    r_x, r_y = radius * lay.sx, radius * lay.sy
+    c0, c1 = int(np.floor((x - r_x).min())), int(np.floor((x + r_x).max()))
+    r0, r1 = int(np.floor((y - r_y).min())) // 2, int(np.floor((y + r_y).max())) // 2
+    return c0, r0, c1 - c0 + 1, r1 - r0 + 1
 
 
 def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
@@ -234,8 +261,8 @@ def _spin_block(side: float, top: float):
     rows = face[0].shape[0]
     text = blank_cells(SPIN_TEXT_COLS, rows, False)
     for r, (line, colour) in enumerate((("spin", DIM_TEXT_C.rgb),
-                                        (f"side {side:+.1f}", TEXT_C.rgb),
-                                        (f"top  {top:+.1f}", TEXT_C.rgb))):
+                                        (f"side {words.signed(side)}", TEXT_C.rgb),
+                                        (f"top  {words.signed(top)}", TEXT_C.rgb))):
         if r < rows:
             put_text(text, r, 0, line, colour, (0, 0, 0))
     return tuple(np.concatenate([a, b], axis=1) for a, b in zip(text, face, strict=True))
@@ -254,7 +281,7 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         line = f"{name} to {what}"
         if m.needs_call():
             ball, pocket = aid.called(s)
-            line += f" · calling the {ball} in {voice(s).pocket(pocket)} (C to change)"
+            line += f" · {words.calling(voice(s), ball, pocket)} (C to change)"
         if m.state.mode == "9ball" and not m.state.is_break:
             on = legal_targets(m.state, m.balls_on_table())
             if on:
@@ -272,6 +299,11 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         else:
             tip = _tip_words(s) if spin_words else None
             out.append((line + (f" · {tip}" if tip else ""), "turn"))
+            foreseen = aid.foreseen(s)
+            warning = None if foreseen is None else \
+                words.aid_warning(foreseen, voice(s), m.shooter)
+            if warning:  # a shot the aid sees foul or lose, next to whose turn it is
+                out.append((warning, "foul"))
             out.append((power_line(s), "dim"))
     elif s.phase is Phase.PLACE:
         where = KITCHEN if m.ball_in_hand == "kitchen" else "anywhere"
@@ -294,7 +326,7 @@ def _tip_words(s: State) -> str | None:
     st = s.stroke
     if not (st.side or st.top):
         return None
-    return f"tip {st.side:+.1f} side {st.top:+.1f} top"
+    return words.tip_words(st.side, st.top)
 
 
 def power_hint(s: State) -> tuple[str, str]:
@@ -323,7 +355,7 @@ def power_line(s: State) -> str:
     if pred is not None and pred.ball is not None:
         line += f" · first ball: the {s.match.ids[pred.ball]}"
         if pred.object is not None and pred.object.end == "pocket":
-            line += f", into the {pred.object.pocket.replace('_', ' ')} pocket"
+            line += f", into the {voice(s).pocket(pred.object.pocket)} pocket"
     return line
 
 

@@ -383,10 +383,10 @@ class Watch:
         shot = self.shots[i]["shot"]
         parts = [f"power {round(100 * speed_to_power(shot['speed']))}%"]
         if shot["side"] or shot["top"]:
-            parts.append(f"tip {shot['side']:+.1f} side {shot['top']:+.1f} top")
+            parts.append(words.tip_words(shot['side'], shot['top']))
         if shot.get("called"):
             ball, pocket = shot["called"]
-            parts.append(shown(f"calling the {ball} in {self.voice().pocket(pocket)}"))
+            parts.append(shown(words.calling(self.voice(), ball, pocket)))
         if shot.get("push_out"):
             parts.append("push-out")
         return " · ".join(parts)
@@ -476,6 +476,20 @@ class WatchError(ValueError):
 WATCH_ONLY = ("--headless", "--size", "--keys", "--colors")
 
 
+def colour_setting(flag: str | None) -> str:
+    """The colour depth to watch in, as `play` picks it: --colors, else the settings file's
+    (its warnings said, one line each; "auto" detects the terminal, NO_COLOR giving mono)."""
+    if flag is not None:
+        return flag
+    from termpool.text import say
+    from termpool.ui.settings import load_settings
+
+    store = load_settings()
+    for warning in store.warnings:
+        say(f"warning: {warning}")
+    return store.saved["colors"]
+
+
 def run(args) -> int:
     """`termpool replay FILE --watch`: the exit status. Raises WatchError for bad options or
     a bad file (one line, status 2). Headless, plays the --keys script on a virtual screen
@@ -493,7 +507,7 @@ def run(args) -> int:
     elif args.keys == "-" and args.file == "-":
         raise WatchError("--keys: stdin already holds the replay (FILE is '-')")
     try:
-        watch = Watch.from_file(args.file, args.colors)
+        watch = Watch.from_file(args.file, colour_setting(args.colors))
     except ReplayError as e:
         raise WatchError(str(e)) from None
     if args.headless:

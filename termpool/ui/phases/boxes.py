@@ -11,7 +11,16 @@ from termpool.text import shown
 from termpool.ui.help import page_key
 from termpool.ui.output import resolve_depth
 from termpool.ui.phases.turn import apply_pending, set_input_mode, to_menu
-from termpool.ui.screens import STATS_ROWS, current, stats_room, stats_top
+from termpool.ui.screens import (
+    SIDE_STEP,
+    STATS_COLS,
+    STATS_ROWS,
+    current,
+    stats_left,
+    stats_room,
+    stats_top,
+    stats_width,
+)
 from termpool.ui.settings import BY_KEY, MAX_NAME, SETTINGS, check_name
 from termpool.ui.state import Help, Pause, Quit, Seen, Settings, State, Stats, help_of
 from termpool.ui.stats import stats_lines
@@ -22,7 +31,8 @@ def key(s: State, key, action: str | None, seen: Seen | None) -> State:
     if isinstance(box, Settings):
         return settings_key(s, box, key, action)
     if isinstance(box, Stats):
-        return stats_key(s, box, key, seen.rows if seen is not None else STATS_ROWS)
+        size = (seen.cols, seen.rows) if seen is not None else (STATS_COLS, STATS_ROWS)
+        return stats_key(s, box, key, *size)
     if key.kind != "press":
         return s
     if isinstance(box, Pause) and key.name == "s" and not (key.ctrl or key.alt):
@@ -143,9 +153,9 @@ def open_stats(s: State, back: Pause | None = None) -> State:
     return replace(s, box=Stats(text, back))
 
 
-def stats_key(s: State, box: Stats, key, rows: int) -> State:
-    """The arrows and pages scroll (by the page the screen last showed); any other key
-    closes the box."""
+def stats_key(s: State, box: Stats, key, cols: int, rows: int) -> State:
+    """The arrows and pages scroll (by the page the screen last showed; ← → where the lines
+    are wider than it); any other key closes the box."""
     if key.kind == "release":
         return s
     page = stats_room(rows)
@@ -155,4 +165,10 @@ def stats_key(s: State, box: Stats, key, rows: int) -> State:
              "space": page, "home": -len(box.text), "end": len(box.text)}
     if key.name in moves and most:
         return replace(s, box=replace(box, top=min(most, max(0, top + moves[key.name]))))
+    widest = max((len(x) for x in box.text), default=0)
+    side = max(0, widest - stats_width(cols))
+    steps = {"left": -SIDE_STEP, "h": -SIDE_STEP, "right": SIDE_STEP, "l": SIDE_STEP}
+    if key.name in steps and side:
+        left = stats_left(box, cols) + steps[key.name]
+        return replace(s, box=replace(box, left=min(side, max(0, left))))
     return replace(s, box=box.back)

@@ -20,6 +20,7 @@ from termpool.ui.state import (
     Option,
     Over,
     Place,
+    Power,
     Run,
     State,
     Stroke,
@@ -53,8 +54,6 @@ def new_match(s: State, mode: str, opponent: str) -> State:
     s = log_match(s)
     played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
     s = apply_pending(s)
-    # Power starts afresh: a soft safety's 20% of the last game is no break for this one.
-    s.controls.charge.preset(DEFAULT_POWER if s.opts.power == "digits" else None)
     opts = replace(s.opts, mode=mode, opponent=opponent)
     cpu = (False, opponent == "cpu" and mode != "practice")
     # Without a seed every game deals a new rack; the seed is in the record either way.
@@ -65,8 +64,21 @@ def new_match(s: State, mode: str, opponent: str) -> State:
                   theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
                   eight_break=opts.eight_break)
     s = replace(s, opts=opts, played=played, match=match, cpu=cpu, last_power=DEFAULT_POWER,
-                shot_power_set=False, message=(), stroke=Stroke())
+                shot_power_set=False, message=(), stroke=Stroke(),
+                powers=(None, None))  # power starts afresh: no 20% safety breaks the next
     return start_turn(s)
+
+
+def own_power(s: State) -> State:
+    """The shooter's power as they left it at their last shot: a level set with a digit stays
+    theirs, and another player's never carries over (one who has not shot yet starts at the
+    default: 50% with digits, else holding)."""
+    mine = s.powers[s.match.shooter]
+    if mine is None:
+        s.controls.charge.preset(DEFAULT_POWER if s.opts.power == "digits" else None)
+        return replace(s, last_power=DEFAULT_POWER, shot_power_set=False)
+    s.controls.charge.preset(mine.preset)
+    return replace(s, last_power=mine.last, shot_power_set=True)
 
 
 def start_turn(s: State) -> State:
@@ -87,6 +99,7 @@ def start_turn(s: State) -> State:
         return replace(s, part=Thinking() if shooter_is_cpu(s) else Option())
     if shooter_is_cpu(s):
         return replace(s, part=Thinking())
+    s = own_power(s)
     if m.ball_in_hand:
         c = cue_index(s)
         x, y = m.pos[c] if m.on_table[c] else m.table.head_spot
@@ -121,7 +134,9 @@ def shoot(s: State, speed: float, angle: float, side: float, top: float, called=
 
 def shoot_human(s: State, level: float, called: tuple[str, str] | None) -> State:
     """The player's strike at power `level` (0 to 1) on the stroke set up."""
-    s = replace(s, last_power=level, shot_power_set=True)
+    mine = Power(s.controls.charge.preset_level, level)
+    powers = tuple(mine if p == s.match.shooter else x for p, x in enumerate(s.powers))
+    s = replace(s, last_power=level, shot_power_set=True, powers=powers)
     st = s.stroke
     return shoot(s, power_to_speed(level), st.angle, st.side, st.top, called, st.push_out)
 
