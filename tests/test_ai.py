@@ -799,6 +799,8 @@ def test_the_levels_table_in_the_docs_is_the_levels():
         "tip error, sd (`tip_sd`, R)": lambda lv: f"{lv.tip_sd:g}",
         "position: weight of its next shot (`position`)": lambda lv: f"{lv.position:g}:",
         "safety: weight of what it leaves (`leave`)": lambda lv: f"{lv.leave:g}",
+        "scratch risk of a pot, per cushion its cue ball meets (`scratch`)":
+            lambda lv: f"{100 * lv.scratch:g} %",
     }
     for row, cell in want.items():
         for got, lv in zip(rows[row], ai.LEVELS.values(), strict=True):
@@ -863,7 +865,7 @@ def test_cue_cushions_counts_the_cue_ball_s_cushions_only():
 
 def test_each_cushion_the_cue_ball_meets_risks_a_scratch(monkeypatch):
     # Scored with the risk, every pot (and win) scores what it scored without, moved towards
-    # a foul (a loss, as the 8 drops) by 1 - (1 - RAIL_SCRATCH)^k for its k cue-ball
+    # a foul (a loss, as the 8 drops) by 1 - (1 - scratch)^k for its k cue-ball
     # cushions; safeties and misses keep their scores.
     lay, _ = after_break()
     state = State(mode="8ball", groups={0: "solids", 1: "stripes"})
@@ -874,11 +876,11 @@ def test_each_cushion_the_cue_ball_meets_risks_a_scratch(monkeypatch):
         rails.append(count(logs, cue))
         return rails[-1]
 
-    q = ai.scoring.RAIL_SCRATCH
+    q = ai.LEVELS["hard"].scratch
     assert 0 < q < 1
     monkeypatch.setattr(ai.scoring, "cue_cushions", spy)
     with_risk = ai.score_shots(*lay.args(), state, level="hard", max_candidates=64)
-    monkeypatch.setattr(ai.scoring, "RAIL_SCRATCH", 0.0)
+    monkeypatch.setitem(ai.LEVELS, "hard", ai.LEVELS["hard"]._replace(scratch=0.0))
     without = ai.score_shots(*lay.args(), state, level="hard", max_candidates=64)
     foul = ai.scoring.FOUL - ai.LEVELS["hard"].leave
     seen = 0

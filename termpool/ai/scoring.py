@@ -26,9 +26,6 @@ LEAVE_SIGMA = 0.5  # degrees: the aim error a table left behind is valued with, 
 # shooter's next shot and for the opponent alike (a club player's, whatever the level: an
 # error as small as a pro's would call every open shot certain, and tell no leave from another)
 FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
-RAIL_SCRATCH = 0.03  # chance each cushion the cue ball meets after a pot sends it into a pocket
-# in play: the sim's cue ball missed them all, but a little off in aim or speed its path after
-# each cushion moves on, and a long path passes many pockets
 SAID = voice(("player 0", "player 1"))  # the notes' words: pockets as people say them
 
 
@@ -150,7 +147,7 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
     lose = LOSS if state.mode == "8ball" else foul
     for b in range(B):
         if sees[b] in ("win", "pot") and rails[b]:
-            risk = 1.0 - (1.0 - RAIL_SCRATCH) ** rails[b]
+            risk = 1.0 - (1.0 - lv.scratch) ** rails[b]
             scores[b] = (1.0 - risk) * scores[b] + risk * (lose if sees[b] == "win" else foul)
     return scores, calls, list(zip(notes, sees, strict=True)), flukes
 
