@@ -195,32 +195,44 @@ class Schedule:
 
     def predict_few(self, b: np.ndarray, i: np.ndarray) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
-        culled by `first_contact_few`, so the predictions are bit-identical."""
+        culled by `first_contact_few`, so the predictions are bit-identical. Each table's row
+        of times is read once as a list, changed as `predict_many` changes the array, and
+        written back whole (a numpy call costs more than the floats it moves)."""
         balls, feat, tab = self.balls, self.features, self.features.table
-        inf, horizon = np.inf, self.horizon
+        inf, horizon, N = np.inf, self.horizon, self.N
+        P = 3 * N  # where the pairs begin in a row of times
         bl, il, tl = b.tolist(), i.tolist(), self.tb[b].tolist()
+        tables: dict = {}  # table -> (its row of times, motions, states), as lists
+        for bm in bl:
+            if bm not in tables:
+                tables[bm] = (self.times[bm].tolist(), balls.motion[bm].tolist(),
+                              balls.state[bm].tolist())
         rows = []
         for bm, im, t in zip(bl, il, tl, strict=True):
-            st = int(balls.state[bm, im])
+            times, _, stk = tables[bm]
+            st = stk[im]
             moving = _MOVING_ONE[st]
             t_check = t + horizon if moving else inf
-            self.t_check[bm, im] = t_check
-            end = min_one(float(self.t_trans[bm, im]), t_check)
-            self.t_cush[bm, im] = inf
-            self.t_pair[bm, im, :] = inf
-            self.t_pair[bm, :, im] = inf
+            times[N + im] = t_check
+            end = min_one(times[im], t_check)
+            times[2 * N + im] = inf
+            times[P + im * N:P + (im + 1) * N] = [inf] * N
+            times[P + im:P + N * N:N] = [inf] * N
             if st != POCKETED:
                 rows.append((bm, im, t, end, moving))
         if not rows:
+            for bm, (times, _, _) in tables.items():
+                self.times[bm] = times
             return
         cands: list = []
         pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
-        tables: dict = {}
+        ends: dict = {}  # table -> each ball's end of motion (np.minimum of the two times)
         for bm, im, t, end, moving in rows:
-            if bm not in tables:
-                tables[bm] = (balls.motion[bm].tolist(), balls.state[bm].tolist(),
-                              np.minimum(self.t_trans[bm], self.t_check[bm]).tolist())
-            motion, stk, end_k = tables[bm]
+            times, motion, stk = tables[bm]
+            if bm not in ends:
+                ends[bm] = [min_one(a, c) for a, c in zip(times[:N], times[N:2 * N],
+                                                          strict=True)]
+            end_k = ends[bm]
             me = motion[im]
             d = t - me[Col.T0]
             pix = me[Col.PX] + (me[Col.VX] + 0.5 * me[Col.AX] * d) * d
@@ -247,7 +259,7 @@ class Schedule:
         for bm, im, t, end, moving in rows:
             if not moving:
                 continue
-            px, py, vx, vy, ax, ay = self._at(tables[bm][0][im], t)
+            px, py, vx, vy, ax, ay = self._at(tables[bm][1][im], t)
             T = end - t
             rc = float(balls.rc[bm, im])
             hv, ha, *edge = np.hypot([vx, ax] + [px - hx for hx, _ in hole_c],
@@ -264,16 +276,20 @@ class Schedule:
                           for (cx, cy), dk in zip(feat.circle_list, dists, strict=True)]
         found = first_contact_few(cands)
         npair = len(pairs)
+        # Both halves of each pair in the order the array path writes them: first (i, k),
+        # then (k, i) (two renewed balls meet twice; the later write stands).
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            self.t_pair[bm, im, k] = t + f
+            tables[bm][0][P + im * N + k] = t + f
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            self.t_pair[bm, k, im] = t + f
+            tables[bm][0][P + k * N + im] = t + f
         for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
             circles = found[npair + n * nc:npair + (n + 1) * nc]
             allt = feat.lines_one(p, v, a, rc, T, reach) + circles
             f = _argmin(allt)
-            self.t_cush[bm, im] = t + allt[f]
+            tables[bm][0][2 * N + im] = t + allt[f]
             self.f_cush[bm, im] = f
+        for bm, (times, _, _) in tables.items():
+            self.times[bm] = times
 
     @staticmethod
     def _at(me: list, t: float) -> tuple:
