@@ -195,40 +195,41 @@ class Schedule:
 
     def predict_few(self, b: np.ndarray, i: np.ndarray) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
-        culled by `first_contact_few`, so the predictions are bit-identical. Each table's row
-        of times is read once as a list, changed as `predict_many` changes the array, and
-        written back whole (a numpy call costs more than the floats it moves)."""
+        culled by `first_contact_few`, so the predictions are bit-identical. A table's
+        transitions, checks and cushion times are read once as a list and written back
+        whole, and each renewed ball's row and column of pair times are built as lists and
+        written at once (a numpy call costs more than the few floats it moves)."""
         balls, feat, tab = self.balls, self.features, self.features.table
         inf, horizon, N = np.inf, self.horizon, self.N
-        P = 3 * N  # where the pairs begin in a row of times
         bl, il, tl = b.tolist(), i.tolist(), self.tb[b].tolist()
-        tables: dict = {}  # table -> (its row of times, motions, states), as lists
+        # table -> (its transition, check and cushion times, motions, states), as lists,
+        # and the pair times of its renewed balls: ball -> its row, ball -> its column.
+        tables: dict = {}
         for bm in bl:
             if bm not in tables:
-                tables[bm] = (self.times[bm].tolist(), balls.motion[bm].tolist(),
-                              balls.state[bm].tolist())
+                tables[bm] = (self.times[bm, :3 * N].tolist(), balls.motion[bm].tolist(),
+                              balls.state[bm].tolist(), {}, {})
         rows = []
         for bm, im, t in zip(bl, il, tl, strict=True):
-            times, _, stk = tables[bm]
+            times, _, stk, prow, pcol = tables[bm]
             st = stk[im]
             moving = _MOVING_ONE[st]
             t_check = t + horizon if moving else inf
             times[N + im] = t_check
             end = min_one(times[im], t_check)
             times[2 * N + im] = inf
-            times[P + im * N:P + (im + 1) * N] = [inf] * N
-            times[P + im:P + N * N:N] = [inf] * N
+            prow[im] = [inf] * N  # every pair of a renewed ball is cleared before any is set
+            pcol[im] = [inf] * N
             if st != POCKETED:
                 rows.append((bm, im, t, end, moving))
         if not rows:
-            for bm, (times, _, _) in tables.items():
-                self.times[bm] = times
+            self._write_few(tables)
             return
         cands: list = []
         pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
         ends: dict = {}  # table -> each ball's end of motion (np.minimum of the two times)
         for bm, im, t, end, moving in rows:
-            times, motion, stk = tables[bm]
+            times, motion, stk, _, _ = tables[bm]
             if bm not in ends:
                 ends[bm] = [min_one(a, c) for a, c in zip(times[:N], times[N:2 * N],
                                                           strict=True)]
@@ -276,20 +277,35 @@ class Schedule:
                           for (cx, cy), dk in zip(feat.circle_list, dists, strict=True)]
         found = first_contact_few(cands)
         npair = len(pairs)
-        # Both halves of each pair in the order the array path writes them: first (i, k),
-        # then (k, i) (two renewed balls meet twice; the later write stands).
-        for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            tables[bm][0][P + im * N + k] = t + f
-        for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            tables[bm][0][P + k * N + im] = t + f
+        # Both halves of each pair in the order the scalar writes went: first (i, k), then
+        # (k, i) (two renewed balls meet twice; the later write stands). A cell is kept in
+        # its ball's row and in the other's column when both were renewed.
+        for half in (0, 1):
+            for (bm, im, k, t), f in zip(pairs, found, strict=False):
+                _, _, _, prow, pcol = tables[bm]
+                x, y = (im, k) if half == 0 else (k, im)
+                if x in prow:
+                    prow[x][y] = t + f
+                if y in pcol:
+                    pcol[y][x] = t + f
         for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
             circles = found[npair + n * nc:npair + (n + 1) * nc]
             allt = feat.lines_one(p, v, a, rc, T, reach) + circles
             f = _argmin(allt)
             tables[bm][0][2 * N + im] = t + allt[f]
             self.f_cush[bm, im] = f
-        for bm, (times, _, _) in tables.items():
-            self.times[bm] = times
+        self._write_few(tables)
+
+    def _write_few(self, tables: dict) -> None:
+        """Store `predict_few`'s times: each table's first 3 N, each renewed ball's pair row
+        and column (a cell shared by two renewed balls holds the same value in both)."""
+        N = self.N
+        for bm, (times, _, _, prow, pcol) in tables.items():
+            self.times[bm, :3 * N] = times
+            for x, row in prow.items():
+                self.t_pair[bm, x] = row
+            for x, col in pcol.items():
+                self.t_pair[bm, :, x] = col
 
     @staticmethod
     def _at(me: list, t: float) -> tuple:
