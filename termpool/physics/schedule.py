@@ -6,10 +6,13 @@ is one argmin. An event renews only the predictions of the balls it touched.
 
 from __future__ import annotations
 
+from array import array
+
 import numpy as np
 
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
+from termpool.physics.flat import flat
 from termpool.physics.motion import Col
 from termpool.physics.roots import first_contact, first_contact_few
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
@@ -69,6 +72,12 @@ class Schedule:
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
         self.chunk = CHUNK
+        # Flat views of the arrays the plain-float paths read and write (flat.py): the row
+        # of times of table b begins at b * width.
+        self.width = 3 * N + N * N
+        self.flat, self._tb, self._f_cush = flat(times), flat(tb), flat(self.f_cush)
+        self._inf_row = array("d", [np.inf] * N)
+        balls.flat_times, balls.width = self.flat, self.width  # where t_trans lives
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
@@ -193,47 +202,48 @@ class Schedule:
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
 
-    def predict_few(self, b: np.ndarray, i: np.ndarray) -> None:
+    def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
-        culled by `first_contact_few`, so the predictions are bit-identical. A table's
-        transitions, checks and cushion times are read once as a list and written back
-        whole, and each renewed ball's row and column of pair times are built as lists and
-        written at once (a numpy call costs more than the few floats it moves)."""
+        culled by `first_contact_few`, so the predictions are bit-identical. `b` and `i`
+        are arrays or lists; times, motions and states are read and written through flat
+        memoryviews (flat.py), without numpy calls."""
         balls, feat, tab = self.balls, self.features, self.features.table
-        inf, horizon, N = np.inf, self.horizon, self.N
-        bl, il, tl = b.tolist(), i.tolist(), self.tb[b].tolist()
-        # table -> (its transition, check and cushion times, motions, states), as lists,
-        # and the pair times of its renewed balls: ball -> its row, ball -> its column.
-        tables: dict = {}
-        for bm in bl:
-            if bm not in tables:
-                tables[bm] = (self.times[bm, :3 * N].tolist(), balls.motion[bm].tolist(),
-                              balls.state[bm].tolist(), {}, {})
+        inf, horizon, N, W = np.inf, self.horizon, self.N, self.width
+        F, tb, states = self.flat, self._tb, balls.flat_state
+        motions, rcs = balls.flat_motion, balls.flat_rc
+        bl = b.tolist() if isinstance(b, np.ndarray) else b
+        il = i.tolist() if isinstance(i, np.ndarray) else i
+        P = 3 * N  # where a row's pair times begin
         rows = []
-        for bm, im, t in zip(bl, il, tl, strict=True):
-            times, _, stk, prow, pcol = tables[bm]
-            st = stk[im]
+        for bm, im in zip(bl, il, strict=True):
+            t = tb[bm]
+            st = states[bm * N + im]
             moving = _MOVING_ONE[st]
             t_check = t + horizon if moving else inf
-            times[N + im] = t_check
-            end = min_one(times[im], t_check)
-            times[2 * N + im] = inf
-            prow[im] = [inf] * N  # every pair of a renewed ball is cleared before any is set
-            pcol[im] = [inf] * N
+            base = bm * W
+            F[base + N + im] = t_check
+            end = min_one(F[base + im], t_check)
+            F[base + 2 * N + im] = inf
+            F[base + P + im * N:base + P + (im + 1) * N] = self._inf_row
+            F[base + P + im:base + P + N * N:N] = self._inf_row
             if st != POCKETED:
                 rows.append((bm, im, t, end, moving))
         if not rows:
-            self._write_few(tables)
             return
         cands: list = []
         pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
-        ends: dict = {}  # table -> each ball's end of motion (np.minimum of the two times)
+        tables: dict = {}
+        C = Col.N
         for bm, im, t, end, moving in rows:
-            times, motion, stk, _, _ = tables[bm]
-            if bm not in ends:
-                ends[bm] = [min_one(a, c) for a, c in zip(times[:N], times[N:2 * N],
-                                                          strict=True)]
-            end_k = ends[bm]
+            if bm not in tables:
+                flat_m = motions[bm * N * C:(bm + 1) * N * C].tolist()
+                base = bm * W
+                tables[bm] = ([flat_m[k * C:(k + 1) * C] for k in range(N)],
+                              states[bm * N:(bm + 1) * N].tolist(),
+                              [min_one(x, y) for x, y in zip(F[base:base + N].tolist(),
+                                                             F[base + N:base + 2 * N].tolist(),
+                                                             strict=True)])
+            motion, stk, end_k = tables[bm]
             me = motion[im]
             d = t - me[Col.T0]
             pix = me[Col.PX] + (me[Col.VX] + 0.5 * me[Col.AX] * d) * d
@@ -260,9 +270,9 @@ class Schedule:
         for bm, im, t, end, moving in rows:
             if not moving:
                 continue
-            px, py, vx, vy, ax, ay = self._at(tables[bm][1][im], t)
+            px, py, vx, vy, ax, ay = self._at(tables[bm][0][im], t)
             T = end - t
-            rc = float(balls.rc[bm, im])
+            rc = rcs[bm * N + im]
             hv, ha, *edge = np.hypot([vx, ax] + [px - hx for hx, _ in hole_c],
                                      [vy, ay] + [py - hy for _, hy in hole_c]).tolist()
             reach = hv * T + 0.5 * ha * T * T + rc
@@ -277,35 +287,17 @@ class Schedule:
                           for (cx, cy), dk in zip(feat.circle_list, dists, strict=True)]
         found = first_contact_few(cands)
         npair = len(pairs)
-        # Both halves of each pair in the order the scalar writes went: first (i, k), then
-        # (k, i) (two renewed balls meet twice; the later write stands). A cell is kept in
-        # its ball's row and in the other's column when both were renewed.
-        for half in (0, 1):
-            for (bm, im, k, t), f in zip(pairs, found, strict=False):
-                _, _, _, prow, pcol = tables[bm]
-                x, y = (im, k) if half == 0 else (k, im)
-                if x in prow:
-                    prow[x][y] = t + f
-                if y in pcol:
-                    pcol[y][x] = t + f
+        for (bm, im, k, t), f in zip(pairs, found, strict=False):
+            F[bm * W + P + im * N + k] = t + f
+        for (bm, im, k, t), f in zip(pairs, found, strict=False):
+            F[bm * W + P + k * N + im] = t + f
+        fc = self._f_cush
         for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
             circles = found[npair + n * nc:npair + (n + 1) * nc]
             allt = feat.lines_one(p, v, a, rc, T, reach) + circles
             f = _argmin(allt)
-            tables[bm][0][2 * N + im] = t + allt[f]
-            self.f_cush[bm, im] = f
-        self._write_few(tables)
-
-    def _write_few(self, tables: dict) -> None:
-        """Store `predict_few`'s times: each table's first 3 N, each renewed ball's pair row
-        and column (a cell shared by two renewed balls holds the same value in both)."""
-        N = self.N
-        for bm, (times, _, _, prow, pcol) in tables.items():
-            self.times[bm, :3 * N] = times
-            for x, row in prow.items():
-                self.t_pair[bm, x] = row
-            for x, col in pcol.items():
-                self.t_pair[bm, :, x] = col
+            F[bm * W + 2 * N + im] = t + allt[f]
+            fc[bm * N + im] = f
 
     @staticmethod
     def _at(me: list, t: float) -> tuple:
