@@ -75,9 +75,27 @@ class Schedule:
         # Flat views of the arrays the plain-float paths read and write (flat.py): the row
         # of times of table b begins at b * width.
         self.width = 3 * N + N * N
-        self.flat, self._tb, self._f_cush = flat(times), flat(tb), flat(self.f_cush)
+        self.flat, self._tb = flat(times), flat(tb)
         self._inf_row = array("d", [np.inf] * N)
         balls.flat_times, balls.width = self.flat, self.width  # where t_trans lives
+        self._next, self._c_next = flat(self.t_next), flat(self.c_next)
+        self._row0 = times[0] if B else times  # table 0's row of times (a view)
+        self.code_one = 0  # the last code refresh_one found
+        self._ones: dict[int, np.ndarray] = {}  # one_array's arrays
+        self.flat_f_cush = flat(self.f_cush)
+
+    def decode_one(self, code: int) -> tuple[int, int, int]:
+        """`decode` of one event code, as ints (what: Due, ball i, ball j or -1)."""
+        q, r = divmod(code, self.N)
+        return (Due.PAIR, q - Due.PAIR, r) if q >= Due.PAIR else (q, r, -1)
+
+    def one_array(self, x: int) -> np.ndarray:
+        """The read-only int array [x], made once (one table's events index with these)."""
+        a = self._ones.get(x)
+        if a is None:
+            a = self._ones[x] = np.array([x])
+            a.flags.writeable = False
+        return a
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
@@ -291,7 +309,7 @@ class Schedule:
             F[bm * W + P + im * N + k] = t + f
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
             F[bm * W + P + k * N + im] = t + f
-        fc = self._f_cush
+        fc = self.flat_f_cush
         for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
             circles = found[npair + n * nc:npair + (n + 1) * nc]
             allt = feat.lines_one(p, v, a, rc, T, reach) + circles
@@ -312,16 +330,19 @@ class Schedule:
     def refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
         if tabs.size == 1:  # one table: its row of times, no gathers
-            b = int(tabs[0])
-            row = self.times[b]
-            code = int(row.argmin())
-            self.t_next[b] = row[code]
-            self.c_next[b] = code
+            self.refresh_one(int(tabs[0]))
             return
         allt = self.times[tabs]
         code = allt.argmin(axis=1)
         self.t_next[tabs] = allt[np.arange(len(tabs)), code]
         self.c_next[tabs] = code
+
+    def refresh_one(self, b: int) -> None:
+        """`refresh` of table b alone: one argmin, the rest through the flat views; the code
+        is also kept as an int (`code_one`)."""
+        code = int((self._row0 if b == 0 else self.times[b]).argmin())
+        self._next[b] = self.flat[b * self.width + code]
+        self._c_next[b] = self.code_one = code
 
     def unstick(self, b: int, i: int, j: int) -> None:
         """A pressed pair whose solve changed nothing, found pressed again at the same
