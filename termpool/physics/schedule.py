@@ -22,6 +22,7 @@ from termpool.physics.vec import norm as _norm
 # Candidates (row x ball) a chunk of `predict_many` works on at once: bounds its temporaries
 # (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
 CHUNK = 16384
+PLAIN_MAX = 1024  # one table's renewals of up to this many (ball x ball) in plain floats
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -72,6 +73,7 @@ class Schedule:
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
         self.chunk = CHUNK
+        self.one = B == 1
         # Flat views of the arrays the plain-float paths read and write (flat.py): the row
         # of times of table b begins at b * width.
         self.width = 3 * N + N * N
@@ -110,7 +112,10 @@ class Schedule:
 
     def predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
-        if b.size <= FEW:
+        # One table renews a cluster's balls in plain floats too, up to PLAIN_MAX candidate
+        # pairs (its numpy calls would cost about as much as its candidates); batches and big
+        # tables keep the arrays.
+        if b.size <= FEW or self.one and b.size * self.N <= PLAIN_MAX:
             self.predict_few(b, i)
         else:
             self.predict_many(b, i)
@@ -222,9 +227,10 @@ class Schedule:
 
     def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
-        culled by `first_contact_few`, so the predictions are bit-identical. `b` and `i`
-        are arrays or lists; times, motions and states are read and written through flat
-        memoryviews (flat.py), without numpy calls."""
+        culled by `first_contact_few`, so the predictions are bit-identical. As there, a
+        ball renewed twice is renewed once, and two renewed balls meet as the first one's
+        pair only (the same bits either way round). `b` and `i` are arrays or lists; times,
+        motions and states are read and written through flat memoryviews (flat.py)."""
         balls, feat, tab = self.balls, self.features, self.features.table
         inf, horizon, N, W = np.inf, self.horizon, self.N, self.width
         F, tb, states = self.flat, self._tb, balls.flat_state
@@ -233,6 +239,7 @@ class Schedule:
         il = i.tolist() if isinstance(i, np.ndarray) else i
         P = 3 * N  # where a row's pair times begin
         rows = []
+        renewed: dict = {}  # (table, ball) -> its row
         for bm, im in zip(bl, il, strict=True):
             t = tb[bm]
             st = states[bm * N + im]
@@ -244,7 +251,8 @@ class Schedule:
             F[base + 2 * N + im] = inf
             F[base + P + im * N:base + P + (im + 1) * N] = self._inf_row
             F[base + P + im:base + P + N * N:N] = self._inf_row
-            if st != POCKETED:
+            if st != POCKETED and (bm, im) not in renewed:  # (a ball renewed twice: once)
+                renewed[bm, im] = len(rows)
                 rows.append((bm, im, t, end, moving))
         if not rows:
             return
@@ -252,7 +260,7 @@ class Schedule:
         pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
         tables: dict = {}
         C = Col.N
-        for bm, im, t, end, moving in rows:
+        for r, (bm, im, t, end, moving) in enumerate(rows):
             if bm not in tables:
                 flat_m = motions[bm * N * C:(bm + 1) * N * C].tolist()
                 base = bm * W
@@ -270,6 +278,8 @@ class Schedule:
             aix, aiy, ri = me[Col.AX], me[Col.AY], me[Col.RADIUS]
             for k, (other, sk) in enumerate(zip(motion, stk, strict=True)):
                 if not _LIVE_ONE[sk] or k == im or not (moving or _MOVING_ONE[sk]):
+                    continue
+                if renewed.get((bm, k), r) < r:  # met as the earlier renewed ball's pair
                     continue
                 d = t - other[Col.T0]
                 ax, ay = other[Col.AX], other[Col.AY]
@@ -306,9 +316,7 @@ class Schedule:
         found = first_contact_few(cands)
         npair = len(pairs)
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            F[bm * W + P + im * N + k] = t + f
-        for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            F[bm * W + P + k * N + im] = t + f
+            F[bm * W + P + im * N + k] = F[bm * W + P + k * N + im] = t + f
         fc = self.flat_f_cush
         for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
             circles = found[npair + n * nc:npair + (n + 1) * nc]
