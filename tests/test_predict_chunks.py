@@ -146,3 +146,74 @@ def test_renewing_many_balls_at_once_is_renewing_them_one_by_one(monkeypatch):
     assert many.schedule.times.tobytes() == one.schedule.times.tobytes()
     assert np.array_equal(many.f_cush, one.f_cush)
     assert np.isfinite(many.schedule.t_pair).sum() > 20
+
+
+def _alone(scene, pos, vel) -> Engine:
+    return Engine(scene.table, scene.physics, pos, vel, None, scene.radius, scene.mass)
+
+
+def test_one_table_renewing_all_its_balls_in_floats_matches_the_arrays_bit_for_bit(monkeypatch):
+    """Each of the six tables alone (one table renews a cluster's balls in plain floats):
+    every ball renewed in one call, some listed twice, at a clock past the start, gives the
+    same times and features, bit for bit, in plain floats (`predict_few`, and `predict`'s
+    choice for one table) as in arrays (`predict_many`), pairs of renewed balls included."""
+    scene, pos, vel = _tables()
+    n = len(scene.ids)
+    i = np.concatenate([np.arange(n), [0, 5, 11]])
+    b = np.zeros(i.size, dtype=np.int64)
+    finite = 0
+    for k in range(len(pos)):
+        engines = [_alone(scene, pos[k], vel[k]) for _ in range(3)]
+        for eng, way in zip(engines, ("predict_few", "predict", "predict_many"), strict=True):
+            eng.tb[0] = 0.01 * (k + 1)
+            with np.errstate(all="ignore"):
+                getattr(eng.schedule, way)(b, i)
+        few, chosen, many = engines
+        assert few.schedule.times.tobytes() == many.schedule.times.tobytes()
+        assert chosen.schedule.times.tobytes() == many.schedule.times.tobytes()
+        assert np.array_equal(few.f_cush, many.f_cush)
+        finite += int(np.isfinite(many.schedule.t_pair).sum())
+    assert finite > 20
+
+
+def _outcome(eng: Engine, samples) -> tuple:
+    return (eng.pos.tobytes(), eng.vel.tobytes(), eng.w.tobytes(), eng.state.tobytes(),
+            eng.events, eng.passes, [(t, p.tobytes(), s.tobytes()) for t, p, s in samples])
+
+
+@pytest.mark.parametrize("dt", [None, 1 / 60])
+def test_one_table_runs_the_same_with_its_clusters_renewed_in_arrays(dt, monkeypatch):
+    """The six tables and the break, each alone, run to rest with the one-table paths
+    (plain-float renewals of clusters, the event loop in plain numbers) and with every
+    renewal of more than a few balls in arrays: the same positions, velocities, spins,
+    states, events and samples, bit for bit."""
+    scene, pos, vel = _tables()
+    runs = []
+    for plain in (schedule.PLAIN_MAX, 0):
+        monkeypatch.setattr(schedule, "PLAIN_MAX", plain)
+        out = []
+        for k in range(len(pos)):
+            eng = _alone(scene, pos[k], vel[k])
+            samples = eng.run_events(sample_hz=30) if dt is None else eng.run(dt, sample_hz=30)
+            out.append(_outcome(eng, samples))
+        runs.append(out)
+    monkeypatch.undo()
+    assert runs[0] == runs[1]
+    assert sum(len(o[4][0]) for o in runs[0]) > 100  # events were run
+
+
+@pytest.mark.parametrize("dt", [None, 1 / 60])
+def test_one_table_alone_runs_as_it_does_in_a_batch_bit_for_bit(dt):
+    """The six tables run alone (the one-table event loop: plain numbers, its event's arrays
+    made once, clusters renewed in plain floats) and together in one batch (the array
+    paths): each table ends with the same positions, velocities, spins and states, and the
+    same events, bit for bit."""
+    scene, pos, vel = _tables()
+    batch = Engine(scene.table, scene.physics, pos, vel, None, scene.radius, scene.mass)
+    batch.run_events() if dt is None else batch.run(dt)
+    for k in range(len(pos)):
+        eng = _alone(scene, pos[k], vel[k])
+        eng.run_events() if dt is None else eng.run(dt)
+        for name in ("pos", "vel", "w", "state"):
+            assert getattr(eng, name)[0].tobytes() == getattr(batch, name)[k].tobytes(), name
+        assert eng.events[0] == batch.events[k]

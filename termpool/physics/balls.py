@@ -9,10 +9,13 @@ plain-float forms, which agree with the array forms bit for bit.
 
 from __future__ import annotations
 
+from array import array
+
 import numpy as np
 
 from termpool.physics import motion
 from termpool.physics.events import BallState
+from termpool.physics.flat import flat
 from termpool.physics.motion import Col
 from termpool.physics.params import Physics, nose_reach
 from termpool.physics.state import POCKETED
@@ -76,6 +79,12 @@ class Balls:
         self.state = np.zeros((self.B, self.N), dtype=np.int8)
         self.pocket = np.full((self.B, self.N), -1, dtype=np.int16)  # pocket index, or -1
         self.t_trans = t_trans
+        # Flat views for the plain-float paths (flat.py); the transition times live in the
+        # schedule's rows of times, which `flat_times` views (width apart).
+        self.flat_motion, self.flat_state = flat(self.motion), flat(self.state)
+        self.flat_rc = flat(self.rc)
+        self.flat_times: memoryview | None = None
+        self.width = 0
 
     def eval(self, b, i, t, spin: bool = True):
         """Position, velocity and (if `spin`) spin of balls (b, i) at times t."""
@@ -106,11 +115,23 @@ class Balls:
         self.state[b, i] = state
 
     def write_few(self, b, i, out: list) -> None:
-        """Store motion.start's results for balls (b, i)."""
-        state, t_trans, rows = zip(*out, strict=True)
-        self.state[b, i] = state
-        self.t_trans[b, i] = t_trans
-        self.motion[b, i, :Col.RATE] = rows
+        """Store motion.start's results for balls (b, i) (arrays or lists), through the flat
+        views when the schedule's rows of times are known to them."""
+        if self.flat_times is None:
+            state, t_trans, rows = zip(*out, strict=True)
+            self.state[b, i] = state
+            self.t_trans[b, i] = t_trans
+            self.motion[b, i, :Col.RATE] = rows
+            return
+        N, W, C = self.N, self.width, Col.N
+        st, tt, mm = self.flat_state, self.flat_times, self.flat_motion
+        bl = b.tolist() if isinstance(b, np.ndarray) else b
+        il = i.tolist() if isinstance(i, np.ndarray) else i
+        for bm, im, (state, t_trans, row) in zip(bl, il, out, strict=True):
+            st[bm * N + im] = state
+            tt[bm * W + im] = t_trans
+            k = (bm * N + im) * C
+            mm[k:k + Col.RATE] = array("d", row)
 
     def ball_state(self, b: int, i: int, t: float) -> BallState:
         """Ball i of table b as it is at time t."""

@@ -21,6 +21,7 @@ import numpy as np
 from termpool.physics.balls import Balls, ball_arrays
 from termpool.physics.events import BallState
 from termpool.physics.features import Features
+from termpool.physics.flat import flat
 from termpool.physics.joined import Groups
 from termpool.physics.log import LIGHT, EventLog, check_mode
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
@@ -49,6 +50,9 @@ WINDOW = 1 / 60
 
 _ONE = np.zeros(1, dtype=np.int64)  # index of the only event of a one-table pass
 _NONE = np.zeros(0, dtype=np.int64)
+_TRUE, _FALSE = np.ones(1, dtype=bool), np.zeros(1, dtype=bool)  # one table over the bound, or not
+for _a in (_ONE, _NONE, _TRUE, _FALSE):
+    _a.flags.writeable = False
 
 
 class WorkLimit(RuntimeError):
@@ -97,6 +101,7 @@ class Engine:
         self.max_work = WORK_LIMIT if max_work is None else max_work
         self._win = np.full(B, -1, dtype=np.int64)  # work bound: window and events in it
         self._count = np.zeros(B, dtype=np.int64)
+        self._win_one, self._count_one = -1, 0  # the same for one table, as ints
         self._stopped: np.ndarray | None = None  # tables `stop` took out of the run
         # The collaborators: the balls and their motions, the table's features, the
         # predictions, the responses to fast events, groups, slow contacts, the event log.
@@ -115,6 +120,8 @@ class Engine:
         self.radius, self.mass, self.rc, self.state, self.pocket, self.t_trans = (
             bl.radius, bl.mass, bl.rc, bl.state, bl.pocket, bl.t_trans)
         self.t_cush, self.f_cush, self.t_next = sc.t_cush, sc.f_cush, sc.t_next
+        # One table's clock and next event time as plain floats, through flat views.
+        self._tb_one, self._next_one = flat(self.tb), flat(self.t_next)
         b, i = np.divmod(np.arange(B * N), N)
         with np.errstate(all="ignore"):
             self.balls.set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
@@ -125,12 +132,15 @@ class Engine:
     def _run_until(self, t_end: float) -> None:
         """Run every table's events up to t_end in time order; clocks end at t_end."""
         self._spend(1)
-        due = float(self.t_next[0]) <= t_end if self.B == 1 else (self.t_next <= t_end).any()
+        one = self.B == 1
+        due = self._next_one[0] <= t_end if one else (self.t_next <= t_end).any()
         if due:
             with np.errstate(all="ignore"):  # infinities stand for "never"
                 self._run_events(t_end)
         if math.isfinite(t_end):
-            if self._stopped is None:
+            if one and self._stopped is None:
+                self._tb_one[0] = t_end
+            elif self._stopped is None:
                 self.tb[:] = t_end
             else:
                 self.tb[~self._stopped] = t_end
@@ -139,7 +149,7 @@ class Engine:
         one = self.B == 1  # one table (the usual case): no array scans
         while True:
             if one:
-                t = float(self.t_next[0])
+                t = self._next_one[0]
                 if not (t <= t_end and t < math.inf):
                     break
                 tabs = _ONE
@@ -150,11 +160,13 @@ class Engine:
             self._spend(PASS_WORK)
             self.passes += 1
             if one:
-                self.tb[0] = t
+                self._tb_one[0] = t
+                self._handle_one(self.schedule.code_one)
+                self.schedule.refresh_one(0)
             else:
                 self.tb[tabs] = self.t_next[tabs]
-            self._handle(tabs, self.schedule.c_next[tabs])
-            self.schedule.refresh(tabs)
+                self._handle(tabs, self.schedule.c_next[tabs])
+                self.schedule.refresh(tabs)
 
     def _spend(self, units: int) -> None:
         """Count work before a step or a pass; raise WorkLimit past the limit (between
@@ -171,6 +183,11 @@ class Engine:
 
     def _busy(self, tabs: np.ndarray) -> np.ndarray:
         """Count an event of each of tables `tabs` in its window: True where over BUDGET."""
+        if self.B == 1:  # one table: in plain numbers (floor of the same quotient)
+            win = math.floor(self._tb_one[0] / WINDOW)
+            self._count_one = 1 if win != self._win_one else self._count_one + 1
+            self._win_one = win
+            return _TRUE if self._count_one > BUDGET else _FALSE
         win = np.floor(self.tb[tabs] / WINDOW).astype(np.int64)
         count = np.where(win != self._win[tabs], 1, self._count[tabs] + 1)
         self._win[tabs] = win
@@ -227,6 +244,58 @@ class Engine:
             self.recorder.record(tabs, due, i, j, old_state, cushions, solved.extra, solved.also,
                                  quiet)
 
+    def _handle_one(self, code: int) -> None:
+        """`_handle` for one table (B == 1), step for step, with its event's kind and balls
+        as ints and its one-element arrays made once (`Schedule.one_array`)."""
+        sc = self.schedule
+        k, i0, j0 = sc.decode_one(code)
+        tabs, due, i, j = _ONE, sc.one_array(k), sc.one_array(i0), sc.one_array(j0)
+        old_state = [self.balls.flat_state[i0]] if self.record else None
+        busy = self._busy(tabs)
+        any_busy = busy is _TRUE
+        clusters: list[Cluster] = []
+        quiet: set[int] = set()
+        involved = (self.groups.involved(tabs, i, j, due) if self.groups.flat_count[0]
+                    else None)
+        if k == Due.TRANSITION:
+            if involved is not None and involved[0]:
+                clusters.append(Cluster(0, self.groups.members(0, i0), False, False))
+            else:
+                self.respond.transition(tabs, i)
+        cushions: dict = {}
+        if k == Due.CUSHION:
+            if self.record:
+                f = sc.flat_f_cush[i0]
+                cushions = {0: (f, self.features.names([f])[0])}
+            more, still = self.slow.cushions(tabs, i, _ONE, busy, any_busy)
+            clusters += more
+            quiet |= still
+        bl, il = [0], [i0]
+        if k == Due.PAIR:
+            bl.append(0)
+            il.append(j0)
+            more, still = self.slow.pairs(tabs, i, j, _ONE, busy if any_busy else None)
+            clusters += more
+            quiet |= still
+        more_b: list = []
+        more_i: list = []
+        if involved is not None:
+            more_b, more_i = self.groups.break_up(tabs, i, j, due, involved)
+        solved = self.slow.solve(tabs, i, j, due, clusters, self.record)
+        self.work += sum(n ** 3 // CLUSTER_WORK for n in solved.sizes)
+        quiet |= solved.quiet
+        if more_b or solved.tables:
+            self._predict(np.concatenate([np.array(bl)] + more_b + solved.tables),
+                          np.concatenate([np.array(il)] + more_i + solved.balls))
+        else:  # (the usual event: one or two balls, FEW at most)
+            self.work += len(bl) * self.N
+            sc.predict_few(bl, il)
+        if quiet and k == Due.PAIR:
+            sc.unstick(0, i0, j0)
+        if self.record:
+            self.recorder.record([0], [k], [i0], [j0], old_state, cushions, solved.extra,
+                                 solved.also, quiet)
+
     # ----------------------------------------------------------------- public view and driving
     def ball_state(self, b: int, i: int) -> BallState:
         """Ball i of table b as it is at the table's clock (for events and output)."""
@@ -266,7 +335,7 @@ class Engine:
 
     def _all_at_rest(self) -> bool:
         """`at_rest().all()`, for one table without array calls."""
-        return math.isinf(float(self.t_next[0])) if self.B == 1 else bool(self.at_rest().all())
+        return math.isinf(self._next_one[0]) if self.B == 1 else bool(self.at_rest().all())
 
     def step(self, dt: float) -> None:
         """Advance every table by dt seconds, exactly: every event inside the step is run at

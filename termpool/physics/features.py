@@ -92,10 +92,11 @@ class Features:
         return out
 
     def names(self, f) -> list[str]:
-        """Names of features by index: rail, jaw, tip, or the pocket's name."""
+        """Names of features by index (an array or a list): rail, jaw, tip, or the pocket's
+        name."""
         tab, nseg, npt = self.table, self.nseg, self.npt
         names = []
-        for fi in f.tolist():
+        for fi in (f.tolist() if isinstance(f, np.ndarray) else f):
             if fi < nseg:
                 names.append(tab.seg_kind[fi])
             elif fi < nseg + npt:

@@ -28,6 +28,7 @@ import numpy as np
 
 from termpool.physics.balls import Balls
 from termpool.physics.cluster import Rows, solve_inelastic, solve_psd
+from termpool.physics.flat import flat
 from termpool.physics.motion import Col
 from termpool.physics.params import Physics
 from termpool.physics.roots import A_MIN
@@ -387,6 +388,7 @@ class Groups:
         self.physics, self.balls, self.tb = physics, balls, tb
         self.label = np.full((balls.B, balls.N), -1, dtype=np.int64)
         self.count = np.zeros(balls.B, dtype=np.int64)
+        self.flat_count = flat(self.count)  # (flat.py: read without a numpy call)
 
     def involved(self, tabs, i, j, due):
         """Events (by position in the pass) that involve a grouped ball, or None if no table

@@ -14,6 +14,8 @@ from termpool.physics import motion
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.events import ENDS, BallState, Event, EventKind
 from termpool.physics.features import Features
+from termpool.physics.flat import flat
+from termpool.physics.motion import Col
 from termpool.physics.schedule import Due
 from termpool.physics.state import POCKETED
 
@@ -37,6 +39,7 @@ class EventLog:
         self.tables: list[list[Event]] = [[] for _ in range(balls.B)]
         self._json: list[list[dict]] = [[] for _ in range(balls.B)]
         self._unsynced = False  # events were added since json() was last brought up to date
+        self._tb = flat(tb)  # the clocks as plain floats (flat.py)
 
     def met(self, events: np.ndarray, f: np.ndarray) -> dict[int, tuple[int, str]]:
         """Cushion events (by place in a pass) -> the feature each met, (index, name): taken
@@ -55,12 +58,17 @@ class EventLog:
 
         The events are built first and the balls' states taken after, all of the pass's
         balls in one evaluation."""
-        tabs_l, due_l, i_l = tabs.tolist(), due.tolist(), i.tolist()
-        j_l = j.tolist() if j is not None else None
-        state = self.balls.state
-        now = state[tabs, i].tolist()
-        old = old_state.tolist() if old_state is not None else None
-        times = self.tb[tabs].tolist()
+        if isinstance(tabs, list):  # one table's event, as lists (Engine._handle_one)
+            tabs_l, due_l, i_l, j_l, old = tabs, due, i, j, old_state
+            N, st, tb = self.balls.N, self.balls.flat_state, self._tb
+            now = [st[b * N + x] for b, x in zip(tabs_l, i_l, strict=True)]
+            times = [tb[b] for b in tabs_l]
+        else:
+            tabs_l, due_l, i_l = tabs.tolist(), due.tolist(), i.tolist()
+            j_l = j.tolist() if j is not None else None
+            now = self.balls.state[tabs, i].tolist()
+            old = old_state.tolist() if old_state is not None else None
+            times = self.tb[tabs].tolist()
         # (kind, table, time, balls, cushion, feature, pocket), in the order of the pass
         out: list[tuple] = []
         for n, b in enumerate(tabs_l):
@@ -105,10 +113,11 @@ class EventLog:
         bl, tb = self.balls, self.tb
         if len(which) <= FEW:
             out = []
+            N, C, mm, st = bl.N, Col.N, bl.flat_motion, bl.flat_state
             for b, x in which:
-                p, v, w = motion.at(bl.motion[b, x].tolist(), float(tb[b]))
-                out.append(BallState(p[0], p[1], v[0], v[1], (w[0], w[1], w[2]),
-                                     int(bl.state[b, x])))
+                k = b * N + x
+                p, v, w = motion.at(mm[k * C:(k + 1) * C].tolist(), self._tb[b])
+                out.append(BallState(p[0], p[1], v[0], v[1], (w[0], w[1], w[2]), st[k]))
             return out
         b, x = np.array(which).T
         p, v, w = bl.eval(b, x, tb[b])

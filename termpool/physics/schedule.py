@@ -6,10 +6,13 @@ is one argmin. An event renews only the predictions of the balls it touched.
 
 from __future__ import annotations
 
+from array import array
+
 import numpy as np
 
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
+from termpool.physics.flat import flat
 from termpool.physics.motion import Col
 from termpool.physics.roots import first_contact, first_contact_few
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
@@ -19,6 +22,7 @@ from termpool.physics.vec import norm as _norm
 # Candidates (row x ball) a chunk of `predict_many` works on at once: bounds its temporaries
 # (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
 CHUNK = 16384
+PLAIN_MAX = 1024  # one table's renewals of up to this many (ball x ball) in plain floats
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -69,6 +73,31 @@ class Schedule:
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
         self.chunk = CHUNK
+        self.one = B == 1
+        # Flat views of the arrays the plain-float paths read and write (flat.py): the row
+        # of times of table b begins at b * width.
+        self.width = 3 * N + N * N
+        self.flat, self._tb = flat(times), flat(tb)
+        self._inf_row = array("d", [np.inf] * N)
+        balls.flat_times, balls.width = self.flat, self.width  # where t_trans lives
+        self._next, self._c_next = flat(self.t_next), flat(self.c_next)
+        self._row0 = times[0] if B else times  # table 0's row of times (a view)
+        self.code_one = 0  # the last code refresh_one found
+        self._ones: dict[int, np.ndarray] = {}  # one_array's arrays
+        self.flat_f_cush = flat(self.f_cush)
+
+    def decode_one(self, code: int) -> tuple[int, int, int]:
+        """`decode` of one event code, as ints (what: Due, ball i, ball j or -1)."""
+        q, r = divmod(code, self.N)
+        return (Due.PAIR, q - Due.PAIR, r) if q >= Due.PAIR else (q, r, -1)
+
+    def one_array(self, x: int) -> np.ndarray:
+        """The read-only int array [x], made once (one table's events index with these)."""
+        a = self._ones.get(x)
+        if a is None:
+            a = self._ones[x] = np.array([x])
+            a.flags.writeable = False
+        return a
 
     def decode(self, code: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Event codes (places in the row of times) as (what: Due, ball i, ball j or -1)."""
@@ -83,7 +112,10 @@ class Schedule:
 
     def predict(self, b: np.ndarray, i: np.ndarray) -> None:
         """Renew the contact predictions of balls (b, i) from their tables' clocks on."""
-        if b.size <= FEW:
+        # One table renews a cluster's balls in plain floats too, up to PLAIN_MAX candidate
+        # pairs (its numpy calls would cost about as much as its candidates); batches and big
+        # tables keep the arrays.
+        if b.size <= FEW or self.one and b.size * self.N <= PLAIN_MAX:
             self.predict_few(b, i)
         else:
             self.predict_many(b, i)
@@ -193,33 +225,50 @@ class Schedule:
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
 
-    def predict_few(self, b: np.ndarray, i: np.ndarray) -> None:
+    def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
-        culled by `first_contact_few`, so the predictions are bit-identical."""
+        culled by `first_contact_few`, so the predictions are bit-identical. As there, a
+        ball renewed twice is renewed once, and two renewed balls meet as the first one's
+        pair only (the same bits either way round). `b` and `i` are arrays or lists; times,
+        motions and states are read and written through flat memoryviews (flat.py)."""
         balls, feat, tab = self.balls, self.features, self.features.table
-        inf, horizon = np.inf, self.horizon
-        bl, il, tl = b.tolist(), i.tolist(), self.tb[b].tolist()
+        inf, horizon, N, W = np.inf, self.horizon, self.N, self.width
+        F, tb, states = self.flat, self._tb, balls.flat_state
+        motions, rcs = balls.flat_motion, balls.flat_rc
+        bl = b.tolist() if isinstance(b, np.ndarray) else b
+        il = i.tolist() if isinstance(i, np.ndarray) else i
+        P = 3 * N  # where a row's pair times begin
         rows = []
-        for bm, im, t in zip(bl, il, tl, strict=True):
-            st = int(balls.state[bm, im])
+        renewed: dict = {}  # (table, ball) -> its row
+        for bm, im in zip(bl, il, strict=True):
+            t = tb[bm]
+            st = states[bm * N + im]
             moving = _MOVING_ONE[st]
             t_check = t + horizon if moving else inf
-            self.t_check[bm, im] = t_check
-            end = min_one(float(self.t_trans[bm, im]), t_check)
-            self.t_cush[bm, im] = inf
-            self.t_pair[bm, im, :] = inf
-            self.t_pair[bm, :, im] = inf
-            if st != POCKETED:
+            base = bm * W
+            F[base + N + im] = t_check
+            end = min_one(F[base + im], t_check)
+            F[base + 2 * N + im] = inf
+            F[base + P + im * N:base + P + (im + 1) * N] = self._inf_row
+            F[base + P + im:base + P + N * N:N] = self._inf_row
+            if st != POCKETED and (bm, im) not in renewed:  # (a ball renewed twice: once)
+                renewed[bm, im] = len(rows)
                 rows.append((bm, im, t, end, moving))
         if not rows:
             return
         cands: list = []
         pairs = []  # (table, ball, other ball, clock) of the first len(pairs) candidates
         tables: dict = {}
-        for bm, im, t, end, moving in rows:
+        C = Col.N
+        for r, (bm, im, t, end, moving) in enumerate(rows):
             if bm not in tables:
-                tables[bm] = (balls.motion[bm].tolist(), balls.state[bm].tolist(),
-                              np.minimum(self.t_trans[bm], self.t_check[bm]).tolist())
+                flat_m = motions[bm * N * C:(bm + 1) * N * C].tolist()
+                base = bm * W
+                tables[bm] = ([flat_m[k * C:(k + 1) * C] for k in range(N)],
+                              states[bm * N:(bm + 1) * N].tolist(),
+                              [min_one(x, y) for x, y in zip(F[base:base + N].tolist(),
+                                                             F[base + N:base + 2 * N].tolist(),
+                                                             strict=True)])
             motion, stk, end_k = tables[bm]
             me = motion[im]
             d = t - me[Col.T0]
@@ -229,6 +278,8 @@ class Schedule:
             aix, aiy, ri = me[Col.AX], me[Col.AY], me[Col.RADIUS]
             for k, (other, sk) in enumerate(zip(motion, stk, strict=True)):
                 if not _LIVE_ONE[sk] or k == im or not (moving or _MOVING_ONE[sk]):
+                    continue
+                if renewed.get((bm, k), r) < r:  # met as the earlier renewed ball's pair
                     continue
                 d = t - other[Col.T0]
                 ax, ay = other[Col.AX], other[Col.AY]
@@ -249,7 +300,7 @@ class Schedule:
                 continue
             px, py, vx, vy, ax, ay = self._at(tables[bm][0][im], t)
             T = end - t
-            rc = float(balls.rc[bm, im])
+            rc = rcs[bm * N + im]
             hv, ha, *edge = np.hypot([vx, ax] + [px - hx for hx, _ in hole_c],
                                      [vy, ay] + [py - hy for _, hy in hole_c]).tolist()
             reach = hv * T + 0.5 * ha * T * T + rc
@@ -265,15 +316,14 @@ class Schedule:
         found = first_contact_few(cands)
         npair = len(pairs)
         for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            self.t_pair[bm, im, k] = t + f
-        for (bm, im, k, t), f in zip(pairs, found, strict=False):
-            self.t_pair[bm, k, im] = t + f
+            F[bm * W + P + im * N + k] = F[bm * W + P + k * N + im] = t + f
+        fc = self.flat_f_cush
         for n, (bm, im, t, p, v, a, T, reach, rc) in enumerate(mv):
             circles = found[npair + n * nc:npair + (n + 1) * nc]
             allt = feat.lines_one(p, v, a, rc, T, reach) + circles
             f = _argmin(allt)
-            self.t_cush[bm, im] = t + allt[f]
-            self.f_cush[bm, im] = f
+            F[bm * W + 2 * N + im] = t + allt[f]
+            fc[bm * N + im] = f
 
     @staticmethod
     def _at(me: list, t: float) -> tuple:
@@ -288,16 +338,19 @@ class Schedule:
     def refresh(self, tabs: np.ndarray) -> None:
         """Recompute the next event of tables `tabs` from their predictions."""
         if tabs.size == 1:  # one table: its row of times, no gathers
-            b = int(tabs[0])
-            row = self.times[b]
-            code = int(row.argmin())
-            self.t_next[b] = row[code]
-            self.c_next[b] = code
+            self.refresh_one(int(tabs[0]))
             return
         allt = self.times[tabs]
         code = allt.argmin(axis=1)
         self.t_next[tabs] = allt[np.arange(len(tabs)), code]
         self.c_next[tabs] = code
+
+    def refresh_one(self, b: int) -> None:
+        """`refresh` of table b alone: one argmin, the rest through the flat views; the code
+        is also kept as an int (`code_one`)."""
+        code = int((self._row0 if b == 0 else self.times[b]).argmin())
+        self._next[b] = self.flat[b * self.width + code]
+        self._c_next[b] = self.code_one = code
 
     def unstick(self, b: int, i: int, j: int) -> None:
         """A pressed pair whose solve changed nothing, found pressed again at the same
