@@ -768,4 +768,4 @@ def test_old_saves_and_blocks_read_as_the_re_spot() -> None:
 def test_signed_readings_never_say_minus_zero() -> None:
     assert [words.signed(x) for x in (-0.0, 0.0, -0.04, 0.04, -0.05, 0.3, -1.0)] == \
         ["0.0", "0.0", "0.0", "0.0", "-0.1", "+0.3", "-1.0"]
-    assert words.tip_words(-0.01, 0.5) == "tip 0.0 side +0.5 top"
+    assert words.tip_words(-0.01, 0.5) == "tip: side 0.0, top +0.5"

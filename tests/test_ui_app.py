@@ -1182,12 +1182,12 @@ def test_at_80x24_both_players_groups_are_listed_whole(colors, frames) -> None:
         name = app.state.match.players[0]
         assert any(line.strip().startswith(f"{name} to shoot") for line in panel)
         # the spin, in words where no face fits
-        assert "tip +0.1 side -0.2 top" in " ".join(rows.split())
+        assert "tip: side +0.1, top -0.2" in " ".join(rows.split())
 
 
 def test_at_200x60_the_spin_readout_shows() -> None:
     for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
-                         ("mono", ("tip +0.3 side -0.1 top",))):
+                         ("mono", ("tip: side +0.3, top -0.1",))):
         app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
         put(app, message=(("Computer: 12 in the right head corner pocket", "dim"),
                           ("legal break: the 6 and the 7 pocketed; the table is open",

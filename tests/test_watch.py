@@ -366,9 +366,9 @@ def test_a_tip_that_rounds_to_zero_reads_0_0_never_minus_0_0(record) -> None:
     shot = data["shots"][0]["shot"]
     shot["side"], shot["top"] = 0.3, -0.04  # a draw too small to show at one decimal
     w = Watch(data, "mono")
-    assert "tip +0.3 side 0.0 top" in w.describe(0)
+    assert "tip: side +0.3, top 0.0" in w.describe(0)
     shot["side"], shot["top"] = -0.0, -0.3
-    assert "tip 0.0 side -0.3 top" in Watch(data, "mono").describe(0)
+    assert "tip: side 0.0, top -0.3" in Watch(data, "mono").describe(0)
 
 
 @pytest.mark.parametrize(("conf", "flag", "env", "want"), [

@@ -90,8 +90,8 @@ def signed(x: float) -> str:
 
 
 def tip_words(side: float, top: float) -> str:
-    """The cue tip's offset: "tip +0.3 side 0.0 top"."""
-    return f"tip {signed(side)} side {signed(top)} top"
+    """The cue tip's offset, each figure after its name: "tip: side +0.3, top -0.2"."""
+    return f"tip: side {signed(side)}, top {signed(top)}"
 
 
 def voice(players: Sequence[str], theme: str = "standard") -> Voice:
