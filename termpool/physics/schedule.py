@@ -175,13 +175,15 @@ class Schedule:
         valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
                  & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
         mi, kk = np.nonzero(valid)
-        um = u[mi]
+        # The other balls picked by one flat index into the (table, ball) rows: one take per
+        # array instead of a two-index lookup each.
+        k = u[mi] * self.N + kk
         end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
-        rel_p = [P[um, kk] - p[mi]]
-        rel_v = [V[um, kk] - v[mi]]
-        rel_a = [A[um, kk] - a[mi]]
-        dist = [balls.radius[tabs][um, kk] + balls.radius[b, i][mi]]
-        horizon = [np.minimum(end[mi], end_k[um, kk]) - t[mi]]
+        rel_p = [P.reshape(-1, 2).take(k, axis=0) - p[mi]]
+        rel_v = [V.reshape(-1, 2).take(k, axis=0) - v[mi]]
+        rel_a = [A.reshape(-1, 2).take(k, axis=0) - a[mi]]
+        dist = [balls.radius[tabs].ravel().take(k) + balls.radius[b, i][mi]]
+        horizon = [np.minimum(end[mi], end_k.ravel().take(k)) - t[mi]]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses or a hole within their window (a ball in open felt costs nothing here); tips
         # and holes are the same quartic as a pair. A corner hole may reach into the table
