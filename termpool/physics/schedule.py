@@ -69,6 +69,8 @@ class Schedule:
         self.f_cush = np.zeros((B, N), dtype=np.int64)  # the feature each t_cush is of
         self.t_pair = times[:, 3 * N:].reshape(B, N, N)
         assert np.shares_memory(self.t_pair, times)  # a view, not a copy
+        self._times_1d = times.reshape(-1)  # the same, one index (pair times at 3 N on)
+        assert np.shares_memory(self._times_1d, times)
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
@@ -215,9 +217,12 @@ class Schedule:
         npair = mi.size
         if npair:
             tp = t[mi] + found[:npair]
-            bb, ii = b[mi], i[mi]
-            self.t_pair[bb, ii, kk] = tp
-            self.t_pair[bb, kk, ii] = tp
+            # Written through one flat index each way: a one-index store is cheaper than
+            # t_pair's three.
+            at = b[mi] * self.width + 3 * self.N
+            ii = i[mi]
+            self._times_1d[at + ii * self.N + kk] = tp
+            self._times_1d[at + kk * self.N + ii] = tp
         if mv.size:
             tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
             lines = feat.lines_few if mv.size <= FEW else feat.lines
