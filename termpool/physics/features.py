@@ -48,13 +48,19 @@ class Features:
                                 np.repeat(rc, S), np.repeat(horizon, S),
                                 beside.ravel()).reshape(M, S)
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
-        fin = np.isfinite(tl)
-        if fin.any():
-            tt = np.where(fin, tl, 0.0)[..., None]
-            pt = p[:, None] + v[:, None] * tt + 0.5 * a[:, None] * (tt * tt)
-            along = np.einsum("mkj,kj->mk", pt - tab.seg_a[None], self.seg_dir)
-            tl = np.where(fin & (along >= 0) & (along <= self.seg_len[None]), tl, np.inf)
-        return tl
+        # Worked out only where a time was found (few of the M x S), as `lines_one` does.
+        m, k = np.nonzero(np.isfinite(tl))
+        out = np.full((M, S), np.inf)
+        if m.size:
+            t = tl[m, k]
+            tt = t * t
+            ends, dirs = tab.seg_a[k], self.seg_dir[k]
+            qx = (p[m, 0] + v[m, 0] * t + 0.5 * a[m, 0] * tt) - ends[:, 0]
+            qy = (p[m, 1] + v[m, 1] * t + 0.5 * a[m, 1] * tt) - ends[:, 1]
+            along = qx * dirs[:, 0] + qy * dirs[:, 1]
+            on = (along >= 0) & (along <= self.seg_len[k])
+            out[m[on], k[on]] = t[on]
+        return out
 
     def lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:
         """`lines` for a few balls in plain floats (`lines_one`), bit-identical."""

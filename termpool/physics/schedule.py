@@ -69,6 +69,8 @@ class Schedule:
         self.f_cush = np.zeros((B, N), dtype=np.int64)  # the feature each t_cush is of
         self.t_pair = times[:, 3 * N:].reshape(B, N, N)
         assert np.shares_memory(self.t_pair, times)  # a view, not a copy
+        self._times_1d = times.reshape(-1)  # the same, one index (pair times at 3 N on)
+        assert np.shares_memory(self._times_1d, times)
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
@@ -175,13 +177,15 @@ class Schedule:
         valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
                  & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
         mi, kk = np.nonzero(valid)
-        um = u[mi]
+        # The other balls picked by one flat index into the (table, ball) rows: one take per
+        # array instead of a two-index lookup each.
+        k = u[mi] * self.N + kk
         end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
-        rel_p = [P[um, kk] - p[mi]]
-        rel_v = [V[um, kk] - v[mi]]
-        rel_a = [A[um, kk] - a[mi]]
-        dist = [balls.radius[tabs][um, kk] + balls.radius[b, i][mi]]
-        horizon = [np.minimum(end[mi], end_k[um, kk]) - t[mi]]
+        rel_p = [P.reshape(-1, 2).take(k, axis=0) - p[mi]]
+        rel_v = [V.reshape(-1, 2).take(k, axis=0) - v[mi]]
+        rel_a = [A.reshape(-1, 2).take(k, axis=0) - a[mi]]
+        dist = [balls.radius[tabs].ravel().take(k) + balls.radius[b, i][mi]]
+        horizon = [np.minimum(end[mi], end_k.ravel().take(k)) - t[mi]]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses or a hole within their window (a ball in open felt costs nothing here); tips
         # and holes are the same quartic as a pair. A corner hole may reach into the table
@@ -213,9 +217,12 @@ class Schedule:
         npair = mi.size
         if npair:
             tp = t[mi] + found[:npair]
-            bb, ii = b[mi], i[mi]
-            self.t_pair[bb, ii, kk] = tp
-            self.t_pair[bb, kk, ii] = tp
+            # Written through one flat index each way: a one-index store is cheaper than
+            # t_pair's three.
+            at = b[mi] * self.width + 3 * self.N
+            ii = i[mi]
+            self._times_1d[at + ii * self.N + kk] = tp
+            self._times_1d[at + kk * self.N + ii] = tp
         if mv.size:
             tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
             lines = feat.lines_few if mv.size <= FEW else feat.lines
