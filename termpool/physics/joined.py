@@ -24,6 +24,8 @@ group's motion, since its contact forces change with it.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from termpool.physics.balls import Balls
@@ -89,31 +91,14 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
     bend = np.array([r[3] for r in rows], dtype=float)
     J = Rows(a_idx, c_idx, normal, M)
-    # A slip too small to slide on (state.EPS_U) is completed at once, as motion.snap does:
-    # the ball rolls on with the speed the slide would have left it.
-    u = v + R[:, None] * _perp(w[:, :2])
-    us = _norm(u)
-    small = ((us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))[:, None]
-    v = np.where(small, v - u / 3.5, v)
-    w = w.copy()
-    w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
+    v, w, rolled = _trim_slip(ph, v, w, R)
     settled = np.zeros(M, dtype=bool)
-    rolled = _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
     for _ in range(M + 1):
         v = _resting(v, np.where(settled, 0.0, 1.0 / m), J)
         # A rolling ball whose speed the contacts trimmed rolls on (its spin follows), as
         # a rolling ball pushed through its centre does.
         w[:, :2] = np.where(rolled[:, None], _perp(v) / R[:, None], w[:, :2])
-        u = v + R[:, None] * _perp(w[:, :2])
-        us, vs = _norm(u), _norm(v)
-        sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
-        rolling = ~sliding & (vs > EPS_V)
-        rest = ~sliding & ~rolling
-        safe_u = np.where(sliding, us, 1.0)[:, None]
-        safe_v = np.where(rolling, vs, 1.0)[:, None]
-        free = np.where(sliding[:, None], -ph.mu_slide * g * u / safe_u,
-                        np.where(rolling[:, None], -ph.mu_roll * g * v / safe_v, 0.0))
-        inv = np.where(sliding, 1.0, 1.0 / ROLL_MASS) / m
+        u, vs, sliding, rolling, rest, safe_u, free, inv = _free(ph, v, w, R, m)
         acc = _solve(free, inv, J, bend)
         # A slow rolling ball that the forces brake to rest within SETTLE rests now (its
         # partners' speeds into it taken out with it): pushed off its line it would
@@ -139,6 +124,67 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
         held |= stop
         free = np.where(held[:, None], 0.0, free)
         acc = _solve(free, np.where(held, 0.0, inv), J, bend)
+    m_ = _motions(ph, v, w, R, u, acc, sliding, rolling, rest, held, safe_u)
+    if m_.turning.any():
+        free, spin_acc = _at_middle(ph, R, m_, sliding, free)
+        acc = _solve(free, np.where(held, 0.0, inv), J, bend)
+        acc = np.where((rest & ~m_.pushed)[:, None], 0.0, acc)
+        m_ = m_._replace(acc=acc, spin_acc=spin_acc)
+    return _states(m_, rest, sliding, rate, R)
+
+
+def _trim_slip(ph: Physics, v, w, R) -> tuple:
+    """A slip too small to slide on (state.EPS_U) completed at once, as motion.snap does:
+    the ball rolls on with the speed the slide would have left it. Returns (v, w, rolled):
+    w a copy, rolled the balls rolling after it."""
+    u = v + R[:, None] * _perp(w[:, :2])
+    us = _norm(u)
+    small = ((us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))[:, None]
+    v = np.where(small, v - u / 3.5, v)
+    w = w.copy()
+    w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
+    return v, w, _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
+
+
+def _free(ph: Physics, v, w, R, m) -> tuple:
+    """Each ball's slip and motion, and the forces on it but its contacts': (u, |v|,
+    sliding, rolling, rest, |u| where sliding (else 1), free forces, inverse masses as the
+    contacts see them: a rolling ball pushed through its centre answers ROLL_MASS times as
+    heavy)."""
+    g = ph.g
+    u = v + R[:, None] * _perp(w[:, :2])
+    us, vs = _norm(u), _norm(v)
+    sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
+    rolling = ~sliding & (vs > EPS_V)
+    rest = ~sliding & ~rolling
+    safe_u = np.where(sliding, us, 1.0)[:, None]
+    safe_v = np.where(rolling, vs, 1.0)[:, None]
+    free = np.where(sliding[:, None], -ph.mu_slide * g * u / safe_u,
+                    np.where(rolling[:, None], -ph.mu_roll * g * v / safe_v, 0.0))
+    inv = np.where(sliding, 1.0, 1.0 / ROLL_MASS) / m
+    return u, vs, sliding, rolling, rest, safe_u, free, inv
+
+
+class _Motion(NamedTuple):
+    """The pushed balls' motions as first predicted (see `_motions`)."""
+
+    pushed: np.ndarray
+    acc: np.ndarray
+    v: np.ndarray
+    w: np.ndarray
+    roll: np.ndarray
+    spin_acc: np.ndarray
+    moving: np.ndarray
+    rate_of: np.ndarray
+    duration: np.ndarray
+    turning: np.ndarray
+
+
+def _motions(ph: Physics, v, w, R, u, acc, sliding, rolling, rest, held, safe_u) -> _Motion:
+    """From the contacts' accelerations: which balls at rest are pushed, the velocities
+    (balls at rest exactly at rest), spins, each sliding ball's alpha, how long each motion
+    holds, and where the friction's direction turns within it."""
+    g = ph.g
     pushed = rest & ~held & (_norm(acc) > A_MIN)
     acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
     v = np.where(rest[:, None], 0.0, v)  # a ball at rest starts from rest, pushed or not
@@ -157,27 +203,37 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     turn = np.where(sliding, TURN, TURN_ROLL)
     duration, straight = _renewal(moving, rate_of, turn)
     duration = np.where(sliding | roll, duration, np.inf)
-    # Where the friction's direction turns, it is taken at the middle of the motion's time
-    # (the direction there as first predicted), which makes the error second order in TURN.
     turning = (sliding | rolling) & ~straight & np.isfinite(duration)
-    if turning.any():
-        mid = moving + rate_of * (0.5 * np.where(turning, duration, 0.0))[:, None]
-        size = np.where(turning, _norm(mid), 1.0)[:, None]
-        mu = np.where(sliding, ph.mu_slide, ph.mu_roll)[:, None]
-        free = np.where(turning[:, None], -mu * g * mid / size, free)
-        acc = _solve(free, np.where(held, 0.0, inv), J, bend)
-        acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
-        mid_hat = mid / size
-        spin_acc = np.where(turning[:, None],
-                            (2.5 * ph.mu_slide * g / R)[:, None] * _perp(mid_hat), spin_acc)
-    alpha = np.where(sliding[:, None], spin_acc, _perp(acc) / R[:, None])
+    return _Motion(pushed, acc, v, w, roll, spin_acc, moving, rate_of, duration, turning)
+
+
+def _at_middle(ph: Physics, R, m_: _Motion, sliding, free) -> tuple:
+    """Where the friction's direction turns, it is taken at the middle of the motion's time
+    (the direction there as first predicted), which makes the error second order in TURN:
+    the free forces and sliding balls' alphas so taken (the contacts' forces are the
+    caller's to solve again)."""
+    g, turning = ph.g, m_.turning
+    mid = m_.moving + m_.rate_of * (0.5 * np.where(turning, m_.duration, 0.0))[:, None]
+    size = np.where(turning, _norm(mid), 1.0)[:, None]
+    mu = np.where(sliding, ph.mu_slide, ph.mu_roll)[:, None]
+    free = np.where(turning[:, None], -mu * g * mid / size, free)
+    spin_acc = np.where(turning[:, None],
+                        (2.5 * ph.mu_slide * g / R)[:, None] * _perp(mid / size), m_.spin_acc)
+    return free, spin_acc
+
+
+def _states(m_: _Motion, rest, sliding, rate, R) -> tuple:
+    """`push`'s result from the motions: (v, acc, alpha, state, duration, w), a ball left at
+    rest spinning down on its side spin."""
+    acc, w, duration = m_.acc, m_.w, m_.duration
+    alpha = np.where(sliding[:, None], m_.spin_acc, _perp(acc) / R[:, None])
     wz = np.abs(w[:, 2])
-    spinning = rest & ~pushed & (wz > EPS_W)
+    spinning = rest & ~m_.pushed & (wz > EPS_W)
     duration = np.where(spinning, wz / rate, duration)
-    w[:, 2] = np.where(rest & ~pushed & ~spinning, 0.0, w[:, 2])
-    state = np.where(sliding, SLIDING, np.where(roll, ROLLING,
+    w[:, 2] = np.where(rest & ~m_.pushed & ~spinning, 0.0, w[:, 2])
+    state = np.where(sliding, SLIDING, np.where(m_.roll, ROLLING,
                                                 np.where(spinning, SPINNING, STATIONARY)))
-    return v, acc, alpha, state, duration, w
+    return m_.v, acc, alpha, state, duration, w
 
 
 def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> list:
@@ -258,26 +314,10 @@ def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.nd
     g = ph.g
     J, grp = sets.J, sets.ball_group
     v_in, w_in = v, w
-    u = v + R[:, None] * _perp(w[:, :2])
-    us = _norm(u)
-    small = ((us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))[:, None]
-    v = np.where(small, v - u / 3.5, v)
-    w = w.copy()
-    w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
-    settled = np.zeros(len(m), dtype=bool)
-    rolled = _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
-    v = sets.resting(v, np.where(settled, 0.0, 1.0 / m))
+    v, w, rolled = _trim_slip(ph, v, w, R)
+    v = sets.resting(v, 1.0 / m)
     w[:, :2] = np.where(rolled[:, None], _perp(v) / R[:, None], w[:, :2])
-    u = v + R[:, None] * _perp(w[:, :2])
-    us, vs = _norm(u), _norm(v)
-    sliding = us > (EPS_SLIP if ph.mu_slide > 0 else 0.0)
-    rolling = ~sliding & (vs > EPS_V)
-    rest = ~sliding & ~rolling
-    safe_u = np.where(sliding, us, 1.0)[:, None]
-    safe_v = np.where(rolling, vs, 1.0)[:, None]
-    free = np.where(sliding[:, None], -ph.mu_slide * g * u / safe_u,
-                    np.where(rolling[:, None], -ph.mu_roll * g * v / safe_v, 0.0))
-    inv = np.where(sliding, 1.0, 1.0 / ROLL_MASS) / m
+    u, vs, sliding, rolling, rest, safe_u, free, inv = _free(ph, v, w, R, m)
     every = np.ones(sets.count, dtype=bool)
     acc = sets.solve(free, inv, bend, every)
     brake = -(v * acc).sum(axis=1)
@@ -305,40 +345,15 @@ def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.nd
         acc = np.where(mine[:, None], sets.solve(free, np.where(held, 0.0, inv), bend, live),
                        acc)
         rounds += 1
-    pushed = rest & ~held & (_norm(acc) > A_MIN)
-    acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
-    v = np.where(rest[:, None], 0.0, v)
-    w = w.copy()
-    roll = rolling | pushed
-    w[:, :2] = np.where(roll[:, None], _perp(v) / R[:, None],
-                        np.where((rest & ~pushed)[:, None], 0.0, w[:, :2]))
-    uhat = u / safe_u
-    spin_acc = (2.5 * ph.mu_slide * g / R)[:, None] * _perp(uhat)
-    slip_rate = acc + R[:, None] * _perp(spin_acc)
-    moving, rate_of = np.where(sliding[:, None], u, v), np.where(sliding[:, None], slip_rate, acc)
-    turn = np.where(sliding, TURN, TURN_ROLL)
-    duration, straight = _renewal(moving, rate_of, turn)
-    duration = np.where(sliding | roll, duration, np.inf)
-    turning = (sliding | rolling) & ~straight & np.isfinite(duration)
-    bent = any_by(turning, grp, sets.count)
+    m_ = _motions(ph, v, w, R, u, acc, sliding, rolling, rest, held, safe_u)
+    bent = any_by(m_.turning, grp, sets.count)
     if bent.any():
-        mine = bent[grp][:, None]
-        mid = moving + rate_of * (0.5 * np.where(turning, duration, 0.0))[:, None]
-        size = np.where(turning, _norm(mid), 1.0)[:, None]
-        mu = np.where(sliding, ph.mu_slide, ph.mu_roll)[:, None]
-        free = np.where(turning[:, None], -mu * g * mid / size, free)
-        acc = np.where(mine, sets.solve(free, np.where(held, 0.0, inv), bend, bent), acc)
-        acc = np.where((rest & ~pushed)[:, None], 0.0, acc)
-        mid_hat = mid / size
-        spin_acc = np.where(turning[:, None],
-                            (2.5 * ph.mu_slide * g / R)[:, None] * _perp(mid_hat), spin_acc)
-    alpha = np.where(sliding[:, None], spin_acc, _perp(acc) / R[:, None])
-    wz = np.abs(w[:, 2])
-    spinning = rest & ~pushed & (wz > EPS_W)
-    duration = np.where(spinning, wz / rate, duration)
-    w[:, 2] = np.where(rest & ~pushed & ~spinning, 0.0, w[:, 2])
-    state = np.where(sliding, SLIDING, np.where(roll, ROLLING,
-                                                np.where(spinning, SPINNING, STATIONARY)))
+        free, spin_acc = _at_middle(ph, R, m_, sliding, free)
+        acc = np.where(bent[grp][:, None], sets.solve(free, np.where(held, 0.0, inv), bend, bent),
+                       m_.acc)
+        acc = np.where((rest & ~m_.pushed)[:, None], 0.0, acc)
+        m_ = m_._replace(acc=acc, spin_acc=spin_acc)
+    v, acc, alpha, state, duration, w = _states(m_, rest, sliding, rate, R)
     out = [v, acc, alpha, state, duration, w]
     for q in np.flatnonzero(again).tolist():  # push's second round: push itself
         balls = np.flatnonzero(grp == q)
