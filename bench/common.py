@@ -47,6 +47,17 @@ def seconds(text: str) -> float:
     return val
 
 
+def child_env() -> dict:
+    """This process's environment with the checkout that holds termpool first on PYTHONPATH,
+    for a child interpreter that must run the same code."""
+    import termpool
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
+    env = dict(os.environ)
+    env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    return env
+
+
 def make_engine(scene, pos=None, vel=None, w=None, record: bool = False):
     """An Engine of `scene`, with other starting positions and velocities if given."""
     from termpool.physics.engine import Engine

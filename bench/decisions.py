@@ -9,9 +9,10 @@ the machine's other work does not stretch.
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
+
+from bench.common import child_env
 
 LEVEL = "hard"
 SEED = 2026
@@ -21,11 +22,7 @@ def time_decisions(games: int, level: str = LEVEL, seed: int = SEED,
                    max_shots: int | None = None) -> dict:
     """Median and largest processor time of `level`'s decisions in play over `games` 8-ball
     games against itself (each cut at `max_shots`, if given), and how many that was."""
-    import termpool
-
-    root = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
-    env = dict(os.environ)
-    env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    env = child_env()
     p = subprocess.run(
         [sys.executable, "-m", "termpool", "selfplay", "--games", str(games), "--mode", "8ball",
          "--levels", f"{level},{level}", "--seed", str(seed), "--jobs", "1", "--json",

@@ -27,6 +27,7 @@ from bench import pooltool_pair
 from bench.common import (
     PROG,
     BenchParser,
+    child_env,
     machine_info,
     machine_lines,
     make_engine,
@@ -176,11 +177,7 @@ def batch_memory(batch: int) -> dict:
 
 def time_import(runs: int = IMPORT_RUNS) -> dict:
     """Median time to import the core in a fresh interpreter (as measured inside it)."""
-    import termpool
-
-    root = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
-    env = dict(os.environ)
-    env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    env = child_env()
     times = []
     for _ in range(runs):
         p = subprocess.run(
@@ -231,12 +228,9 @@ def time_sim_start(runs: int = SIM_START_RUNS) -> dict:
     as anchors in the same run, in turn with it, an empty interpreter (`python -c pass`) and
     one that imports numpy (with one BLAS thread, as termpool starts it): the floor under
     any command that simulates."""
-    import termpool
     from termpool.command import BLAS_THREADS
 
-    root = os.path.dirname(os.path.dirname(os.path.abspath(termpool.__file__)))
-    env = dict(os.environ)
-    env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
+    env = child_env()
     one = dict(env, **{name: env.get(name, "1") for name in BLAS_THREADS})
     cmds = {"sim_start": ([sys.executable, "-m", "termpool", "sim", SIM_START_SCENE], env),
             "python_start": ([sys.executable, "-c", "pass"], env),
