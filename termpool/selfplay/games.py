@@ -112,11 +112,11 @@ def play_game(levels: Sequence[str], *, mode: str = "8ball", table: str = "9ft",
             struck = player.shot(m)  # as struck; its kind and target as meant
             mine["decisions"].append(clock() - t0)
             mine["decisions_cpu"].append(time.process_time() - c0)
-            if not m.state.is_break:
+            is_break = m.state.is_break
+            if not is_break:
                 mine["shot_cpu"].append(mine["decisions_cpu"][-1])
             defence = DEFENCE.get(struck.kind)
             before = _chance_for(m, 1 - me, None) if defence else None
-            is_break = m.state.is_break
             run = m.begin(Shot(struck.speed, struck.angle, struck.side, struck.top,
                                called=struck.called))
             out = run.finish()
