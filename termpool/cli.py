@@ -177,9 +177,10 @@ _COMMANDS: dict[str, tuple[str, str, Callable[[argparse.ArgumentParser], None] |
 
 
 def _parser(commands: Collection[str] | None = None) -> Parser:
-    """The command line's parser, every command listed. Only `commands` (None: all) get
-    their arguments, since the game's bring in the UI: `termpool sim` imports no more than it
-    needs. The closing hint (the bundled example's path) is for the help without a command."""
+    """The command line's parser: with `commands`, those commands only, with their
+    arguments; else (None or empty) every command listed, with their arguments only for
+    None, since the game's bring in the UI: `termpool sim` imports no more than it needs.
+    The closing hint (the bundled example's path) is for the help without a command."""
     every = commands is None
     p = Parser(
         prog=PROG,
@@ -197,7 +198,10 @@ def _parser(commands: Collection[str] | None = None) -> Parser:
 
     p.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
-    for name, (help_, description, add) in _COMMANDS.items():
+    # A command given is the only one built: each parser costs argparse's message lookups
+    # (gettext searches the locale directories every time), a fifth of `sim`'s own start-up.
+    listed = {k: _COMMANDS[k] for k in commands} if commands else _COMMANDS
+    for name, (help_, description, add) in listed.items():
         if add is None:
             sub.add_parser(name, help=help_, add_help=False)
             continue
