@@ -23,12 +23,17 @@ import asyncio
 import fcntl
 import os
 import re
+import secrets
+import shutil
 import signal
 import struct
 import sys
+import tempfile
 import termios
+from dataclasses import dataclass
 from pathlib import Path
 
+from termpool import wire
 from termpool.files import data_dir, write_atomic
 from termpool.text import say
 
@@ -112,6 +117,159 @@ def host_key(directory: Path):
     return key
 
 
+@dataclass
+class Seat:
+    """A game connected to the lobby: whose it is, where its player is (WHERE: "lobby" when
+    the lobby screen is open, "playing" in a match against another player, else "menu"), the
+    challenge it has open and its opponent."""
+
+    id: int
+    name: str
+    writer: asyncio.StreamWriter
+    where: str = "menu"
+    challenge: int | None = None  # the seat it challenged, until answered
+    game: dict | None = None  # ... with these match settings
+    opponent: int | None = None
+
+
+class Lobby:
+    """Who is connected, their challenges, and the moves of each match between two of them,
+    passed on as they come. The games play their matches themselves, each its own copy,
+    from the same settings and the same moves."""
+
+    def __init__(self) -> None:
+        self.tokens: dict[str, str] = {}  # a session's token -> its player's name
+        self.seats: dict[int, Seat] = {}
+        self._next = 1
+
+    def admit(self, name: str) -> str:
+        """A token for `name`'s game (given to it in its environment)."""
+        token = secrets.token_hex(16)
+        self.tokens[token] = name
+        return token
+
+    def forget(self, token: str) -> None:
+        self.tokens.pop(token, None)
+
+    def _send(self, dest: Seat, kind: str, /, **fields) -> None:
+        if not dest.writer.is_closing():
+            dest.writer.write(wire.encode(kind, **fields))
+
+    def _players(self) -> None:
+        """Everyone's list of who is here, after any change."""
+        names = [{"id": s.id, "name": s.name, "where": s.where} for s in self.seats.values()]
+        for seat in self.seats.values():
+            self._send(seat, wire.PLAYERS, players=names, you=seat.id)
+
+    async def connection(self, reader: asyncio.StreamReader,
+                         writer: asyncio.StreamWriter) -> None:
+        """One game's connection, from its HELLO to its end."""
+        seat = None
+        try:
+            line = await reader.readline()
+            msg = wire.decode(line)
+            name = self.tokens.get(msg.get("token")) if msg and msg["t"] == wire.HELLO else None
+            if not isinstance(name, str):
+                writer.write(wire.encode(wire.REFUSED, why=wire.BAD))
+                return
+            seat = Seat(self._next, name, writer)
+            self._next += 1
+            self.seats[seat.id] = seat
+            self._players()
+            while True:
+                line = await reader.readline()
+                if not line or not line.endswith(b"\n"):
+                    return
+                msg = wire.decode(line)
+                if msg is None:
+                    self._send(seat, wire.REFUSED, why=wire.BAD)
+                    continue
+                self.handle(seat, msg)
+        except (ConnectionError, asyncio.LimitOverrunError, ValueError):
+            return
+        finally:
+            if seat is not None:
+                self.gone(seat)
+            writer.close()
+
+    def handle(self, seat: Seat, msg: dict) -> None:
+        kind = msg["t"]
+        if kind == wire.WHERE and seat.opponent is None:
+            seat.where = "lobby" if msg.get("lobby") is True else "menu"
+            if seat.where != "lobby":
+                self._withdraw(seat)
+            self._players()
+        elif kind == wire.CHALLENGE:
+            self._challenge(seat, msg.get("to"), msg.get("game"))
+        elif kind == wire.ANSWER:
+            self._answer(seat, msg.get("to"), msg.get("yes") is True)
+        elif kind == wire.MOVE and seat.opponent in self.seats:
+            self._send(self.seats[seat.opponent], wire.MOVE, move=msg.get("move"))
+        elif kind == wire.LEAVE:
+            self._part(seat)
+            self._players()
+        else:
+            self._send(seat, wire.REFUSED, why=wire.BAD)
+
+    def _challenge(self, seat: Seat, to, game) -> None:
+        other = self.seats.get(to) if isinstance(to, int) else None
+        if (not isinstance(game, dict) or set(game) != set(wire.GAME_KEYS)
+                or seat.where != "lobby"):
+            self._send(seat, wire.REFUSED, why=wire.BAD)
+        elif other is None:
+            self._send(seat, wire.REFUSED, why=wire.GONE)
+        elif (other is seat or other.where != "lobby" or seat.challenge is not None
+              or any(s.challenge == other.id for s in self.seats.values())):
+            self._send(seat, wire.REFUSED, why=wire.BUSY)
+        else:
+            seat.challenge, seat.game = other.id, game
+            self._send(other, wire.CHALLENGED, by=seat.id, name=seat.name, game=game)
+
+    def _answer(self, seat: Seat, to, yes: bool) -> None:
+        other = self.seats.get(to) if isinstance(to, int) else None
+        if other is None or other.challenge != seat.id:
+            self._send(seat, wire.REFUSED, why=wire.GONE)
+            return
+        game = other.game
+        other.challenge = other.game = None
+        if not yes or seat.where != "lobby" or other.where != "lobby":
+            self._send(other, wire.DECLINED, name=seat.name)
+            return
+        self._withdraw(seat)
+        seat.opponent, other.opponent = other.id, seat.id
+        seat.where = other.where = "playing"
+        names = [other.name, seat.name]  # the challenger is the first player
+        self._send(other, wire.START, game=game, names=names, seat=0)
+        self._send(seat, wire.START, game=game, names=names, seat=1)
+        self._players()
+
+    def _withdraw(self, seat: Seat) -> None:
+        """The challenges to and from `seat` are off."""
+        if seat.challenge in self.seats:
+            self._send(self.seats[seat.challenge], wire.DECLINED, name=seat.name)
+        seat.challenge = seat.game = None
+        for s in self.seats.values():
+            if s.challenge == seat.id:
+                s.challenge = s.game = None
+                self._send(s, wire.DECLINED, name=seat.name)
+
+    def _part(self, seat: Seat) -> None:
+        """`seat` leaves its match: its opponent is told, and both are back in the menu."""
+        other = self.seats.get(seat.opponent) if seat.opponent is not None else None
+        seat.opponent = None
+        seat.where = "menu"
+        if other is not None:
+            other.opponent = None
+            other.where = "menu"
+            self._send(other, wire.LEFT, name=seat.name)
+
+    def gone(self, seat: Seat) -> None:
+        self._withdraw(seat)
+        self._part(seat)
+        self.seats.pop(seat.id, None)
+        self._players()
+
+
 class Server:
     """The listening server: sessions in, one game process each."""
 
@@ -123,6 +281,8 @@ class Server:
         self.command = command or [sys.executable, "-m", "termpool", "play"]
         self.games: set[asyncio.subprocess.Process] = set()
         self.sessions = 0
+        self.lobby = Lobby()
+        self.socket: str | None = None  # the lobby's socket, once it listens
 
     def log(self, text: str) -> None:
         sys.stderr.write(f"termpool serve: {text}\n")
@@ -161,14 +321,23 @@ class Server:
         home = self.directory / "players" / name
         home.mkdir(parents=True, exist_ok=True)
         cols, rows = process.get_terminal_size()[:2]
+        env = player_env(dict(os.environ), home, process.get_terminal_type())
+        token = self.lobby.admit(name)
+        if self.socket is not None:
+            env.update({wire.ENV_SOCKET: self.socket, wire.ENV_TOKEN: token})
+        try:
+            return await self._carry(process, home, env, cols, rows)
+        finally:
+            self.lobby.forget(token)
+
+    async def _carry(self, process, home: Path, env: dict, cols: int, rows: int) -> int | None:
         master, slave = os.openpty()
         set_size(master, cols or 80, rows or 24)
         try:
             game = await asyncio.create_subprocess_exec(
-                *self.command, "--player1", name,
+                *self.command, "--player1", home.name,
                 stdin=slave, stdout=slave, stderr=slave, start_new_session=True,
-                preexec_fn=_take_terminal, cwd=str(home),
-                env=player_env(dict(os.environ), home, process.get_terminal_type()))
+                preexec_fn=_take_terminal, cwd=str(home), env=env)
         finally:
             os.close(slave)
         self.games.add(game)
@@ -262,6 +431,11 @@ async def _serve(args: argparse.Namespace, directory: Path) -> int:
 
     key = host_key(directory)
     server = Server(directory, args.max_sessions)
+    # The lobby's socket, in a directory of the server's own (a socket's path must be short).
+    private = tempfile.mkdtemp(prefix="termpool-")
+    server.socket = os.path.join(private, "lobby")
+    lobby = await asyncio.start_unix_server(server.lobby.connection, server.socket,
+                                            limit=wire.MAX_LINE)
     auth = args.authorized_keys
 
     class Gate(asyncssh.SSHServer):
@@ -279,9 +453,13 @@ async def _serve(args: argparse.Namespace, directory: Path) -> int:
     loop = asyncio.get_running_loop()
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         loop.add_signal_handler(sig, stop.set)
-    await stop.wait()
-    listener.close()
-    await server.close()
+    try:
+        await stop.wait()
+    finally:
+        listener.close()
+        await server.close()
+        lobby.close()
+        shutil.rmtree(private, ignore_errors=True)
     server.log("stopped")
     return 0
 
