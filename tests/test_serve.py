@@ -290,3 +290,43 @@ def test_without_asyncssh_it_says_what_to_install(monkeypatch, capsys):
     args = _parser(["serve"]).parse_args(["serve"])
     assert serve.run(args) == 2
     assert "pip install" in capsys.readouterr().err
+
+
+def test_two_players_meet_in_the_lobby_and_play_one_match_on_two_screens(served):
+    s = served()
+
+    async def go():
+        async with connect(s.port, "ann") as c1, connect(s.port, "bob") as c2:
+            p1 = await c1.create_process(term_type="xterm-256color", term_size=(100, 30),
+                                         encoding=None)
+            p2 = await c2.create_process(term_type="xterm-256color", term_size=(80, 24),
+                                         encoding=None)
+            ann, bob = Seen(p1, 100, 30), Seen(p2, 80, 24)
+            await ann.until(lambda v: v.shows("Play someone online"))
+            await bob.until(lambda v: v.shows("Play someone online"))
+            p2.stdin.write(b"6")
+            await bob.until(lambda v: v.shows("Players online"))
+            p1.stdin.write(b"6")
+            await ann.until(lambda v: v.shows("bob  in the lobby"))
+            p1.stdin.write(b"\r")  # challenge bob to 8-ball
+            await bob.until(lambda v: v.shows("ann challenges you to 8-ball"))
+            p2.stdin.write(b"y")
+            await ann.until(lambda v: v.shows("ann to break"))
+            await bob.until(lambda v: v.shows("ann is placing the cue ball"))
+            await asyncio.sleep(0.6)  # an Enter soon after the last one would be its repeat
+            p1.stdin.write(b"\r")  # ann puts the cue ball down
+            await bob.until(lambda v: v.shows("ann is aiming"))
+            p1.stdin.write(b"9")  # 90% ...
+            await asyncio.sleep(0.2)
+            p1.stdin.write(b" ")  # ... struck at once
+            # The same verdict on both screens, each at its own size.
+            verdict = re.compile(r"(legal break|illegal break|foul)[^\n]*")
+            await ann.until(lambda v: verdict.search(v.text()) is not None)
+            await bob.until(lambda v: verdict.search(v.text()) is not None)
+            said = verdict.search(ann.text()).group(0).strip()
+            assert said[:40] in bob.text()
+            p1.stdin.write(b"qy")
+            await bob.until(lambda v: v.shows("ann has left the match"))
+            p2.stdin.write(b"q")
+
+    run(go())

@@ -188,9 +188,11 @@ LOBBY_GAMES = ("8ball", "9ball")
 
 @dataclass(frozen=True)
 class Waiting:
-    """An online match: the other player's turn, until their move arrives (ui.link)."""
+    """An online match: the other player's turn, until their move arrives (ui.link);
+    `placed`: their ball in hand is down (the match keeps it in hand until the shot)."""
 
     phase: ClassVar[Phase] = Phase.REMOTE
+    placed: bool = False
 
 
 Part = (Menu | Aim | Place | Run | Thinking | Answering | Aiming | Option | Over | Lobby

@@ -325,7 +325,7 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
                     f"{name} is aiming{at}", "dim"))
     elif s.phase is Phase.REMOTE:
         doing = ("answering" if m.option is not None else
-                 "placing the cue ball" if m.ball_in_hand else "aiming")
+                 "placing the cue ball" if m.ball_in_hand and not s.part.placed else "aiming")
         out.append((f"{name} is {doing}, on their own screen…", "dim"))
     return out
 

@@ -53,7 +53,7 @@ def tick(s: State, t: float) -> State:
             if m.placement_error(x, y) is not None:
                 raise ValueError("placement")
             m.place_cue(x, y)
-            return start_turn(s)
+            return replace(s, part=Waiting(placed=True))  # their shot comes next
         if kind == "choose":
             choice = Choice(move["choice"])
             line = (words.chose(m.players[m.shooter], choice), "dim")
