@@ -23,18 +23,17 @@ import asyncio
 import fcntl
 import os
 import re
-import secrets
 import shutil
 import signal
 import struct
 import sys
 import tempfile
 import termios
-from dataclasses import dataclass
 from pathlib import Path
 
 from termpool import wire
 from termpool.files import data_dir, write_atomic
+from termpool.lobby import Lobby
 from termpool.text import say
 
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,31}\Z")  # a player's name: also a directory
@@ -115,159 +114,6 @@ def host_key(directory: Path):
     os.close(fd)
     write_atomic(path, key.export_private_key())
     return key
-
-
-@dataclass
-class Seat:
-    """A game connected to the lobby: whose it is, where its player is (WHERE: "lobby" when
-    the lobby screen is open, "playing" in a match against another player, else "menu"), the
-    challenge it has open and its opponent."""
-
-    id: int
-    name: str
-    writer: asyncio.StreamWriter
-    where: str = "menu"
-    challenge: int | None = None  # the seat it challenged, until answered
-    game: dict | None = None  # ... with these match settings
-    opponent: int | None = None
-
-
-class Lobby:
-    """Who is connected, their challenges, and the moves of each match between two of them,
-    passed on as they come. The games play their matches themselves, each its own copy,
-    from the same settings and the same moves."""
-
-    def __init__(self) -> None:
-        self.tokens: dict[str, str] = {}  # a session's token -> its player's name
-        self.seats: dict[int, Seat] = {}
-        self._next = 1
-
-    def admit(self, name: str) -> str:
-        """A token for `name`'s game (given to it in its environment)."""
-        token = secrets.token_hex(16)
-        self.tokens[token] = name
-        return token
-
-    def forget(self, token: str) -> None:
-        self.tokens.pop(token, None)
-
-    def _send(self, dest: Seat, kind: str, /, **fields) -> None:
-        if not dest.writer.is_closing():
-            dest.writer.write(wire.encode(kind, **fields))
-
-    def _players(self) -> None:
-        """Everyone's list of who is here, after any change."""
-        names = [{"id": s.id, "name": s.name, "where": s.where} for s in self.seats.values()]
-        for seat in self.seats.values():
-            self._send(seat, wire.PLAYERS, players=names, you=seat.id)
-
-    async def connection(self, reader: asyncio.StreamReader,
-                         writer: asyncio.StreamWriter) -> None:
-        """One game's connection, from its HELLO to its end."""
-        seat = None
-        try:
-            line = await reader.readline()
-            msg = wire.decode(line)
-            name = self.tokens.get(msg.get("token")) if msg and msg["t"] == wire.HELLO else None
-            if not isinstance(name, str):
-                writer.write(wire.encode(wire.REFUSED, why=wire.BAD))
-                return
-            seat = Seat(self._next, name, writer)
-            self._next += 1
-            self.seats[seat.id] = seat
-            self._players()
-            while True:
-                line = await reader.readline()
-                if not line or not line.endswith(b"\n"):
-                    return
-                msg = wire.decode(line)
-                if msg is None:
-                    self._send(seat, wire.REFUSED, why=wire.BAD)
-                    continue
-                self.handle(seat, msg)
-        except (ConnectionError, asyncio.LimitOverrunError, ValueError):
-            return
-        finally:
-            if seat is not None:
-                self.gone(seat)
-            writer.close()
-
-    def handle(self, seat: Seat, msg: dict) -> None:
-        kind = msg["t"]
-        if kind == wire.WHERE and seat.opponent is None:
-            seat.where = "lobby" if msg.get("lobby") is True else "menu"
-            if seat.where != "lobby":
-                self._withdraw(seat)
-            self._players()
-        elif kind == wire.CHALLENGE:
-            self._challenge(seat, msg.get("to"), msg.get("game"))
-        elif kind == wire.ANSWER:
-            self._answer(seat, msg.get("to"), msg.get("yes") is True)
-        elif kind == wire.MOVE and seat.opponent in self.seats:
-            self._send(self.seats[seat.opponent], wire.MOVE, move=msg.get("move"))
-        elif kind == wire.LEAVE:
-            self._part(seat)
-            self._players()
-        else:
-            self._send(seat, wire.REFUSED, why=wire.BAD)
-
-    def _challenge(self, seat: Seat, to, game) -> None:
-        other = self.seats.get(to) if isinstance(to, int) else None
-        if (not isinstance(game, dict) or set(game) != set(wire.GAME_KEYS)
-                or seat.where != "lobby"):
-            self._send(seat, wire.REFUSED, why=wire.BAD)
-        elif other is None:
-            self._send(seat, wire.REFUSED, why=wire.GONE)
-        elif (other is seat or other.where != "lobby" or seat.challenge is not None
-              or any(s.challenge == other.id for s in self.seats.values())):
-            self._send(seat, wire.REFUSED, why=wire.BUSY)
-        else:
-            seat.challenge, seat.game = other.id, game
-            self._send(other, wire.CHALLENGED, by=seat.id, name=seat.name, game=game)
-
-    def _answer(self, seat: Seat, to, yes: bool) -> None:
-        other = self.seats.get(to) if isinstance(to, int) else None
-        if other is None or other.challenge != seat.id:
-            self._send(seat, wire.REFUSED, why=wire.GONE)
-            return
-        game = other.game
-        other.challenge = other.game = None
-        if not yes or seat.where != "lobby" or other.where != "lobby":
-            self._send(other, wire.DECLINED, name=seat.name)
-            return
-        self._withdraw(seat)
-        seat.opponent, other.opponent = other.id, seat.id
-        seat.where = other.where = "playing"
-        names = [other.name, seat.name]  # the challenger is the first player
-        self._send(other, wire.START, game=game, names=names, seat=0)
-        self._send(seat, wire.START, game=game, names=names, seat=1)
-        self._players()
-
-    def _withdraw(self, seat: Seat) -> None:
-        """The challenges to and from `seat` are off."""
-        if seat.challenge in self.seats:
-            self._send(self.seats[seat.challenge], wire.DECLINED, name=seat.name)
-        seat.challenge = seat.game = None
-        for s in self.seats.values():
-            if s.challenge == seat.id:
-                s.challenge = s.game = None
-                self._send(s, wire.DECLINED, name=seat.name)
-
-    def _part(self, seat: Seat) -> None:
-        """`seat` leaves its match: its opponent is told, and both are back in the menu."""
-        other = self.seats.get(seat.opponent) if seat.opponent is not None else None
-        seat.opponent = None
-        seat.where = "menu"
-        if other is not None:
-            other.opponent = None
-            other.where = "menu"
-            self._send(other, wire.LEFT, name=seat.name)
-
-    def gone(self, seat: Seat) -> None:
-        self._withdraw(seat)
-        self._part(seat)
-        self.seats.pop(seat.id, None)
-        self._players()
 
 
 class Server:

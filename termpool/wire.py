@@ -3,9 +3,11 @@ each with its kind in "t". Floats travel as JSON numbers, which Python writes an
 bit for bit, so a shot sent is the shot struck on both sides.
 
 Game to server: HELLO (token), WHERE (in the lobby or not), CHALLENGE (to, game), ANSWER (to,
-yes), MOVE (move), LEAVE.
-Server to game: PLAYERS (players), CHALLENGED (by, name, game), DECLINED (name), START (game,
-names, seat), MOVE (move), LEFT (name), REFUSED (why: a code, below).
+yes), WATCH (to: a player whose match to watch), MOVE (move), LEAVE.
+Server to game: PLAYERS (players), CHALLENGED (by, name, game), DECLINED (name), WITHDRAWN
+(by, name: a challenge to this game is off), START (game,
+names, seat: 0 or 1, or None to watch; moves: the match's moves so far), MOVE (move), LEFT
+(name), REFUSED (why: a code, below).
 """
 
 from __future__ import annotations
@@ -16,10 +18,10 @@ import os
 ENV_SOCKET = "TERMPOOL_LOBBY"  # where a game finds its server's lobby ...
 ENV_TOKEN = "TERMPOOL_LOBBY_TOKEN"  # ... and the token that says which player it is
 
-HELLO, WHERE, CHALLENGE, ANSWER, MOVE, LEAVE = "hello", "where", "challenge", "answer", "move", \
-    "leave"
-PLAYERS, CHALLENGED, DECLINED, START, LEFT, REFUSED = "players", "challenged", "declined", \
-    "start", "left", "refused"
+HELLO, WHERE, CHALLENGE, ANSWER, WATCH, MOVE, LEAVE = "hello", "where", "challenge", "answer", \
+    "watch", "move", "leave"
+PLAYERS, CHALLENGED, DECLINED, WITHDRAWN, START, LEFT, REFUSED = "players", "challenged", \
+    "declined", "withdrawn", "start", "left", "refused"
 
 # Why a challenge or a message was refused.
 BUSY = "busy"  # the player challenged is not in the lobby, or has a challenge open

@@ -13,7 +13,7 @@ from dataclasses import replace
 import pytest
 
 from termpool import wire
-from termpool.serve import Lobby
+from termpool.lobby import Lobby
 from termpool.ui.app import App
 from termpool.ui.keys import Key
 from termpool.ui.link import Link, digest
@@ -124,6 +124,43 @@ def test_a_challenge_accepted_starts_one_match_for_both(lobby):
     assert where(after["players"], "ann") == "menu"
 
 
+def test_a_match_can_be_watched_from_its_start_and_its_moves_follow(lobby):
+    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
+    for r in (ann, bob, cy):
+        r.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
+    ids = {p["name"]: p["id"] for p in seen["players"]}
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    first = {"kind": "place", "at": "a", "x": 0.5, "y": 0.6}
+    ann.send(wire.MOVE, move=first)
+    assert bob.next(wire.MOVE)["move"] == first
+    cy.send(wire.WATCH, to=ids["bob"])
+    start = cy.next(wire.START)
+    assert start["seat"] is None and start["names"] == ["ann", "bob"]
+    assert start["game"] == GAME and start["moves"] == [first]
+    second = {"kind": "shot", "at": "b", "speed": 3.0}
+    ann.send(wire.MOVE, move=second)
+    assert cy.next(wire.MOVE)["move"] == second
+    assert bob.next(wire.MOVE)["move"] == second
+    cy.send(wire.MOVE, move=second)  # a watcher makes no moves
+    assert cy.next(wire.REFUSED)["why"] == wire.BAD
+    cy.send(wire.LEAVE)  # a watcher going ends nothing
+    third = {"kind": "shot", "at": "c", "speed": 2.0}
+    bob.send(wire.MOVE, move=third)
+    assert ann.next(wire.MOVE)["move"] == third
+    cy.send(wire.WHERE, lobby=True)
+    cy.send(wire.WATCH, to=ids["ann"])
+    assert cy.next(wire.START)["moves"] == [first, second, third]
+    ann.send(wire.LEAVE)  # a player going ends it for everyone
+    assert bob.next(wire.LEFT)["name"] == "ann"
+    assert cy.next(wire.LEFT)["name"] == "ann"
+    cy.send(wire.WHERE, lobby=True)
+    cy.send(wire.WATCH, to=ids["bob"])  # no match now
+    assert cy.next(wire.REFUSED)["why"] == wire.GONE
+
+
 def test_a_declined_challenge_says_so_and_starts_nothing(lobby):
     ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
     ann.send(wire.WHERE, lobby=True)
@@ -136,6 +173,34 @@ def test_a_declined_challenge_says_so_and_starts_nothing(lobby):
     assert ann.next(wire.DECLINED)["name"] == "bob"
     bob.send(wire.ANSWER, to=got["by"], yes=True)  # too late: nothing is open
     assert bob.next(wire.REFUSED)["why"] == wire.GONE
+
+
+def test_a_challenger_who_leaves_the_lobby_withdraws_the_challenge(lobby, tmp_path):
+    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
+    ann.send(wire.WHERE, lobby=True)
+    bob.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
+    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
+             game=GAME)
+    by = bob.next(wire.CHALLENGED)["by"]
+    ann.send(wire.WHERE, lobby=False)
+    got = bob.next(wire.WITHDRAWN)
+    assert got["by"] == by and got["name"] == "ann"
+
+
+def test_a_withdrawn_challenge_leaves_the_screen(lobby):
+    from termpool.ui.phases.lobby import tick
+
+    link = Link(lobby.path, lobby.admit("bob"))
+    app = App(Options(colors="mono"), link=link)
+    entries = [e[1] for e in menu_entries(app.state)]
+    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    link.challenged = {"t": wire.CHALLENGED, "by": 5, "name": "ann", "game": GAME}
+    link._take({"t": wire.WITHDRAWN, "by": 5, "name": "ann"})
+    app.state = tick(app.state, time.monotonic())
+    assert link.challenged is None
+    text = "\n".join("".join(r) for r in app.cells(80, 24)[0])
+    assert "ann withdrew the challenge" in text and "challenges you" not in text
 
 
 def test_who_may_be_challenged(lobby):
@@ -229,7 +294,7 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     ann, bob = online(lobby, tmp_path)
     a, b = ann.state.match, bob.state.match
     assert a.players == b.players == ("ann", "bob") and a.mode == "9ball"
-    assert (ann.state.remote, bob.state.remote) == (1, 0)
+    assert (ann.state.remote, bob.state.remote) == ((1,), (0,))
     assert bob.state.phase is Phase.REMOTE  # ann breaks; bob watches her move
     # Ann puts the cue ball down and breaks with her keys.
     ann.key(Key("up"), time.monotonic())
@@ -259,6 +324,44 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     assert [x["player"] for x in lines] == ["bob"] and lines[0]["opponent"] == "ann"
     assert [json.loads(x)["player"] for x in
             (tmp_path / "ann.jsonl").read_text().splitlines()] == ["ann"]
+
+
+def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):
+    from termpool.game.history import Recorder
+
+    ann, bob = online(lobby, tmp_path)
+    ann.key(Key("enter"), time.monotonic())
+    ann.state = shoot(ann.state, 8.0, 0.5, 0.0, 0.0)
+    until([ann, bob], lambda: bob.state.phase is not Phase.RUN and bob.state.match.history
+          and ann.state.phase is not Phase.RUN, "the break")
+    cy = App(Options(colors="mono", player1="cy"), link=Link(lobby.path, lobby.admit("cy")),
+             history=Recorder(tmp_path / "cy.jsonl"))
+    entries = [e[1] for e in menu_entries(cy.state)]
+    cy.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    until([cy], lambda: any(p["where"] == "playing" for p in cy.state.link.others()),
+          "the players in cy's lobby")
+    cy.key(Key("enter"), time.monotonic())  # the first player listed: playing, so watched
+    until([ann, bob, cy], lambda: cy.state.match is not None
+          and cy.state.phase is Phase.REMOTE and len(cy.state.match.history) == 1,
+          "cy caught up")
+    assert cy.state.remote == (0, 1)
+    assert digest(cy.state.match) == digest(ann.state.match) == digest(bob.state.match)
+    # The next shot, whoever plays it, reaches cy's screen too.
+    mover = ann if ann.state.match.shooter == 0 else bob
+    if mover.state.phase is Phase.PLACE:
+        mover.key(Key("enter"), time.monotonic())
+    mover.state = shoot(mover.state, 2.0, 100.0, 0.0, 0.0)
+    until([ann, bob, cy], lambda: all(len(a.state.match.history) == 2
+                                      and a.state.phase is not Phase.RUN
+                                      for a in (ann, bob, cy)), "the second shot")
+    assert digest(cy.state.match) == digest(ann.state.match) == digest(bob.state.match)
+    text = "\n".join("".join(r) for r in cy.cells(80, 24)[0])
+    assert "ann" in text and "bob" in text
+    cy.key(Key("q"), time.monotonic())
+    cy.key(Key("m"), time.monotonic())  # cy goes; the match goes on
+    until([ann, bob], lambda: True, "a tick")
+    assert ann.state.match is not None and bob.state.match is not None
+    assert not (tmp_path / "cy.jsonl").exists()  # a watcher's history has no one's line
 
 
 def test_copies_that_differ_end_the_match_instead_of_playing_on_apart(lobby, tmp_path):

@@ -103,13 +103,19 @@ class Link:
             self.you = msg.get("you")
         elif kind == wire.CHALLENGED:
             self.challenged = msg
+        elif kind == wire.WITHDRAWN:
+            if self.challenged is not None and self.challenged.get("by") == msg.get("by"):
+                self.challenged = None
+                self.news.append((wire.WITHDRAWN, str(msg.get("name", ""))))
         elif kind == wire.DECLINED:
             self.news.append((wire.DECLINED, str(msg.get("name", ""))))
         elif kind == wire.REFUSED:
             self.news.append((wire.REFUSED, str(msg.get("why", ""))))
         elif kind == wire.START:
             self.start = msg
-            self.moves.clear()
+            past = msg.get("moves")  # a match joined to watch: its moves so far
+            self.moves = deque(m for m in past if isinstance(m, dict)) \
+                if isinstance(past, list) else deque()
             self.left = None
         elif kind == wire.MOVE and isinstance(msg.get("move"), dict):
             self.moves.append(msg["move"])

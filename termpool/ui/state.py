@@ -322,7 +322,8 @@ class State:
     played: tuple[Match, ...] = ()  # earlier matches of this session, with their shots
     cpu: tuple[bool, bool] = (False, False)  # which players the computer plays
     link: Any = None  # the line to the server's lobby (ui.link.Link), under `termpool serve`
-    remote: int | None = None  # an online match: the player whose moves come over the link
+    remote: tuple[int, ...] = ()  # an online match: the players whose moves come over the
+    # link (the other player; both, watching)
     stroke: Stroke = Stroke()
     last_power: float = DEFAULT_POWER  # the last shot's power: the aid's until another
     shot_power_set: bool = False  # ... once this match has a shot of the keys'
@@ -349,7 +350,7 @@ def shooter_is_cpu(s: State) -> bool:
 
 
 def shooter_is_remote(s: State) -> bool:
-    return s.remote is not None and s.remote == s.match.shooter
+    return s.match.shooter in s.remote
 
 
 def menu_entries(s: State) -> list:

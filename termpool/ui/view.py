@@ -431,7 +431,8 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
                   ("", None)]
     for text, tone in s.message:
         lines.append((text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb))
-    lines.append(("↑↓ choose · ←→ game · Enter challenge · Esc back", DIM_TEXT_C.rgb))
+    lines.append(("↑↓ choose · ←→ game · Enter challenge (or watch) · Esc back",
+                  DIM_TEXT_C.rgb))
     return lines
 
 

@@ -75,7 +75,7 @@ def tick(s: State, t: float) -> State:
         s.watch.tick(t)
         return s
     s = aid.advance(s)  # the aid fills in
-    if s.remote is not None:
+    if s.remote:
         s = remote.check(s)
     if s.box is not None:  # paused or asking: a shot waits
         return shot.pause(s) if isinstance(s.part, Run) else s
@@ -95,7 +95,7 @@ def wake_in(s: State, t: float) -> float | None:
         return lobby.LOBBY_POLL_S
     if s.phase is Phase.REMOTE:
         return remote.REMOTE_POLL_S
-    online = ONLINE_POLL_S if s.remote is not None else None
+    online = ONLINE_POLL_S if s.remote else None
     charge = s.controls.charge
     if charge.active:  # the meter moves; an inferred release is due at its time
         due = charge.release_due()

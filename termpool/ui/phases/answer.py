@@ -27,7 +27,7 @@ def key(s: State, key) -> State | None:
         m.choose(pick)
         tell(s, at, kind="choose", choice=str(pick))
         return start_turn(replace(s, message=(line,)))
-    if key.name == "n" and s.remote is not None:  # online: a new match is a new challenge
+    if key.name == "n" and s.remote:  # online: a new match is a new challenge
         return open_lobby(to_menu(s))
     if key.name == "n":
         return new_match(s, s.opts.mode, s.opts.opponent)

@@ -60,6 +60,9 @@ def key(s: State, key, action: str | None, t: float) -> State:
         return replace(s, part=replace(part, game=(part.game + step) % len(LOBBY_GAMES)))
     if action in ("confirm", "shoot") and others and part.waiting is None:
         who = others[min(part.index, len(others) - 1)]
+        if who.get("where") == "playing":  # their match, to watch
+            link.send(wire.WATCH, to=who.get("id"))
+            return replace(s, message=())
         link.send(wire.CHALLENGE, to=who.get("id"),
                   game=challenge_game(s, LOBBY_GAMES[part.game]))
         return replace(s, part=replace(part, waiting=str(who.get("name", ""))), message=())
@@ -77,9 +80,11 @@ def tick(s: State, t: float) -> State:
     part = s.part
     while link.news:
         kind, what = link.news.popleft()
-        text = (f"{what} declined" if kind == wire.DECLINED
-                else REFUSALS.get(what, "refused"))
-        s = replace(s, part=replace(part, waiting=None), message=((text, "foul"),))
+        text = (f"{what} declined" if kind == wire.DECLINED else
+                f"{what} withdrew the challenge" if kind == wire.WITHDRAWN else
+                REFUSALS.get(what, "refused"))
+        waiting = part.waiting if kind == wire.WITHDRAWN else None  # their answer came
+        s = replace(s, part=replace(part, waiting=waiting), message=((text, "foul"),))
         part = s.part
     return s
 
@@ -94,10 +99,11 @@ def start_online(s: State, start: dict) -> State:
         opts = replace(s.opts, mode=game["mode"], opponent="human", table=game["table"],
                        frames=int(game["frames"]), three_foul=bool(game["three_foul"]),
                        eight_break=game["eight_break"], theme=game["theme"])
-        if seat not in (0, 1) or not (isinstance(names, list) and len(names) == 2):
+        if seat not in (0, 1, None) or not (isinstance(names, list) and len(names) == 2):
             raise ValueError("names")
+        remote = (0, 1) if seat is None else (1 - seat,)  # None: watching
         return begin_match(s, opts, tuple(str(n) for n in names), int(game["seed"]),
-                           (False, False), remote=1 - seat)
+                           (False, False), remote=remote)
     except (KeyError, TypeError, ValueError) as e:
         s.link.send(wire.LEAVE)
         return replace(s, part=Lobby(), message=((f"that match could not start: {e}",

@@ -11,7 +11,7 @@ from termpool.game.record import ReplayError, check_shot_params
 from termpool.rules import words
 from termpool.rules.codes import Choice
 from termpool.ui.link import digest
-from termpool.ui.phases.turn import shoot, start_turn, to_menu
+from termpool.ui.phases.turn import finish_shot, shoot, start_turn, to_menu
 from termpool.ui.state import Run, State, Waiting
 
 REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
@@ -32,7 +32,8 @@ def check(s: State) -> State:
     link.poll()
     if link.left is not None:
         name, link.left = link.left, None
-        return ended(s, f"{name} has left the match; it is kept in your history")
+        kept = "" if len(s.remote) == 2 else "; it is kept in your history"
+        return ended(s, f"{name} has left the match{kept}")
     if link.closed:
         return ended(s, "the server has gone; the match is kept in your history")
     return s
@@ -68,7 +69,9 @@ def tick(s: State, t: float) -> State:
             s = shoot(s, float(move["speed"]), angle, side, top, called,
                       bool(move.get("push_out", False)))
             if isinstance(s.part, Run):
-                return s
+                # A match joined to watch catches up at once: its shots before the last
+                # are played out without being shown.
+                return finish_shot(s) if s.link.moves else s
             # Refused here, though the mover's match took it: the copies differ.
             return ended(s, OUT_OF_STEP)
     except (KeyError, TypeError, ValueError, ReplayError):

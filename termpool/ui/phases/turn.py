@@ -67,9 +67,10 @@ def new_match(s: State, mode: str, opponent: str) -> State:
 
 
 def begin_match(s: State, opts, names, seed: int, cpu: tuple[bool, bool],
-                remote: int | None = None) -> State:
+                remote: tuple[int, ...] = ()) -> State:
     """A match of `names` as `opts` set it, from `seed`; `cpu` says which players the
-    computer plays, `remote` which one moves on another screen (an online match)."""
+    computer plays, `remote` which move on other screens (an online match: the other player,
+    or both for a match being watched)."""
     mode = opts.mode
     players = tuple(Computer(opts.level, n) if c else n for n, c in zip(names, cpu, strict=True))
     match = Match(mode, table=opts.table, frames=opts.frames, players=players, seed=seed,
@@ -127,7 +128,7 @@ def start_turn(s: State) -> State:
 def own_move(s: State) -> str | None:
     """In an online match, before this screen's player moves: the match's digest, which the
     move carries to the other screen (ui.link); else None."""
-    return digest(s.match) if s.remote is not None and not shooter_is_remote(s) else None
+    return digest(s.match) if s.remote and not shooter_is_remote(s) else None
 
 
 def tell(s: State, at: str | None, **move) -> None:
@@ -188,8 +189,8 @@ def log_match(s: State) -> State:
     for the terminal when the game ends."""
     if s.files.records is not None:
         s.files.records.keep(s.match)
-    if s.files.history is not None and s.match is not None:
-        sides = (0, 1) if s.remote is None else (1 - s.remote,)  # online: this player's
+    sides = tuple(p for p in (0, 1) if p not in s.remote)  # online: this player's; none
+    if s.files.history is not None and s.match is not None and sides:  # when watching
         warning = s.files.history.add(s.match, s.cpu, s.opts.level, sides=sides)
         if warning:
             return replace(s, notes=(*s.notes, warning))
@@ -226,7 +227,7 @@ def to_menu(s: State) -> State:
         s, _ = record(s)  # a shot still rolling is played out, as on the way out
     s = log_match(s)
     played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
-    if s.remote is not None:
+    if s.remote:
         s.link.send(LEAVE)
-    return replace(s, box=None, part=Menu(), match=None, played=played, remote=None,
+    return replace(s, box=None, part=Menu(), match=None, played=played, remote=(),
                    message=())
