@@ -114,6 +114,8 @@ class Lobby:
             self._watch(seat, msg.get("to"))
         elif kind == wire.MOVE and seat.where == "playing":
             self._move(seat, msg.get("move"))
+        elif kind == wire.AIM and seat.where == "playing":
+            self._pass_on(seat, wire.AIM, aim=msg.get("aim"))
         elif kind == wire.LEAVE:
             self._part(seat)
             self._players()
@@ -174,9 +176,14 @@ class Lobby:
             self._send(seat, wire.REFUSED, why=wire.BAD)
             return
         table.moves.append(move)
+        self._pass_on(seat, wire.MOVE, move=move)
+
+    def _pass_on(self, seat: Seat, kind: str, /, **fields) -> None:
+        """To the other player of `seat`'s match and to its watchers."""
+        table = seat.table
         for k in (*table.players, *sorted(table.watchers)):
             if k != seat.id and k in self.seats:
-                self._send(self.seats[k], wire.MOVE, move=move)
+                self._send(self.seats[k], kind, **fields)
 
     def _withdraw(self, seat: Seat) -> None:
         """The challenges to and from `seat` are off."""

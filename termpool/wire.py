@@ -3,10 +3,12 @@ each with its kind in "t". Floats travel as JSON numbers, which Python writes an
 bit for bit, so a shot sent is the shot struck on both sides.
 
 Game to server: HELLO (token), WHERE (in the lobby or not), CHALLENGE (to, game), ANSWER (to,
-yes), WATCH (to: a player whose match to watch), MOVE (move), LEAVE.
+yes), WATCH (to: a player whose match to watch), MOVE (move), AIM (aim: the stick or the
+ball in hand as the player moves it, for the other screens to show), LEAVE.
 Server to game: PLAYERS (players), CHALLENGED (by, name, game), DECLINED (name), WITHDRAWN
 (by, name: a challenge to this game is off), START (game,
-names, seat: 0 or 1, or None to watch; moves: the match's moves so far), MOVE (move), LEFT
+names, seat: 0 or 1, or None to watch; moves: the match's moves so far), MOVE (move), AIM
+(aim), LEFT
 (name), REFUSED (why: a code, below).
 """
 
@@ -18,8 +20,8 @@ import os
 ENV_SOCKET = "TERMPOOL_LOBBY"  # where a game finds its server's lobby ...
 ENV_TOKEN = "TERMPOOL_LOBBY_TOKEN"  # ... and the token that says which player it is
 
-HELLO, WHERE, CHALLENGE, ANSWER, WATCH, MOVE, LEAVE = "hello", "where", "challenge", "answer", \
-    "watch", "move", "leave"
+HELLO, WHERE, CHALLENGE, ANSWER, WATCH, MOVE, AIM, LEAVE = "hello", "where", "challenge", \
+    "answer", "watch", "move", "aim", "leave"
 PLAYERS, CHALLENGED, DECLINED, WITHDRAWN, START, LEFT, REFUSED = "players", "challenged", \
     "declined", "withdrawn", "start", "left", "refused"
 

@@ -364,6 +364,58 @@ def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):
     assert not (tmp_path / "cy.jsonl").exists()  # a watcher's history has no one's line
 
 
+def test_the_other_screen_follows_the_ball_in_hand_and_the_stick(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    for _ in range(3):
+        ann.key(Key("up"), time.monotonic())
+        time.sleep(0.12)  # the aim goes out at most every AIM_EVERY_S
+        ann.tick(time.monotonic())
+    until([ann, bob], lambda: bob.state.part.cursor == ann.state.part.cursor,
+          "bob to see the ball in hand where ann has it")
+    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    assert "ann is placing the cue ball" in text
+    ann.key(Key("enter"), time.monotonic())
+    for _ in range(3):
+        ann.key(Key("left"), time.monotonic())
+        time.sleep(0.12)
+        ann.tick(time.monotonic())
+    ann.key(Key("w"), time.monotonic())  # top spin
+    until([ann, bob], lambda: bob.state.part.stick
+          and (bob.state.stroke.angle, bob.state.stroke.top)
+          == (ann.state.stroke.angle, ann.state.stroke.top), "bob to see ann's stick")
+    assert ann.state.stroke.top != 0.0
+    assert len(bob.state.match.history) == 0  # aiming is not a move
+    # The stick is drawn on bob's screen (in colour): cells differ from a screen without it.
+    import numpy as np
+
+    bob.state = replace(bob.state, depth="truecolor")
+    with_stick = bob.cells(100, 30)
+    bob.state = replace(bob.state, part=replace(bob.state.part, stick=False))
+    without = bob.cells(100, 30)
+    assert not all(np.array_equal(a, b) for a, b in zip(with_stick, without, strict=True))
+
+
+def test_aims_go_to_the_match_only_and_are_not_kept(lobby):
+    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
+    for r in (ann, bob, cy):
+        r.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
+    ids = {p["name"]: p["id"] for p in seen["players"]}
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    cy.send(wire.WATCH, to=ids["ann"])
+    assert cy.next(wire.START)["moves"] == []
+    aim = {"kind": "stick", "values": [10.0, 0.0, 0.1]}
+    ann.send(wire.AIM, aim=aim)
+    assert bob.next(wire.AIM)["aim"] == aim
+    assert cy.next(wire.AIM)["aim"] == aim
+    cy.send(wire.LEAVE)
+    cy.send(wire.WHERE, lobby=True)
+    cy.send(wire.WATCH, to=ids["ann"])
+    assert cy.next(wire.START)["moves"] == []
+
+
 def test_copies_that_differ_end_the_match_instead_of_playing_on_apart(lobby, tmp_path):
     ann, bob = online(lobby, tmp_path)
     bob.state.match.pos[3, 0] += 1e-12  # one ball a picometre out on bob's copy

@@ -21,6 +21,7 @@ from collections import deque
 from termpool import wire
 
 SEND_TIMEOUT_S = 2.0  # a server that takes no bytes for this long is gone
+AIM_EVERY_S = 0.1  # the stick's moves go to the other screens at most this often
 
 
 def digest(match) -> str:
@@ -48,6 +49,9 @@ class Link:
         self.start: dict | None = None  # a match to start: game, names, seat
         self.moves: deque = deque()  # the other player's moves, in order
         self.left: str | None = None  # the other player has left the match
+        self.aim: dict | None = None  # the other player's stick or ball in hand, the latest
+        self._aim_out: tuple | None = None  # this player's, as last sent, and when
+        self._aim_at = -1e9
         self.send(wire.HELLO, token=token)
 
     @classmethod
@@ -119,8 +123,19 @@ class Link:
             self.left = None
         elif kind == wire.MOVE and isinstance(msg.get("move"), dict):
             self.moves.append(msg["move"])
+            self.aim = None  # what the move ends: its stick, its ball in hand
+        elif kind == wire.AIM and isinstance(msg.get("aim"), dict):
+            self.aim = msg["aim"]
         elif kind == wire.LEFT:
             self.left = str(msg.get("name", ""))
+
+    def share_aim(self, aim: tuple, t: float) -> None:
+        """Send this player's stick (angle, side, top) or ball in hand (x, y) when it has
+        moved, at most every AIM_EVERY_S."""
+        if aim != self._aim_out and t - self._aim_at >= AIM_EVERY_S:
+            self._aim_out, self._aim_at = aim, t
+            kind, *values = aim
+            self.send(wire.AIM, aim={"kind": kind, "values": values})
 
     def others(self) -> list[dict]:
         """The other players online, in the order they came."""

@@ -193,6 +193,8 @@ class Waiting:
 
     phase: ClassVar[Phase] = Phase.REMOTE
     placed: bool = False
+    cursor: tuple[float, float] | None = None  # their ball in hand, as they move it
+    stick: bool = False  # their stick is on show (its angle and tip in `stroke`)
 
 
 Part = (Menu | Aim | Place | Run | Thinking | Answering | Aiming | Option | Over | Lobby

@@ -51,6 +51,7 @@ from termpool.ui.state import (
     State,
     Stats,
     Thinking,
+    Waiting,
     cue_index,
     help_of,
     menu_entries,
@@ -107,18 +108,21 @@ def positions(s: State):
         pos[rows] = p
         state[rows] = st
         return pos, state
-    if isinstance(part, Place):  # the ball in hand is drawn where the cursor is
+    cursor = part.cursor if isinstance(part, Place | Waiting) else None
+    if cursor is not None:  # the ball in hand is drawn where the cursor is
         pos = m.pos.copy()
         c = cue_index(s)
-        pos[c] = part.cursor
+        pos[c] = cursor
         state[c] = 0
         return pos, state
     return m.pos, state
 
 
 def _aiming(s: State) -> bool:
-    """A stick to draw: the player's, or the computer's once it has decided."""
-    return s.phase is Phase.AIM or isinstance(s.part, Aiming | Answering)
+    """A stick to draw: the player's, the computer's once it has decided, or the other
+    player's of an online match as they move it."""
+    return (s.phase is Phase.AIM or isinstance(s.part, Aiming | Answering)
+            or isinstance(s.part, Waiting) and s.part.stick)
 
 
 def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
@@ -151,9 +155,10 @@ def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
             ch = s.controls.charge
             pull = ch.level(s.now) if ch.active else 0.0
             ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], s.stroke.angle, pull)
-        if isinstance(s.part, Place):
-            ok = m.placement_error(*s.part.cursor) is None
-            ov.draw_placement(cv, lay, s.part.cursor, m.radius[c], ok)
+        cursor = s.part.cursor if isinstance(s.part, Place | Waiting) else None
+        if cursor is not None:
+            ok = m.placement_error(*cursor) is None
+            ov.draw_placement(cv, lay, cursor, m.radius[c], ok)
 
     return view.cells(m.ids, pos, state, m.radius, mono, paint=paint, mark=mark)
 

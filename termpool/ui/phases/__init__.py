@@ -12,7 +12,7 @@ from dataclasses import replace
 
 from termpool.ui import aid
 from termpool.ui.phases import aim, answer, boxes, cpu, lobby, menu, place, remote, shot
-from termpool.ui.state import Help, Pause, Phase, Quit, Run, Seen, State
+from termpool.ui.state import Help, Pause, Phase, Quit, Run, Seen, State, shooter_is_remote
 
 KEYS: dict[Phase, Callable] = {Phase.MENU: menu.key, Phase.AIM: aim.key, Phase.PLACE: place.key,
                                Phase.RUN: shot.key, Phase.CPU: cpu.key,
@@ -77,6 +77,8 @@ def tick(s: State, t: float) -> State:
     s = aid.advance(s)  # the aid fills in
     if s.remote:
         s = remote.check(s)
+        if s.remote and not shooter_is_remote(s):
+            remote.share(s, t)
     if s.box is not None:  # paused or asking: a shot waits
         return shot.pause(s) if isinstance(s.part, Run) else s
     step = TICKS.get(s.phase)

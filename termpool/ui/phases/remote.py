@@ -5,14 +5,17 @@ match, exactly as theirs made them. A move made on a match that differs from the
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 from termpool.game.record import ReplayError, check_shot_params
+from termpool.physics.cue import clamp_tip
 from termpool.rules import words
 from termpool.rules.codes import Choice
 from termpool.ui.link import digest
+from termpool.ui.phases.place import clamp
 from termpool.ui.phases.turn import finish_shot, shoot, start_turn, to_menu
-from termpool.ui.state import Run, State, Waiting
+from termpool.ui.state import Aim, Place, Run, State, Waiting
 
 REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
 OUT_OF_STEP = "the two screens' matches differ; the match has ended (it is kept)"
@@ -39,10 +42,44 @@ def check(s: State) -> State:
     return s
 
 
+def share(s: State, t: float) -> None:
+    """This screen's player aiming or placing: the other screens are shown it (ui.link)."""
+    part = s.part
+    if isinstance(part, Place):
+        s.link.share_aim(("place", *map(float, part.cursor)), t)
+    elif isinstance(part, Aim):
+        st = s.stroke
+        s.link.share_aim(("stick", float(st.angle), float(st.side), float(st.top)), t)
+
+
+def shown_aim(s: State) -> State:
+    """The other player's stick or ball in hand as it last came (ui.link), on show."""
+    aim, part = s.link.aim, s.part
+    try:
+        kind, values = aim["kind"], [float(v) for v in aim["values"]]
+        if kind == "stick" and len(values) == 3 and all(map(math.isfinite, values)):
+            angle, side, top = values
+            side, top = clamp_tip(side, top)
+            if (part.stick and (angle, side, top) ==
+                    (s.stroke.angle, s.stroke.side, s.stroke.top)):
+                return s
+            return replace(s, part=replace(part, stick=True, cursor=None),
+                           stroke=replace(s.stroke, angle=angle % 360.0, side=side, top=top))
+        if kind == "place" and len(values) == 2 and s.match.ball_in_hand and not part.placed:
+            x, y = clamp(s, *values)
+            return s if part.cursor == (x, y) else replace(s, part=replace(
+                part, cursor=(x, y), stick=False))
+    except (KeyError, TypeError, ValueError):
+        pass
+    return s  # a sign of life that cannot be shown is not worth ending a match over
+
+
 def tick(s: State, t: float) -> State:
-    """Make the other player's next move, if it has come."""
-    if not isinstance(s.part, Waiting) or not s.link.moves:
+    """Make the other player's next move, if it has come; meanwhile show their aim."""
+    if not isinstance(s.part, Waiting):
         return s
+    if not s.link.moves:
+        return shown_aim(s) if s.link.aim is not None else s
     move = s.link.moves.popleft()
     m = s.match
     if not isinstance(move, dict) or move.get("at") != digest(m):
