@@ -38,6 +38,7 @@ from termpool.text import say
 
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,31}\Z")  # a player's name: also a directory
 MAX_SESSIONS = 16
+MAX_BUFFER = 1 << 20  # bytes of screen a connection may have waiting to be sent
 HANG_UP_S = 5.0  # a game told to hang up gets this long to save and leave before SIGKILL
 DEFAULT_TERM = "xterm-256color"  # a client that names no terminal type
 KEY_NAME = "ssh_host_ed25519_key"
@@ -202,12 +203,26 @@ class Server:
                 try:
                     process.stdout.write(data)
                 except (BrokenPipeError, ConnectionError):  # the player has gone: the
-                    pass  # game is being hung up
+                    return  # game is being hung up
+                if process.channel.get_write_buffer_size() > MAX_BUFFER:
+                    # A player whose connection takes no bytes: stop reading the game's
+                    # screen until it drains (their game then waits on its own terminal).
+                    loop.remove_reader(master)
+                    asyncio.ensure_future(resume())
             else:
                 loop.remove_reader(master)
                 if not output_done.done():
                     output_done.set_result(None)
 
+        async def resume() -> None:
+            try:
+                await process.stdout.drain()
+            except (BrokenPipeError, ConnectionError):
+                return
+            if not output_done.done() and master in open_fds:
+                loop.add_reader(master, readable)
+
+        open_fds = {master}
         loop.add_reader(master, readable)
         keys = asyncio.ensure_future(self._carry_input(process, master))
         ended = asyncio.ensure_future(game.wait())
@@ -222,6 +237,7 @@ class Server:
         finally:
             keys.cancel()
             loop.remove_reader(master)
+            open_fds.discard(master)
             os.close(master)
             self.games.discard(game)
 

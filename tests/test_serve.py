@@ -330,3 +330,64 @@ def test_two_players_meet_in_the_lobby_and_play_one_match_on_two_screens(served)
             p2.stdin.write(b"q")
 
     run(go())
+
+
+def test_a_connection_that_takes_no_bytes_pauses_its_game_not_the_server(tmp_path):
+    """A game writes faster than its player's connection takes the bytes: the server stops
+    reading that game's screen at MAX_BUFFER waiting (the game then waits on its own
+    terminal) and goes on once the connection drains; nothing is lost."""
+    from termpool import serve
+
+    total = 6 * serve.MAX_BUFFER
+    game = [sys.executable, "-c",
+            f"import os\nfor _ in range({total // 65536}): os.write(1, b'x' * 65536)\n"]
+
+    class Channel:
+        def __init__(self, out):
+            self.out = out
+
+        def get_write_buffer_size(self):
+            return len(self.out.data) - self.out.sent
+
+    class Out:
+        def __init__(self):
+            self.data, self.sent, self.most = b"", 0, 0
+            self.go = asyncio.Event()
+
+        def write(self, data):
+            self.data += data
+            self.most = max(self.most, len(self.data) - self.sent)
+
+        async def drain(self):
+            await self.go.wait()
+            self.sent = len(self.data)
+
+    class Keys:
+        async def read(self, n):
+            await asyncio.sleep(3600)
+
+    class Process:
+        def __init__(self):
+            self.stdout, self.stdin = Out(), Keys()
+            self.channel = Channel(self.stdout)
+
+        def get_terminal_size(self):
+            return (80, 24, 0, 0)
+
+        def get_terminal_type(self):
+            return "xterm"
+
+    async def go():
+        server = serve.Server(tmp_path, command=game)
+        p = Process()
+        run = asyncio.ensure_future(server._run_game(p, "ann"))
+        await asyncio.sleep(1.0)
+        stalled = len(p.stdout.data)
+        p.stdout.go.set()  # the connection takes bytes again
+        status = await asyncio.wait_for(run, WAIT_S)
+        return stalled, p, status
+
+    stalled, p, status = asyncio.run(go())
+    assert serve.MAX_BUFFER < stalled < serve.MAX_BUFFER + 2 * 65536  # it paused there
+    assert status == 0
+    assert p.stdout.data.count(b"x") == total  # every byte, once the connection drained
