@@ -118,6 +118,12 @@ def _stats_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print the same figures as JSON")
 
 
+def _serve_arguments(p: argparse.ArgumentParser) -> None:
+    from termpool.serve import add_arguments
+
+    add_arguments(p)
+
+
 def _selfplay_arguments(p: argparse.ArgumentParser) -> None:
     from termpool.selfplay import add_arguments
 
@@ -171,6 +177,15 @@ _COMMANDS: dict[str, tuple[str, str, Callable[[argparse.ArgumentParser], None] |
         "decision times (see docs/ai.md). Deterministic for a --seed, whatever --jobs. "
         "Ctrl-C prints the figures of the games finished so far.",
         _selfplay_arguments,
+    ),
+    "serve": (
+        "let people play over SSH: each connection gets the game at its own size",
+        "Listen for SSH connections (needs asyncssh: pip install 'termpool[ssh]'). Whoever "
+        "connects with `ssh -t -p PORT NAME@HOST` plays the whole game as NAME, with their "
+        "own settings, history and records (under DIR/players/NAME). Without "
+        "--authorized-keys anyone who can reach the port may play. SIGINT, SIGTERM or "
+        "SIGHUP stop it, and every game saves on its way out. See docs/serve.md.",
+        _serve_arguments,
     ),
     "bench": ("benchmark the physics engine (see `termpool bench --help`)", "", None),
 }
@@ -463,6 +478,10 @@ def main(argv: list[str] | None = None) -> int:
             return _stats(args)
         if args.command == "selfplay":
             return _selfplay(args)
+        if args.command == "serve":
+            from termpool.serve import run as serve
+
+            return serve(args)
         return _fail("missing command (try termpool --help)")
     except Exit as e:
         return e.code

@@ -342,7 +342,7 @@ def test_the_end_of_a_match_adds_it_and_the_menu_shows_it() -> None:
     from termpool.ui.headless import screen_text
     from termpool.ui.keys import Key
     from termpool.ui.phases.turn import shoot, start_turn
-    from termpool.ui.state import MENU, Phase
+    from termpool.ui.state import Phase, menu_entries
 
     app = App(Options(mode="9ball", opponent="human", colors="mono", seed=0),
               history=h.Recorder())
@@ -366,7 +366,7 @@ def test_the_end_of_a_match_adds_it_and_the_menu_shows_it() -> None:
                                                            ("Player 2", "lost")]
     app.key(Key("m"), 100.0)  # to the menu: not added again
     assert len(h.read_history(h.history_path())[0]) == 2
-    app.key(Key(str([x[0] for x in MENU].index("Stats") + 1)), 101.0)
+    app.key(Key(str([x[0] for x in menu_entries(app.state)].index("Stats") + 1)), 101.0)
     text = screen_text(app.cells(80, 24)[0])
     assert "1 match: won 1" in text and "a second player" in text
     app.key(Key("x"), 102.0)

@@ -252,9 +252,11 @@ def keys(app: App, *names: str, t: float = 0.0) -> None:
 
 
 def menu_item(label: str) -> str:
-    from termpool.ui.state import MENU
+    """The digit of a menu entry, as a session without a server shows the menu."""
+    from termpool.ui.app import start
+    from termpool.ui.state import menu_entries
 
-    return str([m[0] for m in MENU].index(label) + 1)
+    return str([m[0] for m in menu_entries(start())].index(label) + 1)
 
 
 def test_the_menu_opens_the_settings_and_esc_saves_what_changed() -> None:

@@ -6,6 +6,7 @@ wall-clock speed.
 
 from __future__ import annotations
 
+import re
 import signal
 import sys
 import termios
@@ -165,6 +166,37 @@ def test_an_exception_inside_the_app_restores_the_terminal(game) -> None:
     assert g.status == 1
     assert restored(g.raw) and cooked(g.fd)
     assert b"RuntimeError: boom" in g.raw
+
+
+def test_a_timed_wake_is_slept_not_spun(game) -> None:
+    """An app that needs a tick every 0.2 s (a lobby polling its server) is ticked about five
+    times a second, not in a loop, and draws only what changed."""
+    code = (
+        "import time\n"
+        "from termpool.ui import term\n"
+        "class Poll:\n"
+        "    done = False\n"
+        "    dirty = True\n"
+        "    depth = 'truecolor'\n"
+        "    ticks = 0\n"
+        "    def key(self, k, t): pass\n"
+        "    def wake_in(self, t): return 0.2\n"
+        "    def cells(self, c, r):\n"
+        "        from termpool.ui.panel import blank_cells\n"
+        "        self.dirty = False\n"
+        "        return blank_cells(c, r, False)\n"
+        "    def tick(self, t):\n"
+        "        self.ticks += 1\n"
+        "        self.done = self.ticks >= 1000 or time.monotonic() > self.end\n"
+        "app = Poll()\n"
+        "app.end = time.monotonic() + 1.5\n"
+        "term.run(app, 'truecolor', kitty=False)\n"
+        "print('ticks', app.ticks)\n"
+    )
+    g = game("-c", code, cols=80, rows=24, python_args=True)
+    g.wait()
+    ticks = int(re.search(rb"ticks (\d+)", g.raw).group(1))
+    assert 5 <= ticks <= 12  # 1.5 s at a tick every 0.2 s; a spin would reach 1000
 
 
 def test_kitty_terminal_hold_space_and_release_to_shoot(game) -> None:

@@ -93,13 +93,15 @@ def player_figures(history: list[dict], player: int) -> dict[str, int]:
 
 
 def match_lines(match, cpu: tuple[bool, bool], level: str | None,
-                when: datetime | None = None) -> list[dict[str, Any]]:
-    """The history lines of a match: one per player (one in practice). `cpu`: which players
-    are the computer; `level`: its level."""
+                when: datetime | None = None,
+                sides: tuple[int, ...] = (0, 1)) -> list[dict[str, Any]]:
+    """The history lines of a match: one per player of `sides` (one in practice). `cpu`:
+    which players are the computer; `level`: its level. (An online match keeps only the
+    side of this screen's player: the other's is in their own history.)"""
     when = datetime.now().astimezone() if when is None else when
     practice = match.mode == "practice"
     lines = []
-    for p in (0,) if practice else (0, 1):
+    for p in (0,) if practice else sides:
         figures = player_figures(match.history, p)
         if practice:
             result = "practice"
@@ -156,14 +158,15 @@ class Recorder:
         self._warned = False
 
     def add(self, match, cpu: tuple[bool, bool], level: str | None,
-            when: datetime | None = None) -> str | None:
-        """Add `match` (nothing for one without shots, or already added); the warning line
-        when the file cannot be written and none was given yet, else None."""
+            when: datetime | None = None, sides: tuple[int, ...] = (0, 1)) -> str | None:
+        """Add `match` (nothing for one without shots, or already added), the lines of its
+        players of `sides`; the warning line when the file cannot be written and none was
+        given yet, else None."""
         if match is None or not match.history or any(m is match for m in self._added):
             return None
         self._added.append(match)
         try:
-            append_lines(self.path, match_lines(match, cpu, level, when))
+            append_lines(self.path, match_lines(match, cpu, level, when, sides))
         except OSError as e:
             if self._warned:
                 return None

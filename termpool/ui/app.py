@@ -24,8 +24,10 @@ __all__ = ["App", "Options", "start"]
 
 
 def start(opts: Options | None = None, keymap: KeyMap | None = None,
-          input_mode: str = "release", env=None, files: Files | None = None) -> State:
-    """The state a session starts in: the menu, or (with `opts.mode`) a match."""
+          input_mode: str = "release", env=None, files: Files | None = None,
+          link=None) -> State:
+    """The state a session starts in: the menu, or (with `opts.mode`) a match. `link`: the
+    line to the lobby of the server the game runs under (ui.link), if it does."""
     opts = opts or Options()
     files = files or Files()
     keymap = keymap if keymap is not None else KeyMap()
@@ -33,7 +35,7 @@ def start(opts: Options | None = None, keymap: KeyMap | None = None,
     controls = Controls(None, AimControl(keymap), HoldRamp(PLACE_TAP, 0.25, 1.0, 1.0,
                                                            from_press=True))
     s = State(opts=opts, keymap=keymap, controls=controls, env=env, files=files,
-              depth=resolve_depth(opts.colors, env))
+              depth=resolve_depth(opts.colors, env), link=link)
     s = turn.set_input_mode(s, input_mode)
     return turn.new_match(s, opts.mode, opts.opponent) if opts.mode is not None else s
 
@@ -48,8 +50,9 @@ def _changed(before: State, after: State) -> bool:
 class App:
     def __init__(self, opts: Options | None = None, keymap: KeyMap | None = None,
                  input_mode: str = "release", env=None, *, prefs=None, history=None,
-                 records=None) -> None:
-        self.state = start(opts, keymap, input_mode, env, Files(prefs, history, records))
+                 records=None, link=None) -> None:
+        self.state = start(opts, keymap, input_mode, env, Files(prefs, history, records),
+                           link)
         self.geometry = Geometry()  # this screen's table layout and background
         self.seen: Seen | None = None  # what this screen showed last (for the mouse)
         self.dirty = True

@@ -164,9 +164,13 @@ def _leave(app, args: argparse.Namespace) -> int:
 def _terminal(args: argparse.Namespace, opts, keymap, files: dict):
     from termpool.ui import term
     from termpool.ui.app import App
+    from termpool.ui.link import Link
+    from termpool.wire import lobby_address
 
     mode = {"kitty": "release"}.get(args.input, args.input)
-    app = App(opts, keymap, "repeat" if mode == "auto" else mode, **files)
+    # Under `termpool serve`, the lobby: playing someone online.
+    link = Link.open(lobby_address())
+    app = App(opts, keymap, "repeat" if mode == "auto" else mode, **files, link=link)
 
     def play() -> int:
         return term.run(app, app.depth, kitty=args.input in ("auto", "kitty"),

@@ -48,6 +48,7 @@ MENU = [  # the menu's entries: a game (mode, opponent), or a screen
     ("9-ball vs computer", ("9ball", "cpu")),
     ("9-ball, two players", ("9ball", "human")),
     ("Practice", ("practice", "human")),
+    ("Play someone online", "online"),  # only under a server (`termpool serve`)
     ("Settings", "settings"),
     ("Stats", "stats"),
     ("Help", "help"),
@@ -85,6 +86,8 @@ class Phase(enum.Enum):
     CPU = "cpu"
     OPTION = "option"
     OVER = "over"
+    LOBBY = "lobby"  # who is online, under a server: challenge them, answer challenges
+    REMOTE = "remote"  # the other player of an online match moves, on their own screen
 
 
 @dataclass(frozen=True)
@@ -169,7 +172,33 @@ class Over:
     phase: ClassVar[Phase] = Phase.OVER
 
 
-Part = Menu | Aim | Place | Run | Thinking | Answering | Aiming | Option | Over
+@dataclass(frozen=True)
+class Lobby:
+    """The players online (ui.link): the one chosen, the game a challenge is to, and the
+    player challenged while their answer is awaited."""
+
+    phase: ClassVar[Phase] = Phase.LOBBY
+    index: int = 0
+    game: int = 0  # LOBBY_GAMES
+    waiting: str | None = None
+
+
+LOBBY_GAMES = ("8ball", "9ball")
+
+
+@dataclass(frozen=True)
+class Waiting:
+    """An online match: the other player's turn, until their move arrives (ui.link);
+    `placed`: their ball in hand is down (the match keeps it in hand until the shot)."""
+
+    phase: ClassVar[Phase] = Phase.REMOTE
+    placed: bool = False
+    cursor: tuple[float, float] | None = None  # their ball in hand, as they move it
+    stick: bool = False  # their stick is on show (its angle and tip in `stroke`)
+
+
+Part = (Menu | Aim | Place | Run | Thinking | Answering | Aiming | Option | Over | Lobby
+        | Waiting)
 
 
 # --------------------------------------------------------------------------------- boxes
@@ -294,6 +323,9 @@ class State:
     match: Match | None = None
     played: tuple[Match, ...] = ()  # earlier matches of this session, with their shots
     cpu: tuple[bool, bool] = (False, False)  # which players the computer plays
+    link: Any = None  # the line to the server's lobby (ui.link.Link), under `termpool serve`
+    remote: tuple[int, ...] = ()  # an online match: the players whose moves come over the
+    # link (the other player; both, watching)
     stroke: Stroke = Stroke()
     last_power: float = DEFAULT_POWER  # the last shot's power: the aid's until another
     shot_power_set: bool = False  # ... once this match has a shot of the keys'
@@ -317,6 +349,15 @@ def cue_index(s: State) -> int:
 
 def shooter_is_cpu(s: State) -> bool:
     return s.cpu[s.match.shooter]
+
+
+def shooter_is_remote(s: State) -> bool:
+    return s.match.shooter in s.remote
+
+
+def menu_entries(s: State) -> list:
+    """The menu as this session has it: playing someone online only under a server."""
+    return [e for e in MENU if e[1] != "online" or s.link is not None]
 
 
 def voice(s: State) -> words.Voice:

@@ -290,7 +290,9 @@ def run(app: App, depth: str, *, kitty: bool = True, query_timeout: float = 0.25
             wake = app.wake_in(now)
             if app.dirty:  # a change not drawn yet (a key came just after a frame)
                 wake = 0.0
-            timeout = idle if wake is None else max(0.0, min(wake, next_frame - now, idle))
+            # (The next frame's time matters only to a change not drawn yet: once past, it
+            # must not turn an app's timed wake, such as a lobby's poll, into a spin.)
+            timeout = idle if wake is None else max(0.0, min(wake, idle))
             if flags["resized"]:
                 timeout = 0.0
             for key in keys_in.keys(timeout):

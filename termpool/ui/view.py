@@ -16,12 +16,14 @@ from termpool.physics.state import POCKETED
 from termpool.rules import words
 from termpool.rules.common import GROUPS, legal_targets
 from termpool.rules.words import KITCHEN, MODE_NAMES
+from termpool.text import shown
 from termpool.ui import aid
 from termpool.ui import overlay as ov
 from termpool.ui.canvas import put_text
 from termpool.ui.help import pretty
 from termpool.ui.palette import DIM_TEXT_C, TEXT_C
 from termpool.ui.panel import (
+    FOUL_C,
     TURN_C,
     PanelInfo,
     PlayerLine,
@@ -35,7 +37,7 @@ from termpool.ui.panel import (
 )
 from termpool.ui.screens import TITLES, box_lines
 from termpool.ui.state import (
-    MENU,
+    LOBBY_GAMES,
     Aiming,
     Answering,
     Help,
@@ -49,8 +51,10 @@ from termpool.ui.state import (
     State,
     Stats,
     Thinking,
+    Waiting,
     cue_index,
     help_of,
+    menu_entries,
     voice,
 )
 from termpool.ui.table_view import Geometry, Layout, TableView
@@ -64,7 +68,9 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
     it showed."""
     mono = s.depth == "mono"
     lay, table = None, None
-    if s.phase is Phase.MENU or s.match is None:
+    if s.phase is Phase.LOBBY:
+        out = _lobby_cells(s, cols, rows, mono)
+    elif s.phase is Phase.MENU or s.match is None:
         out = _menu_cells(s, cols, rows, mono)
     else:
         table = s.match.table
@@ -102,18 +108,21 @@ def positions(s: State):
         pos[rows] = p
         state[rows] = st
         return pos, state
-    if isinstance(part, Place):  # the ball in hand is drawn where the cursor is
+    cursor = part.cursor if isinstance(part, Place | Waiting) else None
+    if cursor is not None:  # the ball in hand is drawn where the cursor is
         pos = m.pos.copy()
         c = cue_index(s)
-        pos[c] = part.cursor
+        pos[c] = cursor
         state[c] = 0
         return pos, state
     return m.pos, state
 
 
 def _aiming(s: State) -> bool:
-    """A stick to draw: the player's, or the computer's once it has decided."""
-    return s.phase is Phase.AIM or isinstance(s.part, Aiming | Answering)
+    """A stick to draw: the player's, the computer's once it has decided, or the other
+    player's of an online match as they move it."""
+    return (s.phase is Phase.AIM or isinstance(s.part, Aiming | Answering)
+            or isinstance(s.part, Waiting) and s.part.stick)
 
 
 def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
@@ -146,9 +155,10 @@ def _table_cells(s: State, lay: Layout, view: TableView, mono: bool):
             ch = s.controls.charge
             pull = ch.level(s.now) if ch.active else 0.0
             ov.draw_cue_stick(cv, lay, m.pos[c], m.radius[c], s.stroke.angle, pull)
-        if isinstance(s.part, Place):
-            ok = m.placement_error(*s.part.cursor) is None
-            ov.draw_placement(cv, lay, s.part.cursor, m.radius[c], ok)
+        cursor = s.part.cursor if isinstance(s.part, Place | Waiting) else None
+        if cursor is not None:
+            ok = m.placement_error(*cursor) is None
+            ov.draw_placement(cv, lay, cursor, m.radius[c], ok)
 
     return view.cells(m.ids, pos, state, m.radius, mono, paint=paint, mark=mark)
 
@@ -318,6 +328,10 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
         out.append((f"{name} is thinking…" if isinstance(part, Thinking) else
                     f"{name} is aiming{at}", "dim"))
+    elif s.phase is Phase.REMOTE:
+        doing = ("answering" if m.option is not None else
+                 "placing the cue ball" if m.ball_in_hand and not s.part.placed else "aiming")
+        out.append((f"{name} is {doing}, on their own screen…", "dim"))
     return out
 
 
@@ -391,17 +405,63 @@ def hint_lines(s: State) -> list[tuple]:
         return [("N new game", 0), ("M menu", 0), ("W watch", 0), quit_]
     if s.phase is Phase.CPU:
         return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
+    if s.phase is Phase.REMOTE:
+        return [help_, quit_]
     return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
+
+
+def _lobby_lines(s: State) -> list[tuple[str, object]]:
+    """The lobby's words: who is online (the one chosen marked), the game a challenge is to,
+    a challenge to answer, and what to press."""
+    link, part = s.link, s.part
+    others = link.others()
+    lines = [("Players online", TURN_C), ("", None)]
+    where = {"lobby": "in the lobby", "menu": "in the menu", "playing": "playing"}
+    for k, p in enumerate(others):
+        mark = "▶ " if k == min(part.index, len(others) - 1) else "  "
+        text = f"{mark}{shown(str(p.get('name', '')))[:32]}  {where.get(p.get('where'), '')}"
+        lines.append((text, TURN_C if mark.strip() else TEXT_C.rgb))
+    if not others:
+        lines.append(("  nobody else yet: ask a friend to connect", DIM_TEXT_C.rgb))
+    game = {"8ball": "8-ball", "9ball": "9-ball"}[LOBBY_GAMES[part.game]]
+    lines += [("", None), (f"game: ◀ {game} ▶", TEXT_C.rgb), ("", None)]
+    if link.challenged is not None:
+        c = link.challenged
+        what = {"8ball": "8-ball", "9ball": "9-ball"}.get((c.get("game") or {}).get("mode"),
+                                                          "a game")
+        lines += [(f"{shown(str(c.get('name', '')))[:32]} challenges you to {what}", TURN_C),
+                  ("Y accept · N decline", TURN_C), ("", None)]
+    elif part.waiting is not None:
+        lines += [(f"waiting for {shown(part.waiting)[:32]} to answer…", DIM_TEXT_C.rgb),
+                  ("", None)]
+    for text, tone in s.message:
+        lines.append((text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb))
+    lines.append(("↑↓ choose · ←→ game · Enter challenge (or watch) · Esc back",
+                  DIM_TEXT_C.rgb))
+    return lines
+
+
+def _lobby_cells(s: State, cols: int, rows: int, mono: bool):
+    cells = blank_cells(cols, rows, mono)
+    lines = _lobby_lines(s)
+    top = max(0, (rows - len(lines)) // 2)
+    left = max(0, (cols - max(len(text) for text, _ in lines)) // 2)
+    for k, (text, colour) in enumerate(lines[:rows]):
+        if text:
+            put_text(cells, top + k, left, text[:cols], colour, (0, 0, 0))
+    return cells
 
 
 def _menu_cells(s: State, cols: int, rows: int, mono: bool):
     cells = blank_cells(cols, rows, mono)
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
-    for k, (label, _what) in enumerate(MENU):
+    for k, (label, _what) in enumerate(menu_entries(s)):
         sel = k == s.menu_index
         lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
+    # What ended an online match (the other player left), said where the match was left.
+    lines += [(text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb) for text, tone in s.message]
     top = max(0, (rows - len(lines)) // 2)
     width = max(len(text) for text, _ in lines)
     left = max(0, (cols - width) // 2)

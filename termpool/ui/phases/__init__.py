@@ -11,13 +11,16 @@ from collections.abc import Callable
 from dataclasses import replace
 
 from termpool.ui import aid
-from termpool.ui.phases import aim, answer, boxes, cpu, menu, place, shot
-from termpool.ui.state import Help, Pause, Phase, Quit, Run, Seen, State
+from termpool.ui.phases import aim, answer, boxes, cpu, lobby, menu, place, remote, shot
+from termpool.ui.state import Help, Pause, Phase, Quit, Run, Seen, State, shooter_is_remote
 
 KEYS: dict[Phase, Callable] = {Phase.MENU: menu.key, Phase.AIM: aim.key, Phase.PLACE: place.key,
                                Phase.RUN: shot.key, Phase.CPU: cpu.key,
-                               Phase.OPTION: answer.nothing, Phase.OVER: answer.nothing}
-TICKS: dict[Phase, Callable] = {Phase.AIM: aim.tick, Phase.RUN: shot.tick, Phase.CPU: cpu.tick}
+                               Phase.OPTION: answer.nothing, Phase.OVER: answer.nothing,
+                               Phase.LOBBY: lobby.key, Phase.REMOTE: answer.nothing}
+TICKS: dict[Phase, Callable] = {Phase.AIM: aim.tick, Phase.RUN: shot.tick, Phase.CPU: cpu.tick,
+                                Phase.LOBBY: lobby.tick, Phase.REMOTE: remote.tick}
+ONLINE_POLL_S = 0.25  # an online match looks for the other player leaving this often
 POINTS: dict[Phase, Callable] = {Phase.AIM: aim.point, Phase.PLACE: place.point}
 
 
@@ -72,6 +75,10 @@ def tick(s: State, t: float) -> State:
         s.watch.tick(t)
         return s
     s = aid.advance(s)  # the aid fills in
+    if s.remote:
+        s = remote.check(s)
+        if s.remote and not shooter_is_remote(s):
+            remote.share(s, t)
     if s.box is not None:  # paused or asking: a shot waits
         return shot.pause(s) if isinstance(s.part, Run) else s
     step = TICKS.get(s.phase)
@@ -86,11 +93,16 @@ def wake_in(s: State, t: float) -> float | None:
         return None
     if s.phase in (Phase.RUN, Phase.CPU) or aid.running(s):
         return 0.0
+    if s.phase is Phase.LOBBY:
+        return lobby.LOBBY_POLL_S
+    if s.phase is Phase.REMOTE:
+        return remote.REMOTE_POLL_S
+    online = ONLINE_POLL_S if s.remote else None
     charge = s.controls.charge
     if charge.active:  # the meter moves; an inferred release is due at its time
         due = charge.release_due()
         return 0.0 if due is None else max(0.0, due - t)
-    return None
+    return online
 
 
 def moving(s: State) -> bool:

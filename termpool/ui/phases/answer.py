@@ -7,7 +7,8 @@ from dataclasses import replace
 
 from termpool.rules import words
 from termpool.rules.codes import Option
-from termpool.ui.phases.turn import new_match, start_turn, to_menu
+from termpool.ui.phases.lobby import open_lobby
+from termpool.ui.phases.turn import new_match, own_move, start_turn, tell, to_menu
 from termpool.ui.state import Phase, State
 from termpool.ui.watch import Watch
 
@@ -22,8 +23,12 @@ def key(s: State, key) -> State | None:
         if pick is None:
             return None
         line = (words.chose(m.players[m.shooter], pick), "dim")
+        at = own_move(s)
         m.choose(pick)
+        tell(s, at, kind="choose", choice=str(pick))
         return start_turn(replace(s, message=(line,)))
+    if key.name == "n" and s.remote:  # online: a new match is a new challenge
+        return open_lobby(to_menu(s))
     if key.name == "n":
         return new_match(s, s.opts.mode, s.opts.opponent)
     if key.name == "m":

@@ -6,14 +6,15 @@ from __future__ import annotations
 from dataclasses import replace
 
 from termpool.ui.phases.boxes import open_settings, open_stats
+from termpool.ui.phases.lobby import open_lobby
 from termpool.ui.phases.turn import new_match
-from termpool.ui.state import MENU, Help, State
+from termpool.ui.state import Help, State, menu_entries
 
 
 def key(s: State, key, action: str | None, t: float) -> State:
     if key.kind == "release":
         return s
-    n = len(MENU)
+    n = len(menu_entries(s))
     if key.name in ("up", "k") or action == "spin_up":
         return replace(s, menu_index=(s.menu_index - 1) % n)
     if key.name in ("down", "j") or action == "spin_down":
@@ -26,7 +27,9 @@ def key(s: State, key, action: str | None, t: float) -> State:
 
 
 def pick(s: State) -> State:
-    what = MENU[s.menu_index][1]
+    what = menu_entries(s)[s.menu_index][1]
+    if what == "online":
+        return open_lobby(s)
     if what == "quit":
         return replace(s, done=True)
     if what == "help":

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from termpool.game.layout import head_string
+from termpool.ui.phases.turn import own_move, tell
 from termpool.ui.state import Aim, Place, State, cue_index, nearest_angle, voice
 
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
@@ -31,7 +32,9 @@ def key(s: State, key, action: str | None, t: float) -> State:
         why = s.match.placement_error(x, y, voice(s))
         if why:
             return replace(s, message=((f"Can't place the cue ball there: {why}", "foul"),))
+        at = own_move(s)
         s.match.place_cue(x, y)
+        tell(s, at, kind="place", x=float(x), y=float(y))
         # Held, the key that put the ball down keeps coming (repeats; on terminals without
         # releases, as presses): none of it may start a shot.
         swallow = (key.name, t, False) if action == "shoot" else None

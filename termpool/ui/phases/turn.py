@@ -12,6 +12,7 @@ from termpool.game import Match, Shot
 from termpool.physics.cue import clamp_tip
 from termpool.rules import words
 from termpool.ui.controls import PowerCharge
+from termpool.ui.link import digest
 from termpool.ui.settings import player_names
 from termpool.ui.shots import DEFAULT_POWER, power_to_speed, simulate
 from termpool.ui.state import (
@@ -25,12 +26,15 @@ from termpool.ui.state import (
     State,
     Stroke,
     Thinking,
+    Waiting,
     cue_index,
     nearest_angle,
     shooter_is_cpu,
+    shooter_is_remote,
     voice,
 )
 from termpool.ui.term import signals_held
+from termpool.wire import LEAVE, MOVE
 
 
 def set_input_mode(s: State, mode: str) -> State:
@@ -59,11 +63,20 @@ def new_match(s: State, mode: str, opponent: str) -> State:
     # Without a seed every game deals a new rack; the seed is in the record either way.
     seed = opts.seed if opts.seed is not None else secrets.randbits(63)
     names = player_names(opts.player1, opts.player2, mode, opponent)
+    return begin_match(replace(s, played=played), opts, names, seed, cpu)
+
+
+def begin_match(s: State, opts, names, seed: int, cpu: tuple[bool, bool],
+                remote: tuple[int, ...] = ()) -> State:
+    """A match of `names` as `opts` set it, from `seed`; `cpu` says which players the
+    computer plays, `remote` which move on other screens (an online match: the other player,
+    or both for a match being watched)."""
+    mode = opts.mode
     players = tuple(Computer(opts.level, n) if c else n for n, c in zip(names, cpu, strict=True))
     match = Match(mode, table=opts.table, frames=opts.frames, players=players, seed=seed,
                   theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
                   eight_break=opts.eight_break)
-    s = replace(s, opts=opts, played=played, match=match, cpu=cpu, last_power=DEFAULT_POWER,
+    s = replace(s, opts=opts, match=match, cpu=cpu, remote=remote, last_power=DEFAULT_POWER,
                 shot_power_set=False, message=(), stroke=Stroke(),
                 powers=(None, None))  # power starts afresh: no 20% safety breaks the next
     return start_turn(s)
@@ -95,6 +108,8 @@ def start_turn(s: State) -> State:
         s = replace(s, message=(*s.message, frame))  # the news now
     if m.winner is not None:
         return log_match(replace(s, part=Over()))
+    if shooter_is_remote(s):  # their option, ball in hand or shot: it comes over the link
+        return replace(s, part=Waiting())
     if m.option is not None:
         return replace(s, part=Thinking() if shooter_is_cpu(s) else Option())
     if shooter_is_cpu(s):
@@ -110,6 +125,18 @@ def start_turn(s: State) -> State:
     return replace(s, part=Aim(), stroke=replace(s.stroke, angle=angle))
 
 
+def own_move(s: State) -> str | None:
+    """In an online match, before this screen's player moves: the match's digest, which the
+    move carries to the other screen (ui.link); else None."""
+    return digest(s.match) if s.remote and not shooter_is_remote(s) else None
+
+
+def tell(s: State, at: str | None, **move) -> None:
+    """The other screen of an online match makes this player's move too (`at`: own_move)."""
+    if at is not None:
+        s.link.send(MOVE, move={"at": at, **move})
+
+
 def shoot(s: State, speed: float, angle: float, side: float, top: float, called=None,
           push_out: bool = False, keep_message: bool = False) -> State:
     """Strike: the whole shot is simulated now and shown frame by frame (ui.shots). A shot
@@ -120,10 +147,12 @@ def shoot(s: State, speed: float, angle: float, side: float, top: float, called=
     side, top = clamp_tip(side, top)  # the strike's own limit, for the computer's too
     shot = Shot(speed=speed, angle=angle, side=side, top=top, called=called,
                 push_out=push_out)
+    at = own_move(s)
     try:
         run = s.match.begin(shot)
     except ValueError as e:
         return replace(s, part=Aim(), message=((f"that shot cannot be played: {e}", "foul"),))
+    tell(s, at, kind="shot", **shot.to_json())
     fast = s.opts.fast  # fast-forward is for one shot, unless the settings say
     fast = fast == "always" or (fast == "computer" and shooter_is_cpu(s))
     # The computer's plan stays in view while its shot runs, and then beside the verdict.
@@ -160,8 +189,9 @@ def log_match(s: State) -> State:
     for the terminal when the game ends."""
     if s.files.records is not None:
         s.files.records.keep(s.match)
-    if s.files.history is not None and s.match is not None:
-        warning = s.files.history.add(s.match, s.cpu, s.opts.level)
+    sides = tuple(p for p in (0, 1) if p not in s.remote)  # online: this player's; none
+    if s.files.history is not None and s.match is not None and sides:  # when watching
+        warning = s.files.history.add(s.match, s.cpu, s.opts.level, sides=sides)
         if warning:
             return replace(s, notes=(*s.notes, warning))
     return s
@@ -191,9 +221,13 @@ def record(s: State) -> tuple[State, Match | None]:
 
 
 def to_menu(s: State) -> State:
-    """Leave the match for the menu (it is saved and added to the history first)."""
+    """Leave the match for the menu (it is saved and added to the history first). An online
+    match is left for the other player too."""
     if isinstance(s.part, Run):
         s, _ = record(s)  # a shot still rolling is played out, as on the way out
     s = log_match(s)
     played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
-    return replace(s, box=None, part=Menu(), match=None, played=played)
+    if s.remote:
+        s.link.send(LEAVE)
+    return replace(s, box=None, part=Menu(), match=None, played=played, remote=(),
+                   message=())

@@ -1,0 +1,219 @@
+"""The lobby of `termpool serve`: who is connected, their challenges, and the matches between
+two of them, whose moves it passes on as they come, to the other player and to anyone
+watching. The games play their matches themselves, each its own copy, from the same
+settings and the same moves; the lobby never simulates anything.
+
+Messages are termpool.wire's, one JSON object a line.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import secrets
+from dataclasses import dataclass, field
+
+from termpool import wire
+
+MAX_MOVES = 10_000  # a match's moves kept for those who come to watch it (a long match has
+# a few hundred)
+
+
+@dataclass
+class Seat:
+    """A game connected to the lobby: whose it is, where its player is ("lobby" when the
+    lobby screen is open, "playing" or "watching" a match, else "menu"), the challenge it
+    has open, and its match."""
+
+    id: int
+    name: str
+    writer: asyncio.StreamWriter
+    where: str = "menu"
+    challenge: int | None = None  # the seat it challenged, until answered
+    game: dict | None = None  # ... with these match settings
+    table: Table | None = None  # the match it plays or watches
+
+
+@dataclass
+class Table:
+    """A match between two seats: how it began and its moves so far, and who watches it."""
+
+    game: dict
+    players: tuple[int, int]
+    names: list[str]
+    moves: list = field(default_factory=list)
+    watchers: set[int] = field(default_factory=set)
+
+
+class Lobby:
+    def __init__(self) -> None:
+        self.tokens: dict[str, str] = {}  # a session's token -> its player's name
+        self.seats: dict[int, Seat] = {}
+        self._next = 1
+
+    def admit(self, name: str) -> str:
+        """A token for `name`'s game (given to it in its environment)."""
+        token = secrets.token_hex(16)
+        self.tokens[token] = name
+        return token
+
+    def forget(self, token: str) -> None:
+        self.tokens.pop(token, None)
+
+    def _send(self, dest: Seat, kind: str, /, **fields) -> None:
+        if not dest.writer.is_closing():
+            dest.writer.write(wire.encode(kind, **fields))
+
+    def _players(self) -> None:
+        """Everyone's list of who is here, after any change."""
+        names = [{"id": s.id, "name": s.name, "where": s.where} for s in self.seats.values()]
+        for seat in self.seats.values():
+            self._send(seat, wire.PLAYERS, players=names, you=seat.id)
+
+    async def connection(self, reader: asyncio.StreamReader,
+                         writer: asyncio.StreamWriter) -> None:
+        """One game's connection, from its HELLO to its end."""
+        seat = None
+        try:
+            msg = wire.decode(await reader.readline())
+            name = self.tokens.get(msg.get("token")) if msg and msg["t"] == wire.HELLO else None
+            if not isinstance(name, str):
+                writer.write(wire.encode(wire.REFUSED, why=wire.BAD))
+                return
+            seat = Seat(self._next, name, writer)
+            self._next += 1
+            self.seats[seat.id] = seat
+            self._players()
+            while True:
+                line = await reader.readline()
+                if not line.endswith(b"\n"):  # the end, or a line cut off
+                    return
+                msg = wire.decode(line)
+                if msg is None:
+                    self._send(seat, wire.REFUSED, why=wire.BAD)
+                    continue
+                self.handle(seat, msg)
+        except (ConnectionError, ValueError):  # ValueError: a line past the limit
+            return
+        finally:
+            if seat is not None:
+                self.gone(seat)
+            writer.close()
+
+    def handle(self, seat: Seat, msg: dict) -> None:
+        kind = msg["t"]
+        if kind == wire.WHERE and seat.table is None:
+            seat.where = "lobby" if msg.get("lobby") is True else "menu"
+            if seat.where != "lobby":
+                self._withdraw(seat)
+            self._players()
+        elif kind == wire.CHALLENGE:
+            self._challenge(seat, msg.get("to"), msg.get("game"))
+        elif kind == wire.ANSWER:
+            self._answer(seat, msg.get("to"), msg.get("yes") is True)
+        elif kind == wire.WATCH:
+            self._watch(seat, msg.get("to"))
+        elif kind == wire.MOVE and seat.where == "playing":
+            self._move(seat, msg.get("move"))
+        elif kind == wire.AIM and seat.where == "playing":
+            self._pass_on(seat, wire.AIM, aim=msg.get("aim"))
+        elif kind == wire.LEAVE:
+            self._part(seat)
+            self._players()
+        else:
+            self._send(seat, wire.REFUSED, why=wire.BAD)
+
+    def _challenge(self, seat: Seat, to, game) -> None:
+        other = self.seats.get(to) if isinstance(to, int) else None
+        if (not isinstance(game, dict) or set(game) != set(wire.GAME_KEYS)
+                or seat.where != "lobby"):
+            self._send(seat, wire.REFUSED, why=wire.BAD)
+        elif other is None:
+            self._send(seat, wire.REFUSED, why=wire.GONE)
+        elif (other is seat or other.where != "lobby" or seat.challenge is not None
+              or any(s.challenge == other.id for s in self.seats.values())):
+            self._send(seat, wire.REFUSED, why=wire.BUSY)
+        else:
+            seat.challenge, seat.game = other.id, game
+            self._send(other, wire.CHALLENGED, by=seat.id, name=seat.name, game=game)
+
+    def _answer(self, seat: Seat, to, yes: bool) -> None:
+        other = self.seats.get(to) if isinstance(to, int) else None
+        if other is None or other.challenge != seat.id:
+            self._send(seat, wire.REFUSED, why=wire.GONE)
+            return
+        game = other.game
+        other.challenge = other.game = None
+        if not yes or seat.where != "lobby" or other.where != "lobby":
+            self._send(other, wire.DECLINED, name=seat.name)
+            return
+        self._withdraw(seat)
+        # The challenger is the first player.
+        table = Table(game, (other.id, seat.id), [other.name, seat.name])
+        for n, s in enumerate((other, seat)):
+            s.table, s.where = table, "playing"
+            self._send(s, wire.START, game=game, names=table.names, seat=n, moves=[])
+        self._players()
+
+    def _watch(self, seat: Seat, to) -> None:
+        """`seat` watches the match player `to` plays: the match so far, then each move."""
+        other = self.seats.get(to) if isinstance(to, int) else None
+        if seat.where != "lobby":
+            self._send(seat, wire.REFUSED, why=wire.BAD)
+        elif other is None or other.table is None or other.where != "playing":
+            self._send(seat, wire.REFUSED, why=wire.GONE)
+        else:
+            self._withdraw(seat)
+            table = other.table
+            table.watchers.add(seat.id)
+            seat.table, seat.where = table, "watching"
+            self._send(seat, wire.START, game=table.game, names=table.names, seat=None,
+                       moves=table.moves)
+            self._players()
+
+    def _move(self, seat: Seat, move) -> None:
+        table = seat.table
+        if len(table.moves) >= MAX_MOVES:
+            self._send(seat, wire.REFUSED, why=wire.BAD)
+            return
+        table.moves.append(move)
+        self._pass_on(seat, wire.MOVE, move=move)
+
+    def _pass_on(self, seat: Seat, kind: str, /, **fields) -> None:
+        """To the other player of `seat`'s match and to its watchers."""
+        table = seat.table
+        for k in (*table.players, *sorted(table.watchers)):
+            if k != seat.id and k in self.seats:
+                self._send(self.seats[k], kind, **fields)
+
+    def _withdraw(self, seat: Seat) -> None:
+        """The challenges to and from `seat` are off."""
+        if seat.challenge in self.seats:
+            self._send(self.seats[seat.challenge], wire.WITHDRAWN, by=seat.id, name=seat.name)
+        seat.challenge = seat.game = None
+        for s in self.seats.values():
+            if s.challenge == seat.id:
+                s.challenge = s.game = None
+                self._send(s, wire.DECLINED, name=seat.name)
+
+    def _part(self, seat: Seat) -> None:
+        """`seat` leaves its match. A watcher just goes; a player ends it: the other player
+        and the watchers are told, and all are back in the menu."""
+        table, seat.table = seat.table, None
+        if table is None:
+            return
+        was, seat.where = seat.where, "menu"
+        if was == "watching":
+            table.watchers.discard(seat.id)
+            return
+        for k in (*table.players, *sorted(table.watchers)):
+            other = self.seats.get(k)
+            if other is None or other is seat:
+                continue
+            other.table, other.where = None, "menu"
+            self._send(other, wire.LEFT, name=seat.name)
+
+    def gone(self, seat: Seat) -> None:
+        self._withdraw(seat)
+        self._part(seat)
+        self.seats.pop(seat.id, None)
+        self._players()

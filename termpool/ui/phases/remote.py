@@ -1,0 +1,116 @@
+"""An online match, the other player's turn: their moves (an option's answer, the ball in
+hand, a shot) arrive over the link (ui.link) and are made here on this screen's copy of the
+match, exactly as theirs made them. A move made on a match that differs from the mover's
+(their digests disagree), one that cannot be read, or the other player leaving, ends it."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from termpool.game.record import ReplayError, check_shot_params
+from termpool.physics.cue import clamp_tip
+from termpool.rules import words
+from termpool.rules.codes import Choice
+from termpool.ui.link import digest
+from termpool.ui.phases.place import clamp
+from termpool.ui.phases.turn import finish_shot, shoot, start_turn, to_menu
+from termpool.ui.state import Aim, Place, Run, State, Waiting
+
+REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
+OUT_OF_STEP = "the two screens' matches differ; the match has ended (it is kept)"
+UNREADABLE = "the other screen sent a move this one cannot make; the match has ended"
+
+
+def ended(s: State, why: str) -> State:
+    """Leave the online match for the menu, saying why."""
+    s = to_menu(s)
+    return replace(s, message=((why, "foul"),))
+
+
+def check(s: State) -> State:
+    """Any phase of an online match: the link is read, and the match ends if the other
+    player has left or the server has gone."""
+    link = s.link
+    link.poll()
+    if link.left is not None:
+        name, link.left = link.left, None
+        kept = "" if len(s.remote) == 2 else "; it is kept in your history"
+        return ended(s, f"{name} has left the match{kept}")
+    if link.closed:
+        return ended(s, "the server has gone; the match is kept in your history")
+    return s
+
+
+def share(s: State, t: float) -> None:
+    """This screen's player aiming or placing: the other screens are shown it (ui.link)."""
+    part = s.part
+    if isinstance(part, Place):
+        s.link.share_aim(("place", *map(float, part.cursor)), t)
+    elif isinstance(part, Aim):
+        st = s.stroke
+        s.link.share_aim(("stick", float(st.angle), float(st.side), float(st.top)), t)
+
+
+def shown_aim(s: State) -> State:
+    """The other player's stick or ball in hand as it last came (ui.link), on show."""
+    aim, part = s.link.aim, s.part
+    try:
+        kind, values = aim["kind"], [float(v) for v in aim["values"]]
+        if kind == "stick" and len(values) == 3 and all(map(math.isfinite, values)):
+            angle, side, top = values
+            side, top = clamp_tip(side, top)
+            if (part.stick and (angle, side, top) ==
+                    (s.stroke.angle, s.stroke.side, s.stroke.top)):
+                return s
+            return replace(s, part=replace(part, stick=True, cursor=None),
+                           stroke=replace(s.stroke, angle=angle % 360.0, side=side, top=top))
+        if kind == "place" and len(values) == 2 and s.match.ball_in_hand and not part.placed:
+            x, y = clamp(s, *values)
+            return s if part.cursor == (x, y) else replace(s, part=replace(
+                part, cursor=(x, y), stick=False))
+    except (KeyError, TypeError, ValueError):
+        pass
+    return s  # a sign of life that cannot be shown is not worth ending a match over
+
+
+def tick(s: State, t: float) -> State:
+    """Make the other player's next move, if it has come; meanwhile show their aim."""
+    if not isinstance(s.part, Waiting):
+        return s
+    if not s.link.moves:
+        return shown_aim(s) if s.link.aim is not None else s
+    move = s.link.moves.popleft()
+    m = s.match
+    if not isinstance(move, dict) or move.get("at") != digest(m):
+        return ended(s, OUT_OF_STEP)
+    kind = move.get("kind")
+    try:
+        if kind == "place":
+            x, y = float(move["x"]), float(move["y"])
+            if m.placement_error(x, y) is not None:
+                raise ValueError("placement")
+            m.place_cue(x, y)
+            return replace(s, part=Waiting(placed=True))  # their shot comes next
+        if kind == "choose":
+            choice = Choice(move["choice"])
+            line = (words.chose(m.players[m.shooter], choice), "dim")
+            m.choose(choice)
+            return start_turn(replace(s, message=(line,)))
+        if kind == "shot":
+            check_shot_params(move, "move")
+            called = tuple(move["called"]) if move.get("called") is not None else None
+            side, top = float(move["side"]), float(move["top"])
+            angle = float(move["angle"])
+            s = replace(s, stroke=replace(s.stroke, angle=angle, side=side, top=top))
+            s = shoot(s, float(move["speed"]), angle, side, top, called,
+                      bool(move.get("push_out", False)))
+            if isinstance(s.part, Run):
+                # A match joined to watch catches up at once: its shots before the last
+                # are played out without being shown.
+                return finish_shot(s) if s.link.moves else s
+            # Refused here, though the mover's match took it: the copies differ.
+            return ended(s, OUT_OF_STEP)
+    except (KeyError, TypeError, ValueError, ReplayError):
+        pass
+    return ended(s, UNREADABLE)

@@ -1,0 +1,461 @@
+"""The lobby of `termpool serve`: its messages (the server's side), and online matches between
+two apps, each with its own copy of the match, over a real socket."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import socket
+import threading
+import time
+from dataclasses import replace
+
+import pytest
+
+from termpool import wire
+from termpool.lobby import Lobby
+from termpool.ui.app import App
+from termpool.ui.keys import Key
+from termpool.ui.link import Link, digest
+from termpool.ui.phases import remote
+from termpool.ui.phases.turn import shoot
+from termpool.ui.state import Options, Phase, Waiting, menu_entries
+
+WAIT_S = 20.0
+
+
+@pytest.fixture
+def lobby(tmp_path):
+    """A Lobby listening on a socket, its loop in a thread of its own."""
+    lob = Lobby()
+    path = str(tmp_path / "lobby")
+    loop = asyncio.new_event_loop()
+    ready = threading.Event()
+    holder = {}
+
+    async def main():
+        holder["server"] = await asyncio.start_unix_server(lob.connection, path,
+                                                           limit=wire.MAX_LINE)
+        ready.set()
+
+    loop.run_until_complete(main())
+    thread = threading.Thread(target=loop.run_forever, daemon=True)
+    thread.start()
+    ready.wait()
+    lob.path = path
+    yield lob
+
+    async def shutdown():
+        holder["server"].close()
+        for task in asyncio.all_tasks():
+            if task is not asyncio.current_task():
+                task.cancel()
+        await asyncio.sleep(0.01)
+
+    asyncio.run_coroutine_threadsafe(shutdown(), loop).result(5)
+    loop.call_soon_threadsafe(loop.stop)
+    thread.join(5)
+    loop.close()
+
+
+class Raw:
+    """A game's side of the lobby, by hand: messages out, messages in."""
+
+    def __init__(self, lob: Lobby, name: str | None, token: str | None = None) -> None:
+        self.sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        self.sock.connect(lob.path)
+        self.sock.settimeout(WAIT_S)
+        self.file = self.sock.makefile("rb")
+        self.send(wire.HELLO, token=token if token is not None else lob.admit(name))
+
+    def close(self) -> None:
+        self.file.close()  # the socket closes with the last of its users
+        self.sock.close()
+
+    def send(self, kind: str, **fields) -> None:
+        self.sock.sendall(wire.encode(kind, **fields))
+
+    def next(self, kind: str) -> dict:
+        """The next message of this kind (the others before it skipped)."""
+        while True:
+            line = self.file.readline()
+            assert line, f"closed before a {kind!r}"
+            msg = json.loads(line)
+            if msg["t"] == kind:
+                return msg
+
+    def players(self, test) -> dict:
+        """The first list of players that passes `test`."""
+        while True:
+            msg = self.next(wire.PLAYERS)
+            if test(msg["players"]):
+                return msg
+
+
+GAME = {"mode": "8ball", "table": "9ft", "frames": 1, "seed": 7, "three_foul": False,
+        "eight_break": "respot", "theme": "standard"}
+
+
+def where(players, name):
+    return next((p["where"] for p in players if p["name"] == name), None)
+
+
+def test_a_challenge_accepted_starts_one_match_for_both(lobby):
+    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
+    ann.send(wire.WHERE, lobby=True)
+    bob.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
+    bob_id = next(p["id"] for p in seen["players"] if p["name"] == "bob")
+    ann.send(wire.CHALLENGE, to=bob_id, game=GAME)
+    got = bob.next(wire.CHALLENGED)
+    assert got["name"] == "ann" and got["game"] == GAME
+    bob.send(wire.ANSWER, to=got["by"], yes=True)
+    a, b = ann.next(wire.START), bob.next(wire.START)
+    assert a["game"] == b["game"] == GAME
+    assert a["names"] == b["names"] == ["ann", "bob"]  # the challenger first
+    assert (a["seat"], b["seat"]) == (0, 1)
+    # A move goes to the other player only, as it was sent.
+    move = {"kind": "shot", "at": "x", "speed": 0.1 + 0.2, "angle": 1e-300}
+    ann.send(wire.MOVE, move=move)
+    assert bob.next(wire.MOVE)["move"] == move
+    ann.send(wire.LEAVE)
+    assert bob.next(wire.LEFT)["name"] == "ann"
+    after = bob.players(lambda ps: where(ps, "bob") == "menu")
+    assert where(after["players"], "ann") == "menu"
+
+
+def test_a_match_can_be_watched_from_its_start_and_its_moves_follow(lobby):
+    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
+    for r in (ann, bob, cy):
+        r.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
+    ids = {p["name"]: p["id"] for p in seen["players"]}
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    first = {"kind": "place", "at": "a", "x": 0.5, "y": 0.6}
+    ann.send(wire.MOVE, move=first)
+    assert bob.next(wire.MOVE)["move"] == first
+    cy.send(wire.WATCH, to=ids["bob"])
+    start = cy.next(wire.START)
+    assert start["seat"] is None and start["names"] == ["ann", "bob"]
+    assert start["game"] == GAME and start["moves"] == [first]
+    second = {"kind": "shot", "at": "b", "speed": 3.0}
+    ann.send(wire.MOVE, move=second)
+    assert cy.next(wire.MOVE)["move"] == second
+    assert bob.next(wire.MOVE)["move"] == second
+    cy.send(wire.MOVE, move=second)  # a watcher makes no moves
+    assert cy.next(wire.REFUSED)["why"] == wire.BAD
+    cy.send(wire.LEAVE)  # a watcher going ends nothing
+    third = {"kind": "shot", "at": "c", "speed": 2.0}
+    bob.send(wire.MOVE, move=third)
+    assert ann.next(wire.MOVE)["move"] == third
+    cy.send(wire.WHERE, lobby=True)
+    cy.send(wire.WATCH, to=ids["ann"])
+    assert cy.next(wire.START)["moves"] == [first, second, third]
+    ann.send(wire.LEAVE)  # a player going ends it for everyone
+    assert bob.next(wire.LEFT)["name"] == "ann"
+    assert cy.next(wire.LEFT)["name"] == "ann"
+    cy.send(wire.WHERE, lobby=True)
+    cy.send(wire.WATCH, to=ids["bob"])  # no match now
+    assert cy.next(wire.REFUSED)["why"] == wire.GONE
+
+
+def test_a_declined_challenge_says_so_and_starts_nothing(lobby):
+    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
+    ann.send(wire.WHERE, lobby=True)
+    bob.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
+    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
+             game=GAME)
+    got = bob.next(wire.CHALLENGED)
+    bob.send(wire.ANSWER, to=got["by"], yes=False)
+    assert ann.next(wire.DECLINED)["name"] == "bob"
+    bob.send(wire.ANSWER, to=got["by"], yes=True)  # too late: nothing is open
+    assert bob.next(wire.REFUSED)["why"] == wire.GONE
+
+
+def test_a_challenger_who_leaves_the_lobby_withdraws_the_challenge(lobby, tmp_path):
+    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
+    ann.send(wire.WHERE, lobby=True)
+    bob.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
+    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
+             game=GAME)
+    by = bob.next(wire.CHALLENGED)["by"]
+    ann.send(wire.WHERE, lobby=False)
+    got = bob.next(wire.WITHDRAWN)
+    assert got["by"] == by and got["name"] == "ann"
+
+
+def test_a_withdrawn_challenge_leaves_the_screen(lobby):
+    from termpool.ui.phases.lobby import tick
+
+    link = Link(lobby.path, lobby.admit("bob"))
+    app = App(Options(colors="mono"), link=link)
+    entries = [e[1] for e in menu_entries(app.state)]
+    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    link.challenged = {"t": wire.CHALLENGED, "by": 5, "name": "ann", "game": GAME}
+    link._take({"t": wire.WITHDRAWN, "by": 5, "name": "ann"})
+    app.state = tick(app.state, time.monotonic())
+    assert link.challenged is None
+    text = "\n".join("".join(r) for r in app.cells(80, 24)[0])
+    assert "ann withdrew the challenge" in text and "challenges you" not in text
+
+
+def test_who_may_be_challenged(lobby):
+    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
+    ann.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == "menu")
+    ids = {p["name"]: p["id"] for p in seen["players"]}
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)  # bob is in the menu
+    assert ann.next(wire.REFUSED)["why"] == wire.BUSY
+    ann.send(wire.CHALLENGE, to=ids["ann"], game=GAME)  # oneself
+    assert ann.next(wire.REFUSED)["why"] == wire.BUSY
+    ann.send(wire.CHALLENGE, to=999, game=GAME)
+    assert ann.next(wire.REFUSED)["why"] == wire.GONE
+    ann.send(wire.CHALLENGE, to=ids["bob"], game={"mode": "8ball"})  # not a whole game
+    assert ann.next(wire.REFUSED)["why"] == wire.BAD
+    bob.send(wire.CHALLENGE, to=ids["ann"], game=GAME)  # from outside the lobby
+    assert bob.next(wire.REFUSED)["why"] == wire.BAD
+
+
+def test_a_player_who_drops_is_gone_from_the_match_and_the_list(lobby):
+    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
+    ann.send(wire.WHERE, lobby=True)
+    bob.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
+    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
+             game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    bob.close()
+    assert ann.next(wire.LEFT)["name"] == "bob"
+    ann.players(lambda ps: [p["name"] for p in ps] == ["ann"])
+
+
+def test_a_game_without_a_good_token_or_with_garbage_is_refused(lobby):
+    stranger = Raw(lobby, None, token="not-a-token")
+    assert stranger.next(wire.REFUSED)["why"] == wire.BAD
+    assert stranger.file.readline() == b""  # and the connection is closed
+    ann = Raw(lobby, "ann")
+    ann.sock.sendall(b"{not json\n")
+    assert ann.next(wire.REFUSED)["why"] == wire.BAD
+    ann.sock.sendall(b"x" * (wire.MAX_LINE + 10))  # no line at all: the connection goes
+    with pytest.raises((AssertionError, ConnectionError)):
+        ann.next(wire.PLAYERS)
+        ann.next(wire.PLAYERS)
+
+
+def test_a_token_is_one_players_and_is_forgotten_with_the_session(lobby):
+    token = lobby.admit("ann")
+    lobby.forget(token)
+    assert Raw(lobby, None, token=token).next(wire.REFUSED)["why"] == wire.BAD
+
+
+# --------------------------------------------------------------------- two apps, one match
+def until(apps, test, what: str) -> None:
+    end = time.monotonic() + WAIT_S
+    while not test():
+        assert time.monotonic() < end, f"timed out waiting for {what}"
+        for app in apps:
+            app.tick(time.monotonic())
+        time.sleep(0.005)
+
+
+def online(lobby, tmp_path) -> tuple[App, App]:
+    """Two apps (ann's, bob's) in an online 9-ball match that ann challenged bob to."""
+    from termpool.game.history import Recorder
+
+    apps = []
+    for name in ("ann", "bob"):
+        link = Link(lobby.path, lobby.admit(name))
+        app = App(Options(colors="mono", player1=name), link=link,
+                  history=Recorder(tmp_path / f"{name}.jsonl"))
+        entries = [e[1] for e in menu_entries(app.state)]
+        app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+        assert app.state.phase is Phase.LOBBY
+        apps.append(app)
+    ann, bob = apps
+    until(apps, lambda: len(ann.state.link.others()) == 1
+          and ann.state.link.others()[0]["where"] == "lobby", "bob in ann's lobby")
+    ann.key(Key("right"), time.monotonic())  # 9-ball
+    ann.key(Key("enter"), time.monotonic())
+    until(apps, lambda: bob.state.link.challenged is not None, "the challenge")
+    text = "\n".join("".join(r) for r in bob.cells(80, 24)[0])
+    assert "ann challenges you to 9-ball" in text
+    bob.key(Key("y"), time.monotonic())
+    until(apps, lambda: ann.state.match is not None and bob.state.match is not None,
+          "the match")
+    return ann, bob
+
+
+def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    a, b = ann.state.match, bob.state.match
+    assert a.players == b.players == ("ann", "bob") and a.mode == "9ball"
+    assert (ann.state.remote, bob.state.remote) == ((1,), (0,))
+    assert bob.state.phase is Phase.REMOTE  # ann breaks; bob watches her move
+    # Ann puts the cue ball down and breaks with her keys.
+    ann.key(Key("up"), time.monotonic())
+    ann.key(Key("enter"), time.monotonic())
+    assert ann.state.phase is Phase.AIM
+    until([bob], lambda: bob.state.part == Waiting(placed=True), "bob to see her place it")
+    assert digest(a) == digest(b)
+    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    assert "ann is aiming, on their own screen" in text
+    ann.state = shoot(ann.state, 7.0, 1.5, 0.1, -0.2)
+    until([ann, bob], lambda: ann.state.phase not in (Phase.RUN,)
+          and bob.state.phase not in (Phase.RUN, Phase.REMOTE), "the break on both screens")
+    assert len(a.history) == len(b.history) == 1
+    assert json.dumps(a.to_json(), sort_keys=True) == json.dumps(b.to_json(), sort_keys=True)
+    assert digest(a) == digest(b)
+    # Whoever is to shoot now moves on their screen and the other waits.
+    mover, watcher = (ann, bob) if a.shooter == 0 else (bob, ann)
+    assert watcher.state.phase is Phase.REMOTE
+    assert mover.state.phase in (Phase.AIM, Phase.PLACE, Phase.OPTION)
+    # Ann leaves: bob is told, is back in the menu, and keeps only his own line.
+    ann.key(Key("q"), time.monotonic())
+    ann.key(Key("m"), time.monotonic())
+    until([bob], lambda: bob.state.phase is Phase.MENU, "bob told")
+    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    assert "ann has left the match" in text
+    lines = [json.loads(x) for x in (tmp_path / "bob.jsonl").read_text().splitlines()]
+    assert [x["player"] for x in lines] == ["bob"] and lines[0]["opponent"] == "ann"
+    assert [json.loads(x)["player"] for x in
+            (tmp_path / "ann.jsonl").read_text().splitlines()] == ["ann"]
+
+
+def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):
+    from termpool.game.history import Recorder
+
+    ann, bob = online(lobby, tmp_path)
+    ann.key(Key("enter"), time.monotonic())
+    ann.state = shoot(ann.state, 8.0, 0.5, 0.0, 0.0)
+    until([ann, bob], lambda: bob.state.phase is not Phase.RUN and bob.state.match.history
+          and ann.state.phase is not Phase.RUN, "the break")
+    cy = App(Options(colors="mono", player1="cy"), link=Link(lobby.path, lobby.admit("cy")),
+             history=Recorder(tmp_path / "cy.jsonl"))
+    entries = [e[1] for e in menu_entries(cy.state)]
+    cy.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    until([cy], lambda: any(p["where"] == "playing" for p in cy.state.link.others()),
+          "the players in cy's lobby")
+    cy.key(Key("enter"), time.monotonic())  # the first player listed: playing, so watched
+    until([ann, bob, cy], lambda: cy.state.match is not None
+          and cy.state.phase is Phase.REMOTE and len(cy.state.match.history) == 1,
+          "cy caught up")
+    assert cy.state.remote == (0, 1)
+    assert digest(cy.state.match) == digest(ann.state.match) == digest(bob.state.match)
+    # The next shot, whoever plays it, reaches cy's screen too.
+    mover = ann if ann.state.match.shooter == 0 else bob
+    if mover.state.phase is Phase.PLACE:
+        mover.key(Key("enter"), time.monotonic())
+    mover.state = shoot(mover.state, 2.0, 100.0, 0.0, 0.0)
+    until([ann, bob, cy], lambda: all(len(a.state.match.history) == 2
+                                      and a.state.phase is not Phase.RUN
+                                      for a in (ann, bob, cy)), "the second shot")
+    assert digest(cy.state.match) == digest(ann.state.match) == digest(bob.state.match)
+    text = "\n".join("".join(r) for r in cy.cells(80, 24)[0])
+    assert "ann" in text and "bob" in text
+    cy.key(Key("q"), time.monotonic())
+    cy.key(Key("m"), time.monotonic())  # cy goes; the match goes on
+    until([ann, bob], lambda: True, "a tick")
+    assert ann.state.match is not None and bob.state.match is not None
+    assert not (tmp_path / "cy.jsonl").exists()  # a watcher's history has no one's line
+
+
+def test_the_other_screen_follows_the_ball_in_hand_and_the_stick(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    for _ in range(3):
+        ann.key(Key("up"), time.monotonic())
+        time.sleep(0.12)  # the aim goes out at most every AIM_EVERY_S
+        ann.tick(time.monotonic())
+    until([ann, bob], lambda: bob.state.part.cursor == ann.state.part.cursor,
+          "bob to see the ball in hand where ann has it")
+    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    assert "ann is placing the cue ball" in text
+    ann.key(Key("enter"), time.monotonic())
+    for _ in range(3):
+        ann.key(Key("left"), time.monotonic())
+        time.sleep(0.12)
+        ann.tick(time.monotonic())
+    ann.key(Key("w"), time.monotonic())  # top spin
+    until([ann, bob], lambda: bob.state.part.stick
+          and (bob.state.stroke.angle, bob.state.stroke.top)
+          == (ann.state.stroke.angle, ann.state.stroke.top), "bob to see ann's stick")
+    assert ann.state.stroke.top != 0.0
+    assert len(bob.state.match.history) == 0  # aiming is not a move
+    # The stick is drawn on bob's screen (in colour): cells differ from a screen without it.
+    import numpy as np
+
+    bob.state = replace(bob.state, depth="truecolor")
+    with_stick = bob.cells(100, 30)
+    bob.state = replace(bob.state, part=replace(bob.state.part, stick=False))
+    without = bob.cells(100, 30)
+    assert not all(np.array_equal(a, b) for a, b in zip(with_stick, without, strict=True))
+
+
+def test_aims_go_to_the_match_only_and_are_not_kept(lobby):
+    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
+    for r in (ann, bob, cy):
+        r.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
+    ids = {p["name"]: p["id"] for p in seen["players"]}
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    cy.send(wire.WATCH, to=ids["ann"])
+    assert cy.next(wire.START)["moves"] == []
+    aim = {"kind": "stick", "values": [10.0, 0.0, 0.1]}
+    ann.send(wire.AIM, aim=aim)
+    assert bob.next(wire.AIM)["aim"] == aim
+    assert cy.next(wire.AIM)["aim"] == aim
+    cy.send(wire.LEAVE)
+    cy.send(wire.WHERE, lobby=True)
+    cy.send(wire.WATCH, to=ids["ann"])
+    assert cy.next(wire.START)["moves"] == []
+
+
+def test_copies_that_differ_end_the_match_instead_of_playing_on_apart(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    bob.state.match.pos[3, 0] += 1e-12  # one ball a picometre out on bob's copy
+    ann.key(Key("enter"), time.monotonic())  # ann places: the move carries her digest
+    until([bob], lambda: bob.state.phase is Phase.MENU, "bob's copy to notice")
+    assert bob.state.message[0][0] == remote.OUT_OF_STEP
+
+
+@pytest.mark.parametrize("move", [
+    {"kind": "shot", "speed": "fast"}, {"kind": "place", "x": 1e9, "y": 0.0},
+    {"kind": "choose", "choice": "dance"}, {"kind": "jump"}])
+def test_a_move_that_cannot_be_made_ends_the_match(lobby, tmp_path, move):
+    ann, bob = online(lobby, tmp_path)
+    bob.state.link.moves.append({"at": digest(bob.state.match), **move})
+    bob.state = remote.tick(bob.state, time.monotonic())
+    assert bob.state.phase is Phase.MENU
+    assert bob.state.message[0][0] == remote.UNREADABLE
+
+
+def test_the_waiting_screen_says_who_is_moving_and_takes_no_shot_keys(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    assert "ann is placing the cue ball, on their own screen" in text
+    before = bob.state.match.to_json()
+    for k in ("space", "enter", "left", "1"):
+        bob.key(Key(k), time.monotonic())
+    assert isinstance(bob.state.part, Waiting)
+    assert bob.state.match.to_json() == before
+
+
+def test_the_server_going_ends_the_match(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    bob.state.link.sock.shutdown(socket.SHUT_RDWR)
+    bob.state = replace(bob.state)
+    until([bob], lambda: bob.state.phase is Phase.MENU, "bob to notice")
+    assert "the server has gone" in bob.state.message[0][0]
+
+
+def test_without_a_server_the_menu_has_no_online_entry():
+    app = App(Options(colors="mono"))
+    assert "online" not in [e[1] for e in menu_entries(app.state)]
+    assert Link.open(None) is None
+    assert Link.open(("/nonexistent/lobby", "t")) is None
