@@ -213,3 +213,13 @@ def at(row: list, t: float) -> tuple[list, list, list]:
     decay = rate * max_one(d, 0.0)
     w = [wx + alx * d, wy + aly * d, math.copysign(max_one(abs(wz) - decay, 0.0), wz)]
     return p, v, w
+
+
+def swept(p: np.ndarray, v: np.ndarray, a: np.ndarray, T: np.ndarray) -> tuple:
+    """(lo, hi): the box, coordinate by coordinate, that the quadratic p + v s + a s^2 / 2
+    sweeps over s in [0, T] (T >= 0): its ends and, where it turns inside the window, its
+    vertex. Exact up to rounding (a few ulps of the coordinates)."""
+    e = p + (v + 0.5 * a * T) * T
+    s = np.minimum(np.maximum(-v / a, 0.0), T)  # the vertex; nan where v = a = 0 (no vertex)
+    m = p + (v + 0.5 * a * s) * s
+    return np.fmin(np.minimum(p, e), m), np.fmax(np.maximum(p, e), m)

@@ -13,7 +13,7 @@ import numpy as np
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
 from termpool.physics.flat import flat
-from termpool.physics.motion import Col
+from termpool.physics.motion import Col, swept
 from termpool.physics.roots import first_contact, first_contact_few
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
@@ -23,6 +23,7 @@ from termpool.physics.vec import norm as _norm
 # (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
 CHUNK = 16384
 PLAIN_MAX = 1024  # one table's renewals of up to this many (ball x ball) in plain floats
+GAP = 1e-6  # m: boxes of paths (`_overlap`) are widened by this, far above their rounding
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -166,9 +167,11 @@ class Schedule:
         # of table u[r]).
         M = b.size
         tabs, u = np.unique(b, return_inverse=True)
-        P, V, _ = balls.eval(tabs[:, None], self._balls, self.tb[tabs][:, None], spin=False)
+        tbt = self.tb[tabs][:, None]
+        P, V, _ = balls.eval(tabs[:, None], self._balls, tbt, spin=False)
         A = balls.acc[tabs]
         p, v, a = P[u, i], V[u, i], A[u, i]
+        end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
         # Pairs: every other ball on the table, where at least one of the two moves. Two
         # renewed balls meet as the first one's pair only: their times are the same bits
         # either way round (each difference the other's negated, each product the same).
@@ -176,11 +179,12 @@ class Schedule:
         renewed = self._row[b]
         valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
                  & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
+        valid &= self._overlap(P, V, A, np.minimum(end_k - tbt, 2.0 * self.horizon),
+                               balls.radius[tabs], u, i)
         mi, kk = np.nonzero(valid)
         # The other balls picked by one flat index into the (table, ball) rows: one take per
         # array instead of a two-index lookup each.
         k = u[mi] * self.N + kk
-        end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
         rel_p = [P.reshape(-1, 2).take(k, axis=0) - p[mi]]
         rel_v = [V.reshape(-1, 2).take(k, axis=0) - v[mi]]
         rel_a = [A.reshape(-1, 2).take(k, axis=0) - a[mi]]
@@ -231,6 +235,24 @@ class Schedule:
             f = allt.argmin(axis=1)
             self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
             self.f_cush[b[mv], i[mv]] = f
+
+    def _overlap(self, P, V, A, T, radius, u, i) -> np.ndarray:
+        """(M, N) whether ball i[r] of table u[r] and each ball of that table can come within
+        touching distance in their windows: each ball's path over its own window (T, from
+        the table's clock; a pair's window is the shorter of the two) sweeps a box, widened
+        by its radius and GAP; boxes apart by more than that are balls apart by more, for
+        which `first_contact` finds no contact (not even a touching one), so skipping them
+        changes no prediction. A pair's window ends before the shorter of its balls' own,
+        at most a moving ball's (`horizon`), so a ball at rest's window is cut at twice that.
+        Boxes that are not numbers (an endless window) keep their pairs."""
+        lo, hi = swept(P.transpose(2, 0, 1), V.transpose(2, 0, 1), A.transpose(2, 0, 1),
+                       np.maximum(T, 0.0))
+        rg = radius + GAP
+        lo -= rg
+        hi += rg
+        # Apart along x or y: one's lo past the other's hi (nan: not apart).
+        apart = (lo[:, u] > hi[:, u, i][..., None]) | (hi[:, u] < lo[:, u, i][..., None])
+        return ~(apart[0] | apart[1])
 
     def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
