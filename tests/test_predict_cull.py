@@ -60,7 +60,8 @@ def _tables():
     """(scene, pos, vel) of tables of the 8-ball rack: the break; a ball frozen to the apex
     closing on it; a straight line of balls exactly 2R apart hit end on; two pairs exactly 2R
     apart, one parting, one closing; balls frozen to a rail and one rolling along it; a ball
-    in a pocket's mouth and one heading into a corner; a rack with nothing moving."""
+    in a pocket's mouth, one heading into a corner and one into a jaw tip; a rack with
+    nothing moving."""
     scene = load_scene({"balls": "8ball", "shot": {"speed": 8.0}})
     tab = scene.table
     n = len(scene.ids)
@@ -95,54 +96,57 @@ def _tables():
     vel[5, cue] = [-0.4, -0.4]
     pos[5, apex] = corner + [0.3, 0.3]
     vel[5, apex] = [-1.0, -1.0]
+    pos[5, line[0]] = tab.points[4] + [-0.01, 0.1]  # into a side pocket's jaw tip
+    vel[5, line[0]] = [0.0, -1.0]
     return scene, pos, vel
 
 
-def _renew_all(eng: Engine, t: float, overlap) -> tuple:
+def _renew_all(eng: Engine, t: float, cull: bool, monkeypatch) -> tuple:
+    """Every ball of every table renewed at clock t, with the cull or without it."""
     eng.tb[:] = t
     b, i = np.divmod(np.arange(eng.B * eng.N), eng.N)
+    monkeypatch.setattr(schedule, "CULL", cull)
     with np.errstate(all="ignore"):
-        if overlap is not None:
-            real = schedule.Schedule._overlap
-            schedule.Schedule._overlap = overlap
-            try:
-                eng.schedule.predict_many(b, i)
-            finally:
-                schedule.Schedule._overlap = real
-        else:
-            eng.schedule.predict_many(b, i)
+        eng.schedule.predict_many(b, i)
+    monkeypatch.undo()
     return eng.schedule.times.tobytes(), eng.f_cush.tobytes()
 
 
-def _keep_all(self, P, V, A, T, radius, u, i):
-    return np.ones((u.size, self.N), dtype=bool)
-
-
-@pytest.mark.parametrize("t", [0.0, 0.013, 0.05])
-def test_culled_renewals_are_the_renewals_without_the_cull_bit_for_bit(t):
-    """Every ball of every table renewed, some pocketed: with the boxes' cull and with every
-    pair and cushion point kept, the same times and features, bit for bit; the cull skipped
-    pairs, and contacts (frozen ones at once) were found."""
-    scene, pos, vel = _tables()
-    engines = [Engine(scene.table, scene.physics, pos, vel, None, scene.radius, scene.mass)
-               for _ in range(2)]
-    for eng in engines:
-        eng.state[6, 3] = POCKETED
+def _counted(monkeypatch, name: str) -> list:
+    """(kept, all) of each call of Schedule's cull `name`, from the next renewal on."""
     kept = []
-    real = schedule.Schedule._overlap
+    real = getattr(schedule.Schedule, name)
 
     def counted(self, *args):
         out = real(self, *args)
         kept.append((int(out.sum()), out.size))
         return out
 
-    culled = _renew_all(engines[0], t, counted)
-    whole = _renew_all(engines[1], t, _keep_all)
+    monkeypatch.setattr(schedule.Schedule, name, counted)
+    return kept
+
+
+@pytest.mark.parametrize("t", [0.0, 0.013, 0.05])
+def test_culled_renewals_are_the_renewals_without_the_cull_bit_for_bit(t, monkeypatch):
+    """Every ball of every table renewed, some pocketed: with the boxes' cull and with every
+    pair and cushion point kept, the same times and features, bit for bit; the cull skipped
+    most pairs and points, and contacts (frozen ones at once) were found."""
+    scene, pos, vel = _tables()
+    engines = [Engine(scene.table, scene.physics, pos, vel, None, scene.radius, scene.mass)
+               for _ in range(2)]
+    for eng in engines:
+        eng.state[6, 3] = POCKETED
+    pairs, points = _counted(monkeypatch, "_overlap"), _counted(monkeypatch, "_near_points")
+    culled = _renew_all(engines[0], t, True, monkeypatch)
+    whole = _renew_all(engines[1], t, False, monkeypatch)
     assert culled == whole
-    assert sum(k for k, _ in kept) * 2 < sum(n for _, n in kept)  # most pairs skipped
+    assert sum(k for k, _ in pairs) * 2 < sum(n for _, n in pairs)
+    assert sum(k for k, _ in points) * 2 < sum(n for _, n in points)
     tp = engines[0].schedule.t_pair
     assert (tp == t).sum() >= 2 and np.isfinite(tp).sum() > 20
-    assert np.isfinite(engines[0].t_cush).sum() >= 2
+    eng = engines[0]
+    f = eng.f_cush[np.isfinite(eng.t_cush)]
+    assert ((f >= eng.features.nseg) & (f < eng.features.first_hole)).any()  # a tip met
 
 
 def test_a_batch_run_with_the_cull_is_the_run_without_it(monkeypatch):
@@ -150,8 +154,8 @@ def test_a_batch_run_with_the_cull_is_the_run_without_it(monkeypatch):
     passes and final tables, bit for bit."""
     scene, pos, vel = _tables()
     runs = []
-    for overlap in (schedule.Schedule._overlap, _keep_all):
-        monkeypatch.setattr(schedule.Schedule, "_overlap", overlap)
+    for cull in (True, False):
+        monkeypatch.setattr(schedule, "CULL", cull)
         eng = Engine(scene.table, scene.physics, pos, vel, None, scene.radius, scene.mass)
         eng.run_events()
         runs.append(eng)

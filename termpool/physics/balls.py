@@ -92,6 +92,12 @@ class Balls:
         # One take of whole rows by a flat index: a two-index lookup costs several times more.
         return motion.at_many(self._rows.take(np.asarray(b) * self.N + i, axis=0), t, spin)
 
+    def planes(self, tabs: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """Every ball of tables `tabs` at times t (one a table, (T, 1)) as six planes
+        (motion.at_planes): (6, T N) x, y, vx, vy, ax, ay, ball i of tabs[u] at u N + i;
+        the same bits as `eval`."""
+        return motion.at_planes(self.motion.take(tabs, axis=0), t).reshape(6, -1)
+
     def set(self, b, i, t, p, v, w) -> None:
         """Start new motion for balls (b, i) at times t from (p, v, w): classify the state,
         set accelerations and the time of the next transition."""

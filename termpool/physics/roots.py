@@ -40,7 +40,12 @@ def first_contact(
     friction is caught again after a bounded, sub-micrometre overlap instead of chattering.
     With `pressed`, a touching pair accelerating together meets at t = 0 as well.
     """
-    px, py, vx, vy, ax, ay = p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1]
+    return first_contact_xy(p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1], dist,
+                            horizon, pressed)
+
+
+def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True) -> np.ndarray:
+    """`first_contact` of relative motions given as their six components, (K,) each."""
     pv = px * vx + py * vy
     r0 = np.sqrt(px * px + py * py)
     touching = r0 - dist < TOUCH
