@@ -23,7 +23,7 @@ V_MIN = 1e-6  # closing speeds below this (m/s) are not an immediate contact
 A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but accelerates together
 # faster than this is pressed together: a contact now (a resting one, joined.py); slower is
 # rounding, and is caught by SINK if it lasts
-PIECES = 2  # straight pieces of the window in the cull
+PIECES = 4  # straight pieces of the window in the cull
 _FRACTIONS = np.arange(PIECES, dtype=float)
 _PIECES_ONE = _FRACTIONS.tolist()
 
