@@ -1,5 +1,5 @@
-"""The renewals' cheap culls (a ball's path boxed over its window, `motion.swept`; pairs and
-cushion points whose boxes stay apart skipped, `Schedule._overlap`) change no prediction: with
+"""The renewals' cheap culls (a ball's path boxed over its window, `motion.swept`; pairs,
+cushion points and segments its box stays apart from skipped) change no prediction: with
 them and without them the times and features are the same bits, on the geometry games are
 made of (racks of frozen balls, balls exactly two radii apart closing, parting and at rest,
 straight lines, balls exactly on a rail and in a pocket's mouth), and they do skip most pairs
@@ -59,7 +59,8 @@ def test_swept_boxes_of_random_paths_hold_them():
 def _tables():
     """(scene, pos, vel) of tables of the 8-ball rack: the break; a ball frozen to the apex
     closing on it; a straight line of balls exactly 2R apart hit end on; two pairs exactly 2R
-    apart, one parting, one closing; balls frozen to a rail and one rolling along it; a ball
+    apart, one parting, one closing; balls frozen to a rail, one rolling along it and one
+    into it; a ball
     in a pocket's mouth, one heading into a corner and one into a jaw tip; a rack with
     nothing moving."""
     scene = load_scene({"balls": "8ball", "shot": {"speed": 8.0}})
@@ -89,6 +90,8 @@ def _tables():
     y0 = float(eng.features.seg_off[np.argmax(eng.features.table.seg_n[:, 1])]) + rc
     pos[4, line[:3]] = [[0.9, y0], [0.9 + 2 * R, y0], [1.5, y0]]
     vel[4, line[2]] = [-0.6, 0.0]
+    pos[4, line[3]] = [2.0, y0]  # on the rail, pressed into it as it rolls along: met now
+    vel[4, line[3]] = [0.3, -0.01]
     pos[4, cue] = [0.9 + R, y0 + 0.3]
     vel[4, cue] = [0.0, -1.0]
     corner = tab.hole_c[0]
@@ -137,16 +140,20 @@ def test_culled_renewals_are_the_renewals_without_the_cull_bit_for_bit(t, monkey
     for eng in engines:
         eng.state[6, 3] = POCKETED
     pairs, points = _counted(monkeypatch, "_overlap"), _counted(monkeypatch, "_near_points")
+    segments = _counted(monkeypatch, "_near_segments")
     culled = _renew_all(engines[0], t, True, monkeypatch)
     whole = _renew_all(engines[1], t, False, monkeypatch)
     assert culled == whole
     assert sum(k for k, _ in pairs) * 2 < sum(n for _, n in pairs)
     assert sum(k for k, _ in points) * 2 < sum(n for _, n in points)
+    if t == 0.0:  # (later, a few balls: lines_one's own cull)
+        assert sum(k for k, _ in segments) * 2 < sum(n for _, n in segments)
     tp = engines[0].schedule.t_pair
     assert (tp == t).sum() >= 2 and np.isfinite(tp).sum() > 20
     eng = engines[0]
     f = eng.f_cush[np.isfinite(eng.t_cush)]
     assert ((f >= eng.features.nseg) & (f < eng.features.first_hole)).any()  # a tip met
+    assert (f < eng.features.nseg).any()  # and a rail or jaw
 
 
 def test_a_batch_run_with_the_cull_is_the_run_without_it(monkeypatch):

@@ -210,13 +210,14 @@ class Schedule:
         mv = np.flatnonzero(moving & near)
         nc = len(feat.circles)
         rels = [rel]
+        qm, rcm = q.take(mv, axis=1), rc.take(mv)
+        if CULL and mv.size:  # the moving balls' boxes, for their cushions
+            lom, him = lo.take(ui.take(mv), axis=1), hi.take(ui.take(mv), axis=1)
         if mv.size and nc:
-            qm, rcm = q.take(mv, axis=1), rc.take(mv)
             holes = np.broadcast_to(feat.table.hole_r, (mv.size, nc - feat.npt))
             D = np.concatenate([np.repeat(rcm[:, None], feat.npt, axis=1), holes], axis=1)
             if CULL:  # the points the ball's box comes within reach of
-                mr, cc = np.nonzero(self._near_points(lo.take(ui.take(mv), axis=1),
-                                                      hi.take(ui.take(mv), axis=1), D))
+                mr, cc = np.nonzero(self._near_points(lom, him, D))
             else:
                 mr, cc = np.divmod(np.arange(mv.size * nc), nc)
             m = qm.take(mr, axis=1)
@@ -246,10 +247,12 @@ class Schedule:
             if nc:
                 tcirc.ravel()[at_c] = found[npair:]
             bm, im, tm = b.take(mv), i.take(mv), t.take(mv)
-            lines = feat.lines_few if mv.size <= FEW else feat.lines
-            qm = q.take(mv, axis=1)
-            tline = lines(qm[0:2].T, qm[2:4].T, qm[4:6].T, rc.take(mv), T.take(mv),
-                          reach.take(mv))
+            args = qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, T.take(mv), reach.take(mv)
+            if mv.size <= FEW:
+                tline = feat.lines_few(*args)
+            else:  # (the segments the ball's box comes within reach of)
+                tline = feat.lines(*args, near=self._near_segments(lom, him, rcm)
+                                   if CULL else None)
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
             self._times_1d[bm * self.width + 2 * N + im] = tm + allt[np.arange(mv.size), f]
@@ -270,6 +273,17 @@ class Schedule:
         apart = ((lo.reshape(tables).take(u, axis=1) > hi.take(ui, axis=1)[..., None])
                  | (hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]))
         return ~(apart[0] | apart[1])
+
+    def _near_segments(self, lo, hi, rc) -> np.ndarray:
+        """(M, S) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within
+        their nose reach rc (M,) (and GAP) of each cushion segment's box: a contact is a
+        centre that far from a point of the segment, within the window, so it is in both."""
+        feat = self.features
+        lo_s, hi_s = feat.seg_lo, feat.seg_hi
+        Dg = (rc + GAP)[:, None]
+        apart = ((lo_s[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - hi_s[:, 0] > Dg)
+                 | (lo_s[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - hi_s[:, 1] > Dg))
+        return ~apart
 
     def _near_points(self, lo, hi, D) -> np.ndarray:
         """(M, C) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within D
