@@ -209,7 +209,6 @@ class Schedule:
             near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
         mv = np.flatnonzero(moving & near)
         nc = len(feat.circles)
-        rels = [rel]
         qm, rcm = q.take(mv, axis=1), rc.take(mv)
         if CULL and mv.size:  # the moving balls' boxes, for their cushions
             lom, him = lo.take(ui.take(mv), axis=1), hi.take(ui.take(mv), axis=1)
@@ -221,18 +220,14 @@ class Schedule:
             else:
                 mr, cc = np.divmod(np.arange(mv.size * nc), nc)
             m = qm.take(mr, axis=1)
-            rels += [feat.circles.T.take(cc, axis=1) - m[0:2], -m[2:]]
+            # After the pairs: the point relative to the ball, the ball's motion negated.
+            pair = rel
+            rel = [np.concatenate([pair[n], feat.circles[:, n].take(cc) - m[n]]) for n in (0, 1)]
+            rel += [np.concatenate([pair[n], -m[n]]) for n in range(2, 6)]
             at_c = mr * nc + cc
             dist.append(D.ravel().take(at_c))
             horizon.append(T.take(mv).take(mr))
-        if len(rels) > 1:
-            pos, vel = rels[1], rels[2]
-            found = first_contact_xy(
-                np.concatenate([rel[0], pos[0]]), np.concatenate([rel[1], pos[1]]),
-                *(np.concatenate([rel[n + 2], vel[n]]) for n in range(4)),
-                np.concatenate(dist), np.concatenate(horizon))
-        else:
-            found = first_contact_xy(*rel, dist[0], horizon[0])
+        found = first_contact_xy(*rel, np.concatenate(dist), np.concatenate(horizon))
         npair = mi.size
         if npair:
             tp = t.take(mi) + found[:npair]
@@ -410,9 +405,11 @@ class Schedule:
         if tabs.size == 1:  # one table: its row of times, no gathers
             self.refresh_one(int(tabs[0]))
             return
-        allt = self.times[tabs]
-        code = allt.argmin(axis=1)
-        self.t_next[tabs] = allt[np.arange(len(tabs)), code]
+        if 2 * tabs.size >= len(self.times):  # most tables: every row's argmin, no copy
+            code = self.times.argmin(axis=1).take(tabs)
+        else:
+            code = self.times[tabs].argmin(axis=1)
+        self.t_next[tabs] = self._times_1d.take(tabs * self.width + code)
         self.c_next[tabs] = code
 
     def refresh_one(self, b: int) -> None:
