@@ -60,9 +60,8 @@ def _tables():
     """(scene, pos, vel) of tables of the 8-ball rack: the break; a ball frozen to the apex
     closing on it; a straight line of balls exactly 2R apart hit end on; two pairs exactly 2R
     apart, one parting, one closing; balls frozen to a rail, one rolling along it and one
-    into it; a ball
-    in a pocket's mouth, one heading into a corner and one into a jaw tip; a rack with
-    nothing moving."""
+    into it; a ball in a pocket's mouth, one heading into a corner and one into a jaw tip;
+    a rack with nothing moving."""
     scene = load_scene({"balls": "8ball", "shot": {"speed": 8.0}})
     tab = scene.table
     n = len(scene.ids)
@@ -104,19 +103,17 @@ def _tables():
     return scene, pos, vel
 
 
-def _renew_all(eng: Engine, t: float, cull: bool, monkeypatch) -> tuple:
-    """Every ball of every table renewed at clock t, with the cull or without it."""
+def _renew_all(eng: Engine, t: float) -> tuple:
+    """Every ball of every table renewed at clock t: the times and features."""
     eng.tb[:] = t
     b, i = np.divmod(np.arange(eng.B * eng.N), eng.N)
-    monkeypatch.setattr(schedule, "CULL", cull)
     with np.errstate(all="ignore"):
         eng.schedule.predict_many(b, i)
-    monkeypatch.undo()
     return eng.schedule.times.tobytes(), eng.f_cush.tobytes()
 
 
 def _counted(monkeypatch, name: str) -> list:
-    """(kept, all) of each call of Schedule's cull `name`, from the next renewal on."""
+    """(kept, all) of each later call of Schedule's cull `name`."""
     kept = []
     real = getattr(schedule.Schedule, name)
 
@@ -141,8 +138,9 @@ def test_culled_renewals_are_the_renewals_without_the_cull_bit_for_bit(t, monkey
         eng.state[6, 3] = POCKETED
     pairs, points = _counted(monkeypatch, "_overlap"), _counted(monkeypatch, "_near_points")
     segments = _counted(monkeypatch, "_near_segments")
-    culled = _renew_all(engines[0], t, True, monkeypatch)
-    whole = _renew_all(engines[1], t, False, monkeypatch)
+    culled = _renew_all(engines[0], t)
+    monkeypatch.setattr(schedule, "CULL", False)
+    whole = _renew_all(engines[1], t)
     assert culled == whole
     assert sum(k for k, _ in pairs) * 2 < sum(n for _, n in pairs)
     assert sum(k for k, _ in points) * 2 < sum(n for _, n in points)
