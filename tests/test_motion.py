@@ -96,6 +96,26 @@ def test_evaluating_one_ball_in_floats_matches_the_array_path_bit_for_bit(seed):
         assert motion.at(row, float(t[n])) == (p[n].tolist(), v[n].tolist(), w[n].tolist())
 
 
+@pytest.mark.parametrize("seed", [4, 5])
+def test_evaluating_whole_tables_in_planes_matches_eval_bit_for_bit(seed):
+    """Balls.planes (the renewals' evaluation of every ball of some tables, as six planes)
+    gives what `eval` gives, bit for bit, at clocks before, inside and beyond the motions."""
+    with np.errstate(all="ignore"):
+        eng = _started(Physics(), seed, "many")
+    rows = eng.balls.motion.reshape(20, K // 20, -1)  # the K balls as 20 tables
+    balls = eng.balls
+    balls.motion, balls.N = rows, K // 20
+    tabs = np.array([3, 0, 17, 3])
+    t = np.array([[-1e-4], [0.0], [0.3], [7.0]]) + rows[tabs, :1, 0]
+    Q = balls.planes(tabs, t)
+    b, i = np.divmod(np.arange(tabs.size * balls.N), balls.N)
+    p, v, _ = motion.at_many(rows[tabs[b], i], t[b, 0], spin=False)
+    assert Q.shape == (6, tabs.size * balls.N)
+    a = rows[tabs[b], i, motion.Col.AX:motion.Col.AY + 1]
+    for plane, want in ((Q[:2], p), (Q[2:4], v), (Q[4:], a)):
+        assert np.ascontiguousarray(plane.T).tobytes() == np.ascontiguousarray(want).tobytes()
+
+
 @pytest.mark.parametrize("physics", [Physics(), Physics(mu_slide=0.0)],
                          ids=["default", "frictionless"])
 @pytest.mark.parametrize("seed", [6, 7])

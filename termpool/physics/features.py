@@ -26,6 +26,8 @@ class Features:
         self.seg_dir = seg_d / self.seg_len[:, None]
         self.seg_off = (table.seg_a * table.seg_n).sum(axis=1)  # each line's offset along n
         self.seg_start = (table.seg_a * self.seg_dir).sum(axis=1)
+        self.seg_lo = np.minimum(table.seg_a, table.seg_b)  # each segment's box
+        self.seg_hi = np.maximum(table.seg_a, table.seg_b)
         # Jaw tips, then holes: met as circles (a ball's centre at reach rc of a tip, within
         # a hole's radius of its centre).
         self.circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
@@ -36,23 +38,29 @@ class Features:
                                self.seg_len.tolist(), table.seg_n.tolist(),
                                self.seg_off.tolist(), self.seg_start.tolist(), strict=True))
 
-    def lines(self, p, v, a, rc, horizon, reach=None) -> np.ndarray:
-        """(M, S) first contact times of M balls with the cushion segments."""
+    def lines(self, p, v, a, rc, horizon, reach=None, near=None) -> np.ndarray:
+        """(M, S) first contact times of M balls with the cushion segments; with `near` (M,
+        S), only of the (ball, segment) pairs it marks (inf elsewhere: the caller knows
+        those cannot meet)."""
         tab = self.table
-        n = tab.seg_n
-        s0 = dots(p, n) - self.seg_off
-        M, S = s0.shape
-        along0 = dots(p, self.seg_dir) - self.seg_start
-        beside = (along0 >= 0) & (along0 <= self.seg_len)
-        tl = first_line_contact(s0.ravel(), dots(v, n).ravel(), dots(a, n).ravel(),
-                                np.repeat(rc, S), np.repeat(horizon, S),
-                                beside.ravel()).reshape(M, S)
+        M, S = len(p), self.nseg
+        m, k = np.nonzero(np.ones((M, S), dtype=bool) if near is None else near)
+        n, d = tab.seg_n[k], self.seg_dir[k]
+        pm = p[m]
+        # (each dot product the two products added in the order `dots` adds them)
+        s0 = (pm[:, 0] * n[:, 0] + pm[:, 1] * n[:, 1]) - self.seg_off[k]
+        along0 = (pm[:, 0] * d[:, 0] + pm[:, 1] * d[:, 1]) - self.seg_start[k]
+        beside = (along0 >= 0) & (along0 <= self.seg_len[k])
+        vm, am = v[m], a[m]
+        tl = first_line_contact(s0, vm[:, 0] * n[:, 0] + vm[:, 1] * n[:, 1],
+                                am[:, 0] * n[:, 0] + am[:, 1] * n[:, 1], rc[m], horizon[m],
+                                beside)
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
-        # Worked out only where a time was found (few of the M x S), as `lines_one` does.
-        m, k = np.nonzero(np.isfinite(tl))
+        # Worked out only where a time was found (few of the pairs), as `lines_one` does.
+        f = np.flatnonzero(np.isfinite(tl))
         out = np.full((M, S), np.inf)
-        if m.size:
-            t = tl[m, k]
+        if f.size:
+            m, k, t = m[f], k[f], tl[f]
             tt = t * t
             ends, dirs = tab.seg_a[k], self.seg_dir[k]
             qx = (p[m, 0] + v[m, 0] * t + 0.5 * a[m, 0] * tt) - ends[:, 0]

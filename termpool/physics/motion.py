@@ -184,14 +184,27 @@ def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: floa
     return state, t + dt, [t, px, py, vx, vy, ax, ay, wx, wy, wz, alx, aly]
 
 
+def _moved(p0, v0, acc, d) -> tuple:
+    """Position and velocity a time d after (p0, v0) at constant acceleration."""
+    return p0 + (v0 + 0.5 * acc * d) * d, v0 + acc * d
+
+
+def at_planes(rows: np.ndarray, t) -> np.ndarray:
+    """`at_many` without spin as six planes: (6, ...) x, y, vx, vy, ax, ay at times t of
+    balls whose packed motions are `rows` (..., Col.N); each plane contiguous."""
+    planes = np.moveaxis(rows, -1, 0)
+    d = (t - planes[Col.T0])[None]
+    out = np.empty((6,) + d.shape[1:])
+    out[2:] = planes[Col.VX:Col.AY + 1]  # velocities and accelerations at t0, contiguous
+    out[:2], out[2:4] = _moved(planes[Col.P], out[2:4], out[4:], d)
+    return out
+
+
 def at_many(rows: np.ndarray, t, spin: bool = True) -> tuple:
     """Position, velocity and (if `spin`, else None) spin at times t of balls whose packed
     motions are `rows` (..., Col.N), a copy: its spin columns are changed in place."""
     d = (t - rows[..., Col.T0])[..., None]
-    v0 = rows[..., Col.V]
-    acc = rows[..., Col.ACC]
-    p = rows[..., Col.P] + (v0 + 0.5 * acc * d) * d
-    v = v0 + acc * d
+    p, v = _moved(rows[..., Col.P], rows[..., Col.V], rows[..., Col.ACC], d)
     if not spin:
         return p, v, None
     w = rows[..., Col.W]
@@ -213,3 +226,13 @@ def at(row: list, t: float) -> tuple[list, list, list]:
     decay = rate * max_one(d, 0.0)
     w = [wx + alx * d, wy + aly * d, math.copysign(max_one(abs(wz) - decay, 0.0), wz)]
     return p, v, w
+
+
+def swept(p: np.ndarray, v: np.ndarray, a: np.ndarray, T: np.ndarray) -> tuple:
+    """(lo, hi): the box, coordinate by coordinate, that the quadratic p + v s + a s^2 / 2
+    sweeps over s in [0, T] (T >= 0): its ends and, where it turns inside the window, its
+    vertex. Exact up to rounding (a few ulps of the coordinates)."""
+    e = p + (v + 0.5 * a * T) * T
+    s = np.minimum(np.maximum(-v / a, 0.0), T)  # the vertex; nan where v = a = 0 (no vertex)
+    m = p + (v + 0.5 * a * s) * s
+    return np.fmin(np.minimum(p, e), m), np.fmax(np.maximum(p, e), m)

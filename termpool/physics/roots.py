@@ -23,7 +23,7 @@ V_MIN = 1e-6  # closing speeds below this (m/s) are not an immediate contact
 A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but accelerates together
 # faster than this is pressed together: a contact now (a resting one, joined.py); slower is
 # rounding, and is caught by SINK if it lasts
-PIECES = 2  # straight pieces of the window in the cull
+PIECES = 4  # straight pieces of the window in the cull
 _FRACTIONS = np.arange(PIECES, dtype=float)
 _PIECES_ONE = _FRACTIONS.tolist()
 
@@ -40,7 +40,12 @@ def first_contact(
     friction is caught again after a bounded, sub-micrometre overlap instead of chattering.
     With `pressed`, a touching pair accelerating together meets at t = 0 as well.
     """
-    px, py, vx, vy, ax, ay = p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1]
+    return first_contact_xy(p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1], dist,
+                            horizon, pressed)
+
+
+def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True) -> np.ndarray:
+    """`first_contact` of relative motions given as their six components, (K,) each."""
     pv = px * vx + py * vy
     r0 = np.sqrt(px * px + py * py)
     touching = r0 - dist < TOUCH

@@ -13,16 +13,17 @@ import numpy as np
 from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
 from termpool.physics.flat import flat
-from termpool.physics.motion import Col
-from termpool.physics.roots import first_contact, first_contact_few
+from termpool.physics.motion import Col, swept
+from termpool.physics.roots import first_contact, first_contact_few, first_contact_xy
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
-from termpool.physics.vec import norm as _norm
 
 # Candidates (row x ball) a chunk of `predict_many` works on at once: bounds its temporaries
 # (a few hundred bytes a candidate) whatever the batch, while keeping numpy calls few.
 CHUNK = 16384
 PLAIN_MAX = 1024  # one table's renewals of up to this many (ball x ball) in plain floats
+GAP = 1e-6  # m: boxes of paths (`_overlap`) are widened by this, far above their rounding
+CULL = True  # skip the pairs and points that boxes of paths show cannot be met (tests: off)
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -87,6 +88,7 @@ class Schedule:
         self.code_one = 0  # the last code refresh_one found
         self._ones: dict[int, np.ndarray] = {}  # one_array's arrays
         self.flat_f_cush = flat(self.f_cush)
+        self._f_cush_1d = self.f_cush.reshape(-1)  # a view
 
     def decode_one(self, code: int) -> tuple[int, int, int]:
         """`decode` of one event code, as ints (what: Due, ball i, ball j or -1)."""
@@ -161,76 +163,132 @@ class Schedule:
         """`predict_many`'s contact predictions for live balls (b, i) at clocks t, whose
         motions hold until `end`, their own predictions already cleared; they are rows
         `first` on of the renewal (`_row`)."""
-        balls, feat = self.balls, self.features
-        # Every ball of the tables involved, evaluated once a table (row r holds ball i[r]
-        # of table u[r]).
+        balls, feat, N = self.balls, self.features, self.N
         M = b.size
+        # Every ball of the tables involved, evaluated once a table, in six planes (x, y,
+        # vx, vy, ax, ay; ball i of table tabs[u] in column u N + i): each candidate's
+        # relative motion is then one take and one difference, and each component one
+        # contiguous row. (Two-index lookups cost several times more than these takes.)
         tabs, u = np.unique(b, return_inverse=True)
-        P, V, _ = balls.eval(tabs[:, None], self._balls, self.tb[tabs][:, None], spin=False)
-        A = balls.acc[tabs]
-        p, v, a = P[u, i], V[u, i], A[u, i]
+        tbt = self.tb.take(tabs)[:, None]
+        Q = balls.planes(tabs, tbt)
+        ui = u * N + i
+        q = Q.take(ui, axis=1)  # the rows' own balls
+        end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
+        radius = balls.radius.take(tabs, axis=0).ravel()
         # Pairs: every other ball on the table, where at least one of the two moves. Two
         # renewed balls meet as the first one's pair only: their times are the same bits
         # either way round (each difference the other's negated, each product the same).
-        stk = balls.state[tabs][u]
-        renewed = self._row[b]
+        stk = balls.state.take(b, axis=0)
+        renewed = self._row.take(b, axis=0)
         valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
                  & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
+        if CULL:
+            # A pair's window ends with the shorter of its balls' own, at most a moving
+            # ball's (`horizon`): a ball at rest's is cut at twice that.
+            lo, hi = swept(Q[0:2], Q[2:4], Q[4:6],
+                           np.maximum(np.minimum(end_k - tbt, 2.0 * self.horizon), 0.0).ravel())
+            valid &= self._overlap(lo, hi, radius, u, ui)
         mi, kk = np.nonzero(valid)
-        # The other balls picked by one flat index into the (table, ball) rows: one take per
-        # array instead of a two-index lookup each.
-        k = u[mi] * self.N + kk
-        end_k = np.minimum(self.t_trans[tabs], self.t_check[tabs])
-        rel_p = [P.reshape(-1, 2).take(k, axis=0) - p[mi]]
-        rel_v = [V.reshape(-1, 2).take(k, axis=0) - v[mi]]
-        rel_a = [A.reshape(-1, 2).take(k, axis=0) - a[mi]]
-        dist = [balls.radius[tabs].ravel().take(k) + balls.radius[b, i][mi]]
-        horizon = [np.minimum(end[mi], end_k.ravel().take(k)) - t[mi]]
+        k = u.take(mi) * N + kk
+        rel = Q.take(k, axis=1) - q.take(mi, axis=1)
+        dist = [radius.take(k) + radius.take(ui).take(mi)]
+        horizon = [np.minimum(end.take(mi), end_k.ravel().take(k)) - t.take(mi)]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses or a hole within their window (a ball in open felt costs nothing here); tips
         # and holes are the same quartic as a pair. A corner hole may reach into the table
         # past the rail lines, up to its mouth.
         T = end - t
-        reach = _norm(v) * T + 0.5 * _norm(a) * T * T + balls.rc[b, i]
+        rc = balls.rc.ravel().take(b * N + i)
+        reach = np.hypot(q[2], q[3]) * T + 0.5 * np.hypot(q[4], q[5]) * T * T + rc
         tab = feat.table
-        x, y = p[:, 0], p[:, 1]
+        x, y = q[0], q[1]
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
         if len(tab.hole_r):
             edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
             near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
         mv = np.flatnonzero(moving & near)
         nc = len(feat.circles)
+        qm, rcm = q.take(mv, axis=1), rc.take(mv)
+        if CULL and mv.size:  # the moving balls' boxes, for their cushions
+            lom, him = lo.take(ui.take(mv), axis=1), hi.take(ui.take(mv), axis=1)
         if mv.size and nc:
-            rc = balls.rc[b[mv], i[mv]]
-            rel_p.append((feat.circles[None] - p[mv, None]).reshape(-1, 2))
-            rel_v.append(np.repeat(-v[mv], nc, axis=0))
-            rel_a.append(np.repeat(-a[mv], nc, axis=0))
             holes = np.broadcast_to(feat.table.hole_r, (mv.size, nc - feat.npt))
-            dist.append(np.concatenate([np.repeat(rc[:, None], feat.npt, axis=1), holes],
-                                       axis=1).ravel())
-            horizon.append(np.repeat(T[mv], nc))
-            found = first_contact(np.concatenate(rel_p), np.concatenate(rel_v),
-                                  np.concatenate(rel_a), np.concatenate(dist),
-                                  np.concatenate(horizon))
-        else:
-            found = first_contact(rel_p[0], rel_v[0], rel_a[0], dist[0], horizon[0])
+            D = np.concatenate([np.repeat(rcm[:, None], feat.npt, axis=1), holes], axis=1)
+            if CULL:  # the points the ball's box comes within reach of
+                mr, cc = np.nonzero(self._near_points(lom, him, D))
+            else:
+                mr, cc = np.divmod(np.arange(mv.size * nc), nc)
+            m = qm.take(mr, axis=1)
+            # After the pairs: the point relative to the ball, the ball's motion negated.
+            pair = rel
+            rel = [np.concatenate([pair[n], feat.circles[:, n].take(cc) - m[n]]) for n in (0, 1)]
+            rel += [np.concatenate([pair[n], -m[n]]) for n in range(2, 6)]
+            at_c = mr * nc + cc
+            dist.append(D.ravel().take(at_c))
+            horizon.append(T.take(mv).take(mr))
+        found = first_contact_xy(*rel, np.concatenate(dist), np.concatenate(horizon))
         npair = mi.size
         if npair:
-            tp = t[mi] + found[:npair]
+            tp = t.take(mi) + found[:npair]
             # Written through one flat index each way: a one-index store is cheaper than
             # t_pair's three.
-            at = b[mi] * self.width + 3 * self.N
-            ii = i[mi]
-            self._times_1d[at + ii * self.N + kk] = tp
-            self._times_1d[at + kk * self.N + ii] = tp
+            at = b.take(mi) * self.width + 3 * N
+            ii = i.take(mi)
+            self._times_1d[at + ii * N + kk] = tp
+            self._times_1d[at + kk * N + ii] = tp
         if mv.size:
-            tcirc = found[npair:].reshape(mv.size, nc) if nc else np.empty((mv.size, 0))
-            lines = feat.lines_few if mv.size <= FEW else feat.lines
-            tline = lines(p[mv], v[mv], a[mv], balls.rc[b[mv], i[mv]], T[mv], reach[mv])
+            tcirc = np.full((mv.size, nc), np.inf)
+            if nc:
+                tcirc.ravel()[at_c] = found[npair:]
+            bm, im, tm = b.take(mv), i.take(mv), t.take(mv)
+            args = qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, T.take(mv), reach.take(mv)
+            if mv.size <= FEW:
+                tline = feat.lines_few(*args)
+            else:  # (the segments the ball's box comes within reach of)
+                tline = feat.lines(*args, near=self._near_segments(lom, him, rcm)
+                                   if CULL else None)
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
-            self.t_cush[b[mv], i[mv]] = t[mv] + allt[np.arange(mv.size), f]
-            self.f_cush[b[mv], i[mv]] = f
+            self._times_1d[bm * self.width + 2 * N + im] = tm + allt[np.arange(mv.size), f]
+            self._f_cush_1d[bm * N + im] = f
+
+    def _overlap(self, lo, hi, radius, u, ui) -> np.ndarray:
+        """(M, N) whether ball ui of the (table, ball) columns (ball i[r] of table u[r]) and
+        each ball of its table can come within touching distance in their windows, from the
+        boxes (lo, hi) (2, tables N) their paths sweep over their own windows (`swept`),
+        widened by their radii and GAP: boxes that stay apart are balls further apart than
+        touching, for which `first_contact` finds no contact (not even a touching one), so
+        skipping them changes no prediction. Boxes that are not numbers (an endless window)
+        keep their pairs."""
+        rg = radius + GAP
+        lo, hi = lo - rg, hi + rg
+        tables = (2, -1, self.N)
+        # Apart along x or y: one's lo past the other's hi (nan: not apart).
+        apart = ((lo.reshape(tables).take(u, axis=1) > hi.take(ui, axis=1)[..., None])
+                 | (hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]))
+        return ~(apart[0] | apart[1])
+
+    def _near_segments(self, lo, hi, rc) -> np.ndarray:
+        """(M, S) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within
+        their nose reach rc (M,) (and GAP) of each cushion segment's box: a contact is a
+        centre that far from a point of the segment, within the window, so it is in both."""
+        feat = self.features
+        lo_s, hi_s = feat.seg_lo, feat.seg_hi
+        Dg = (rc + GAP)[:, None]
+        apart = ((lo_s[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - hi_s[:, 0] > Dg)
+                 | (lo_s[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - hi_s[:, 1] > Dg))
+        return ~apart
+
+    def _near_points(self, lo, hi, D) -> np.ndarray:
+        """(M, C) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within D
+        (M, C) (and GAP) of the features' points (jaw tips, hole centres); as in
+        `_overlap`, a point further than that from the box is never met."""
+        c = self.features.circles
+        Dg = D + GAP
+        apart = ((c[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - c[:, 0] > Dg)
+                 | (c[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - c[:, 1] > Dg))
+        return ~apart
 
     def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
@@ -347,9 +405,11 @@ class Schedule:
         if tabs.size == 1:  # one table: its row of times, no gathers
             self.refresh_one(int(tabs[0]))
             return
-        allt = self.times[tabs]
-        code = allt.argmin(axis=1)
-        self.t_next[tabs] = allt[np.arange(len(tabs)), code]
+        if 2 * tabs.size >= len(self.times):  # most tables: every row's argmin, no copy
+            code = self.times.argmin(axis=1).take(tabs)
+        else:
+            code = self.times[tabs].argmin(axis=1)
+        self.t_next[tabs] = self._times_1d.take(tabs * self.width + code)
         self.c_next[tabs] = code
 
     def refresh_one(self, b: int) -> None:
