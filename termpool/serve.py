@@ -35,8 +35,10 @@ from termpool import wire
 from termpool.files import data_dir, write_atomic
 from termpool.lobby import Lobby
 from termpool.text import say
+from termpool.ui.settings import MAX_NAME
 
-NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,31}\Z")  # a player's name: also a directory
+# A player's name: the game's own limit (it must fit the panel), and a directory's name.
+NAME = re.compile(rf"[A-Za-z0-9][A-Za-z0-9_.-]{{0,{MAX_NAME - 1}}}\Z")
 MAX_SESSIONS = 16
 MAX_BUFFER = 1 << 20  # bytes of screen a connection may have waiting to be sent
 HANG_UP_S = 5.0  # a game told to hang up gets this long to save and leave before SIGKILL
@@ -44,8 +46,8 @@ DEFAULT_TERM = "xterm-256color"  # a client that names no terminal type
 KEY_NAME = "ssh_host_ed25519_key"
 NEEDS_PTY = "termpool: the game needs a terminal: connect with ssh -t\r\n"
 FULL = "termpool: the server is full ({n} playing); try again later\r\n"
-BAD_NAME = ("termpool: a player's name is 1 to 32 letters, digits, '_', '-' or '.', "
-            "beginning with a letter or digit (ssh NAME@host)\r\n")
+BAD_NAME = (f"termpool: a player's name is 1 to {MAX_NAME} letters, digits, '_', '-' or "
+            "'.', beginning with a letter or digit (ssh NAME@host)\r\n")
 
 
 def _int_in(what: str, lo: int, hi: int):

@@ -426,7 +426,8 @@ def test_copies_that_differ_end_the_match_instead_of_playing_on_apart(lobby, tmp
 
 @pytest.mark.parametrize("move", [
     {"kind": "shot", "speed": "fast"}, {"kind": "place", "x": 1e9, "y": 0.0},
-    {"kind": "choose", "choice": "dance"}, {"kind": "jump"}])
+    {"kind": "choose", "choice": "dance"}, {"kind": "jump"},
+    {"kind": "place", "x": float("nan"), "y": 0.5}])
 def test_a_move_that_cannot_be_made_ends_the_match(lobby, tmp_path, move):
     ann, bob = online(lobby, tmp_path)
     bob.state.link.moves.append({"at": digest(bob.state.match), **move})
@@ -452,6 +453,21 @@ def test_the_server_going_ends_the_match(lobby, tmp_path):
     bob.state = replace(bob.state)
     until([bob], lambda: bob.state.phase is Phase.MENU, "bob to notice")
     assert "the server has gone" in bob.state.message[0][0]
+
+
+@pytest.mark.parametrize("bad", [{"frames": 0}, {"frames": 2.5}, {"mode": "practice"},
+                                 {"table": "99ft"}, {"table": ["9ft"]}, {"seed": -1},
+                                 {"theme": None}, {"eight_break": "again"}])
+def test_a_match_that_cannot_be_built_is_said_and_left(lobby, bad):
+    from termpool.ui.phases.lobby import start_online
+
+    link = Link(lobby.path, lobby.admit("ann"))
+    app = App(Options(colors="mono"), link=link)
+    entries = [e[1] for e in menu_entries(app.state)]
+    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    s = start_online(app.state, {"game": {**GAME, **bad}, "names": ["ann", "bob"], "seat": 1})
+    assert s.phase is Phase.LOBBY and s.match is None
+    assert "could not start" in s.message[0][0]
 
 
 def test_without_a_server_the_menu_has_no_online_entry():

@@ -191,11 +191,12 @@ def test_without_a_terminal_it_says_how_to_connect(served):
 def test_a_name_that_cannot_be_a_player_is_refused(served):
     s = served()
 
-    async def go():
-        async with connect(s.port, "../etc") as conn:
+    async def go(name):
+        async with connect(s.port, name) as conn:
             return await conn.run(term_type="xterm", encoding=None)
 
-    r = run(go())
+    assert run(go("a" * 17)).exit_status == 2  # longer than the game's names may be
+    r = run(go("../etc"))
     assert r.exit_status == 2
     assert b"name" in r.stdout
     assert not (s.directory / "players" / ".." / "etc").exists()

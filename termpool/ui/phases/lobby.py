@@ -7,6 +7,7 @@ from dataclasses import replace
 
 from termpool import wire
 from termpool.ui.phases.turn import begin_match
+from termpool.ui.settings import MAX_FRAMES
 from termpool.ui.state import LOBBY_GAMES, Lobby, Menu, State
 
 LOBBY_POLL_S = 0.1  # how often the lobby looks for news while it is on screen
@@ -96,15 +97,21 @@ def start_online(s: State, start: dict) -> State:
     s.link.start = None
     game, names, seat = start.get("game") or {}, start.get("names"), start.get("seat")
     try:
+        frames = game["frames"]
+        if game["mode"] not in LOBBY_GAMES:
+            raise ValueError(f"mode: not one of {', '.join(LOBBY_GAMES)}")
+        if type(frames) is not int or not 1 <= frames <= MAX_FRAMES:
+            raise ValueError(f"frames: not a whole number from 1 to {MAX_FRAMES}")
+        # The match checks the rest (Match: a ValueError naming the setting).
         opts = replace(s.opts, mode=game["mode"], opponent="human", table=game["table"],
-                       frames=int(game["frames"]), three_foul=bool(game["three_foul"]),
+                       frames=frames, three_foul=game["three_foul"] is True,
                        eight_break=game["eight_break"], theme=game["theme"])
         if seat not in (0, 1, None) or not (isinstance(names, list) and len(names) == 2):
             raise ValueError("names")
         remote = (0, 1) if seat is None else (1 - seat,)  # None: watching
         return begin_match(s, opts, tuple(str(n) for n in names), int(game["seed"]),
                            (False, False), remote=remote)
-    except (KeyError, TypeError, ValueError) as e:
+    except (KeyError, TypeError, ValueError, OverflowError) as e:
         s.link.send(wire.LEAVE)
         return replace(s, part=Lobby(), message=((f"that match could not start: {e}",
                                                   "foul"),))

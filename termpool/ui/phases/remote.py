@@ -88,7 +88,7 @@ def tick(s: State, t: float) -> State:
     try:
         if kind == "place":
             x, y = float(move["x"]), float(move["y"])
-            if m.placement_error(x, y) is not None:
+            if not (math.isfinite(x) and math.isfinite(y)) or m.placement_error(x, y):
                 raise ValueError("placement")
             m.place_cue(x, y)
             return replace(s, part=Waiting(placed=True))  # their shot comes next
