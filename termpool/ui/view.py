@@ -9,6 +9,8 @@ different sizes can draw one state.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from termpool.game.layout import head_string
@@ -16,6 +18,7 @@ from termpool.physics.state import POCKETED
 from termpool.rules import words
 from termpool.rules.common import GROUPS, legal_targets
 from termpool.rules.words import KITCHEN, MODE_NAMES
+from termpool.text import shown
 from termpool.ui import aid
 from termpool.ui import overlay as ov
 from termpool.ui.canvas import put_text
@@ -187,9 +190,14 @@ def _question(s: State, cells, lay: Layout) -> None:
         draw_box(cells, lines, "your call", at=at)
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
-        draw_box(cells, [words.game_won(voice(s), m.winner), why, "",
-                         "n: new game   m: menu   q: quit", "w: watch this match"],
-                 "game over", "good")
+        lines = [words.game_won(voice(s), m.winner), why, "",
+                 "n: new game   m: menu   q: quit", "w: watch this match"]
+        records = s.files.records
+        where = records.kept_at(m) if records is not None else None
+        if where is not None:  # where to find it again (`termpool records` lists them)
+            folder, name = os.path.split(where)
+            lines.append(f"kept as {shown(os.path.join(os.path.basename(folder), name))}")
+        draw_box(cells, lines, "game over", "good")
 
 
 def _cells_of(lay: Layout, pos, radius) -> tuple[int, int, int, int]:
