@@ -1598,3 +1598,46 @@ def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(c
     right = text.splitlines()[bottom].index("┘")
     kc, kr, kw, kh = cue
     assert (bottom < kr or kr + kh <= top or right < kc or kc + kw <= left), (cue, text)
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24)])
+@pytest.mark.parametrize("where", [(0.5, 0.5), (0.3, 0.5), (0.5, 0.3), (0.7, 0.7)])
+def test_the_push_out_question_never_covers_the_players_row(cols, rows, where):
+    # The cue ball with balls all about it, so that no place on the table keeps them all in
+    # view: the box must still leave the players' row (whose call it is) alone.
+    app = app_for(mode="9ball", opponent="human")
+    run_script(app, "enter space-hold 1.2 wait 20")
+    if app.state.phase is Phase.PLACE:
+        app.key(Key("enter"), 100.0)
+    run_script(app, "o space-hold 0.3 wait 20")
+    assert app.state.phase is Phase.OPTION
+    m = app.state.match
+    c = m.ids.index("cue")
+    at = np.array([m.table.length * where[0], m.table.width * where[1]])
+    m.pos[c] = at
+    others = [k for k in range(len(m.ids)) if k != c and m.on_table[k]]
+    step = 2 * np.pi / len(others)
+    for n, k in enumerate(others):  # a ring 2.5 diameters out
+        m.pos[k] = at + 5 * m.radius[c] * np.array([np.cos(n * step), np.sin(n * step)])
+    lay = layout(cols, rows, m.table)
+    text = screen_text(app.cells(cols, rows)[0]).splitlines()
+    assert "s: shoot from here" in "\n".join(text)
+    _, row, _, _ = lay.panel_rect
+    assert "Player 1" in text[row] and "Player 2" in text[row], "\n".join(text)
+
+
+@pytest.mark.parametrize(("cols", "rows"), SMALL_SIZES)
+def test_the_aid_s_warning_leaves_the_last_verdict_in_view(cols, rows) -> None:
+    # The computer's shot said, then a foul aimed: both are in view, and whose turn it is.
+    app = app_for(mode="8ball", opponent="cpu")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)
+    m = app.state.match
+    m.state = replace(m.state, groups={0: "stripes", 1: "solids"})  # the 8 first: a foul
+    put(app, message=(("Computer potted the 3: nothing else went down, your turn", "plain"),))
+    stroke(app, angle=45.0)
+    aid_done(app)
+    assert aid.foreseen(app.state).foul is not None
+    text = " ".join(screen_text(app.cells(cols, rows)[0]).split())
+    assert "You to shoot" in text and "As aimed" in text, text
+    assert "Computer potted the 3" in text, text

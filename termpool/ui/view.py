@@ -179,13 +179,20 @@ def _question(s: State, cells, lay: Layout) -> None:
         at = None
         if m.on_table[c]:
             near = np.hypot(*(m.pos - m.pos[c]).T) <= NEAR_BALLS * 2 * m.radius[c]
-            col, row, _, _ = lay.panel_rect  # off the panel too, where there is room
-            table = (lay.cols, row) if lay.panel == "bottom" else (col, lay.rows)
-            for which, within in ((near & m.on_table, table), (near & m.on_table, None),
-                                  (np.arange(len(m.ids)) == c, None)):
+            col, row, _, _ = lay.panel_rect  # off the panel, whose players' row says whose
+            table = (lay.cols, row) if lay.panel == "bottom" else (col, lay.rows)  # call it is
+            tight = [x for x in lines if x]  # without its blank line: a row shorter
+            cue = np.arange(len(m.ids)) == c
+            # The cue ball and the balls by it in view, else the cue ball alone, on the
+            # table: the box a row shorter if it must be; only then over the panel.
+            for which, text, within in ((near & m.on_table, lines, table),
+                                        (near & m.on_table, tight, table),
+                                        (cue, lines, table), (cue, tight, table),
+                                        (near & m.on_table, lines, None), (cue, lines, None)):
                 keep = _cells_of(lay, m.pos[which], m.radius[which])
-                at = box_clear_of(cells, lines, keep, "your call", within=within)
+                at = box_clear_of(cells, text, keep, "your call", within=within)
                 if at is not None:
+                    lines = text
                     break
         draw_box(cells, lines, "your call", at=at)
     elif s.phase is Phase.OVER:
