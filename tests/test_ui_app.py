@@ -971,19 +971,47 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
     monkeypatch.setattr(__import__("termpool").ai.Computer, "shot",
-                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
+                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side",
+                                                      target="3"))
     app.state = start_turn(app.state)
     stroke(app, angle=90.0)  # its stick starts away from its aim, on the 8
     app.tick(t)
     app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
     assert app.state.message == (verdict, ("Computer: 3 in the side", "turn"))
-    # While its stick turns it names no ball (the stick sweeps past others); on its aim, the 3.
+    # Its plan's ball from the start, the one its note names: not the 8 its stick is on.
     assert app.state.stroke.angle != 0.0
-    assert "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
+    assert "Computer is aiming at the 3\n" in screen_text(app.cells(120, 40)[0])
     app.tick(t + 0.2)  # the first frame with its plan: the stick starts to turn
     app.tick(t + 0.2 + 0.7)
     assert app.state.stroke.angle == 0.0 and "Computer is aiming at the 3" in \
         screen_text(app.cells(120, 40)[0])
+
+
+def test_the_computer_names_its_plan_s_ball_even_where_its_aim_meets_another(monkeypatch):
+    # Its aim's error sends the cue ball at the 8, but its plan (and note) is the 3: the
+    # status names the 3; without a ball to name it says so plainly; the break is a break.
+    app, base = cpu_to_shoot(monkeypatch)
+    m = app.state.match
+    m.on_table[:] = False
+    for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    from termpool import ai
+
+    for plan, said in ((base._replace(angle=90.0, target="3"), "Computer is aiming at the 3\n"),
+                       (base._replace(angle=90.0), "Computer is aiming\n"),
+                       (base._replace(angle=90.0, kind="break", note="break"),
+                        "Computer is about to break\n")):
+        monkeypatch.setattr(ai.Computer, "shot", lambda *a, plan=plan, **k: plan)
+        app.state = start_turn(app.state)
+        put(app, stroke=replace(app.state.stroke, angle=90.0))
+        app.tick(0.0)
+        app.tick(0.1)
+        app.tick(1.0)  # on its aim, which meets the 8
+        assert app.state.stroke.angle == 90.0
+        pred = aid.prediction(aid.refresh(app.state))
+        assert pred is not None and m.ids[pred.ball] == "8"
+        assert said in screen_text(app.cells(120, 40)[0])
 
 
 def test_the_computer_s_thinking_time_does_not_eat_its_aim(monkeypatch):

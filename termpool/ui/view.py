@@ -51,7 +51,6 @@ from termpool.ui.state import (
     Settings,
     State,
     Stats,
-    Thinking,
     cue_index,
     help_of,
     voice,
@@ -327,12 +326,15 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
     elif isinstance(s.part, Run):
         out.append(("fast ×4 (F)" if s.part.fast else "F: fast forward", "dim"))
     elif s.phase is Phase.CPU:
-        part = s.part
-        on_aim = isinstance(part, Aiming) and s.stroke.angle == part.plan.angle
-        pred = aid.prediction(s) if on_aim else None  # not the balls its stick turns past
-        at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
-        out.append((f"{name} is thinking…" if isinstance(part, Thinking) else
-                    f"{name} is aiming{at}", "dim"))
+        plan = s.part.plan if isinstance(s.part, Aiming) else None
+        if plan is None:  # deciding (a shot, or the answer to an option)
+            out.append((f"{name} is thinking…", "dim"))
+        elif plan.kind == "break":
+            out.append((f"{name} is about to break", "dim"))
+        else:  # the ball its plan is about, as its note names it (not the aid's first ball,
+            # which its stick sweeps past, and its aim's error may change)
+            at = f" at the {plan.target}" if plan.target is not None else ""
+            out.append((f"{name} is aiming{at}", "dim"))
     return out
 
 
