@@ -1669,3 +1669,29 @@ def test_the_aid_s_warning_leaves_the_last_verdict_in_view(cols, rows) -> None:
     text = " ".join(screen_text(app.cells(cols, rows)[0]).split())
     assert "You to shoot" in text and "As aimed" in text, text
     assert "Computer potted the 3" in text, text
+
+
+def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
+    # The cue ball alone in a corner of the table with the 3 and the 8 far off: aimed along
+    # the head cushion softly it stops short of every ball, a foul; aimed at the 3, no warning.
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)
+    m = app.state.match
+    m.on_table[:] = False
+    for b, p in {"cue": (0.3, 0.3), "3": (1.8, 0.9), "8": (2.0, 0.4)}.items():
+        m.pos[m.index(b)] = p
+        m.on_table[m.index(b)] = True
+    m.state = replace(m.state, groups={0: "solids", 1: "stripes"},
+                      pocketed=tuple(b for b in m.ids[1:] if b not in ("3", "8")))
+    put(app, last_power=0.1)
+    stroke(app, angle=90.0)  # up the screen's short side, softly
+    text = aid_done(app)
+    pred = aid.prediction(app.state)
+    assert pred.ball is None and pred.cue.end == "rest"
+    assert "As aimed, a foul: the cue ball hit no ball" in text, text
+    angle = math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3))
+    stroke(app, angle=angle)  # at the 3: a legal shot
+    put(app, last_power=0.5)
+    assert "As aimed" not in aid_done(app)
+    assert m.ids[aid.prediction(app.state).ball] == "3"
