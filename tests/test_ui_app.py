@@ -708,6 +708,68 @@ def test_keys_that_do_not_apply_say_why():
     assert app.state.message[0][0] == "nothing to take back"
 
 
+def test_ball_in_hand_push_out_and_take_back_keys_say_why_in_every_phase():
+    # B with no ball in hand (aiming)
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    m = app.state.match
+    m.state = replace(m.state, is_break=False)
+    m.ball_in_hand = None
+    app.state = start_turn(app.state)
+    run_script(app, "b")
+    assert app.state.phase is Phase.AIM
+    assert app.state.message[0][0].startswith("no ball in hand")
+    # O and U with the ball in hand before the break (8-ball): why not
+    app = app_for(mode="8ball", opponent="human")
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "o")
+    assert app.state.message[0][0].startswith("a push-out is only for the shot right after")
+    run_script(app, "u")
+    assert app.state.message[0][0] == "take back and re-rack are for practice"
+    # while the balls roll: wait (and the verdict comes as ever)
+    for k, name in enumerate(("enter", "5", "space", "b", "o", "u")):  # 50%, struck at once
+        app.key(Key(name), 100.0 + k * 0.05)
+    assert app.state.phase is Phase.RUN
+    assert app.state.message[-1] == ("wait for the balls to stop", "dim")
+    assert sum(x == ("wait for the balls to stop", "dim") for x in app.state.message) == 1
+    run_script(app, "wait 20")
+    assert ("wait for the balls to stop", "dim") not in app.state.message
+    # 9-ball: a scratch on the break leaves ball in hand with the push-out to come
+    app = app_for(mode="9ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    m = app.state.match
+    m.state = replace(m.state, is_break=False, push_out="available")
+    m.ball_in_hand = "anywhere"
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "o")
+    assert app.state.message[0][0] == "put the cue ball down first (Enter), then push out"
+
+
+def test_take_back_works_with_the_ball_in_hand_in_practice():
+    app = app_for(mode="practice")
+    run_script(app, "enter space-hold 1.0 wait 20")
+    m = app.state.match
+    assert len(m.history) == 1
+    m.ball_in_hand = "anywhere"  # as after a scratch
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "u")
+    assert m.history == [] and app.state.message[0][0] == "took the last shot back"
+
+
+def test_the_bell_is_called_the_bell_in_the_help_the_settings_and_its_key():
+    from termpool.ui.controls import ACTIONS
+    from termpool.ui.settings import BY_KEY
+
+    word = BY_KEY["bell"].label.lower()
+    assert ACTIONS["bell"].startswith(f"{word} on/off")
+    app = app_for(mode="practice")
+    run_script(app, "n")
+    assert app.state.message[0][0] == f"{word} on"
+    assert "sound" not in ACTIONS["bell"] + BY_KEY["bell"].help
+
+
 # ------------------------------------------------------------- from QA round 2
 
 def eight_on_the_8(app: App):
