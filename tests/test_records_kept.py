@@ -203,3 +203,38 @@ def test_termpool_records_lists_them_newest_first(capsys, tmp_path) -> None:
     assert "practice" in lines[1] and lines[-1].startswith("watch one with: termpool replay")
     assert cli.main(["records", "--last", "1"]) == 0
     assert len(capsys.readouterr().out.splitlines()) == 3
+
+
+def test_an_unwritable_data_directory_costs_one_line_and_the_game_goes_on(
+        capsys, tmp_path, monkeypatch) -> None:
+    data = tmp_path / "data"
+    data.write_text("not a directory")
+    monkeypatch.setenv("XDG_DATA_HOME", str(data))
+    rc = cli.main([*PLAY, "--keys",
+                   keys(tmp_path, ONE_SHOT + " q y")])
+    lines = [x for x in capsys.readouterr().err.splitlines() if "record" in x]
+    assert rc == 0  # the player asked for nothing: a warning, not a failure
+    assert len(lines) == 1 and lines[0].startswith("termpool: cannot write the record to ")
+    assert lines[0].endswith("is not a directory): it is lost")
+
+
+def test_a_later_write_that_fails_leaves_the_earlier_record_and_says_so(
+        capsys, tmp_path, monkeypatch) -> None:
+    folder = tmp_path / "records"
+    records = Records(None, folder=folder)
+    app = App(Options(mode="practice", colors="mono", seed=3), records=records)
+    play_keys(app, parse_script(ONE_SHOT), 100, 32)
+    (rec,) = files.kept_records(folder)
+    write = files.write_atomic
+
+    def disk_full(path, text):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(files, "write_atomic", disk_full)
+    play_keys(app, parse_script("space-hold 0.6 wait 20"), 100, 32)
+    monkeypatch.setattr(files, "write_atomic", write)
+    lines, status = records.finish(app.state.match)
+    assert status == 0
+    assert lines == [f"cannot update the record '{rec}' (No space left on device); it was "
+                     f"saved to {rec} (1 shot)"]
+    assert replays(rec, capsys) == "1 shot: all identical"

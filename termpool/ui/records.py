@@ -75,9 +75,10 @@ class Records:
             self._kept.append(kept)
         elif kept.shots == len(match.history) and kept.where is not None:
             return
-        kept.shots = len(match.history)
         if self.path != "-":
-            self._write(self._kept.index(kept) + 1, kept)
+            self._write(self._kept.index(kept) + 1, kept, len(match.history))
+        else:
+            kept.shots = len(match.history)
 
     def kept_at(self, match) -> str | None:
         """The file `match` was last written to (None: not kept, or lost)."""
@@ -111,7 +112,7 @@ class Records:
                 except OSError:
                     pass
 
-    def _write(self, k: int, kept: _Kept) -> None:
+    def _write(self, k: int, kept: _Kept, shots: int) -> None:
         if self.path:
             target = slot_path(self.path, k)
         else:
@@ -134,19 +135,24 @@ class Records:
                     self._ours.add(target)
                     if existed:
                         self._replaced.add(target)
-                    kept.where, kept.why = target, None
+                    kept.where, kept.why, kept.shots = target, None, shots
                     if self.folder is not None and fresh:
                         self._prune()
                     return
                 except OSError as e:
                     why = e.strerror or str(e)
             kept.why = f"cannot write the record to '{target}' ({why})"
+            if self.folder is not None:  # the data directory is where it failed: no spare
+                if kept.where is not None:  # its file keeps the match as it was
+                    kept.why = f"cannot update the record '{target}' ({why})"
+                return
             try:
                 if kept.where in self._ours and kept.where != target:
                     files.write_atomic(kept.where, text)  # its spare from before
                 else:
                     kept.where = str(files.write_fallback(text, "record"))
                     self._ours.add(kept.where)
+                kept.shots = shots
             except OSError as e:
                 kept.where = None
                 kept.why += f" nor to the data directory ({e.strerror or e})"
