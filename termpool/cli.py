@@ -16,6 +16,7 @@ from collections.abc import Callable, Collection
 from typing import Any
 
 from termpool.command import Exit, Parser, one_blas_thread
+from termpool.files import KEEP_RECORDS
 from termpool.physics.results import DT, DT_RANGE, sim_result
 from termpool.text import PROG, say
 
@@ -173,8 +174,8 @@ _COMMANDS: dict[str, tuple[str, str, Callable[[argparse.ArgumentParser], None] |
         "list the matches kept for `termpool replay` (the newest first)",
         "List the records of the matches played, newest first: each match is kept in the "
         "data directory's records/ folder ($XDG_DATA_HOME/termpool/records/, else "
-        "~/.local/share/termpool/records/), written after every shot; the newest 100 are "
-        "kept. `termpool replay FILE --watch` shows one again. `termpool play --no-record` "
+        f"~/.local/share/termpool/records/), written after every shot; the newest {KEEP_RECORDS} "
+        "are kept. `termpool replay FILE --watch` shows one again. `termpool play --no-record` "
         "(or the setting Keep records) keeps none.",
         _records_arguments,
     ),

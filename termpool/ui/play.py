@@ -57,9 +57,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
                    "'right*5 wait 0.2 space-hold 1.5'")
     p.add_argument("--record", metavar="FILE",
-                   help="keep every match played (JSON, for `termpool replay`): the first in "
-                        "FILE, the next in FILE-2, FILE-3 ..., each written when it ends or "
-                        "is left and on every way out ('-': all to stdout at the end)")
+                   help="keep every match played (JSON, for `termpool replay`) in FILE "
+                        "instead of the data directory's records/: the first in FILE, the "
+                        "next in FILE-2, FILE-3 ..., each written after every shot and on "
+                        "every way out ('-': all to stdout at the end)")
     p.add_argument("--no-record", dest="records", action="store_false", default=None,
                    help="keep no record of this run's matches (the same as --no-records; by "
                         "default each is kept in the data directory's records/)")

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from termpool.files import MAX_CONFIG_BYTES, FileError, read_text, write_atomic
+from termpool.files import KEEP_RECORDS, MAX_CONFIG_BYTES, FileError, read_text, write_atomic
 from termpool.ui.controls import config_path
 
 FILE_NAME = "settings.conf"
@@ -123,7 +123,7 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("fast", "Fast-forward", "shots start at x4: never, the computer's, or every "
             "shot (F toggles during one)", "off", values=("off", "computer", "always")),
     Setting("records", "Keep records", "keep every match for `termpool replay`, in the data "
-            "directory's records/ (the last 100; `termpool records` lists them)", True,
+            f"directory's records/ (the last {KEEP_RECORDS}; `termpool records` lists them)", True,
             kind="switch"),
     Setting("player1", "Player 1", "player 1's name (empty: You against the computer, "
             "Player 1 in a two-player game)", "", kind="name", later=True),
