@@ -16,6 +16,7 @@ from collections.abc import Callable, Collection
 from typing import Any
 
 from termpool.command import Exit, Parser, one_blas_thread
+from termpool.files import KEEP_RECORDS
 from termpool.physics.results import DT, DT_RANGE, sim_result
 from termpool.text import PROG, say
 
@@ -124,6 +125,11 @@ def _serve_arguments(p: argparse.ArgumentParser) -> None:
     add_arguments(p)
 
 
+def _records_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--last", type=int, default=None, metavar="N",
+                   help="only the newest N (default: all that are kept)")
+
+
 def _selfplay_arguments(p: argparse.ArgumentParser) -> None:
     from termpool.selfplay import add_arguments
 
@@ -170,6 +176,15 @@ _COMMANDS: dict[str, tuple[str, str, Callable[[argparse.ArgumentParser], None] |
         "Corrupt lines are skipped with one line of warning.",
         _stats_arguments,
     ),
+    "records": (
+        "list the matches kept for `termpool replay` (the newest first)",
+        "List the records of the matches played, newest first: each match is kept in the "
+        "data directory's records/ folder ($XDG_DATA_HOME/termpool/records/, else "
+        f"~/.local/share/termpool/records/), written after every shot; the newest {KEEP_RECORDS} "
+        "are kept. `termpool replay FILE --watch` shows one again. `termpool play --no-record` "
+        "(or the setting Keep records) keeps none.",
+        _records_arguments,
+    ),
     "selfplay": (
         "play the computer against itself and print how each level played",
         "Play N games between two levels of the computer (the break alternating) and "
@@ -203,8 +218,10 @@ def _parser(commands: Collection[str] | None = None) -> Parser:
                     "or a friend at the same keyboard.",
         epilog=None if commands else (
             "With no arguments, termpool starts the game (the same as `termpool play`). "
-            "`termpool play --record match.json` keeps your matches; `termpool replay "
-            "match.json --watch` shows one again on screen. Without a terminal, try "
+            "Every match is kept in the data directory's records/: `termpool records` "
+            "lists them, `termpool replay FILE --watch` shows one again on screen "
+            "(`termpool play --record match.json` keeps them in files of your choosing). "
+            "Without a terminal, try "
             "`termpool sim` on the bundled example break scene: termpool sim "
             + bundled_example() + "."
         ),
@@ -403,6 +420,37 @@ def _stats(args: argparse.Namespace) -> int:
     return 0 if readable else 1
 
 
+# ------------------------------------------------------------------------------ records
+
+
+def _records(args: argparse.Namespace) -> int:
+    from termpool.files import kept_records, records_dir
+    from termpool.text import shown
+
+    if args.last is not None and args.last < 1:
+        return _fail("--last: must be a whole number from 1 up")
+    folder = records_dir()
+    kept = kept_records(folder)[::-1]
+    if not kept:
+        sys.stdout.write(f"no match is kept in {shown(folder)} yet\n")
+        return 0
+    shown_ = kept[:args.last] if args.last else kept
+    lines = [f"{len(kept)} {'match' if len(kept) == 1 else 'matches'} kept in "
+             f"{shown(folder)} (newest first):"]
+    for p in shown_:
+        day, clock, *rest = p.stem.split("-")
+        when = f"{day[:4]}-{day[4:6]}-{day[6:]} {clock[:2]}:{clock[2:4]}:{clock[4:]}"
+        try:
+            size = f"{p.stat().st_size / 1024:.0f} KiB"
+        except OSError:
+            size = "?"
+        lines.append(f"  {when}  {rest[-1]:<8} {size:>8}  {shown(p)}")
+    lines.append("watch one with: termpool replay FILE --watch")
+    sys.stdout.write("\n".join(lines) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
 # -------------------------------------------------------------------------------- bench
 
 
@@ -476,6 +524,8 @@ def main(argv: list[str] | None = None) -> int:
             return _rules(args)
         if args.command == "stats":
             return _stats(args)
+        if args.command == "records":
+            return _records(args)
         if args.command == "selfplay":
             return _selfplay(args)
         if args.command == "serve":

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import stat
 import sys
 import tempfile
@@ -222,6 +223,10 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> None:
         raise
 
 
+RECORDS = "records"  # the data directory's folder of kept matches
+KEEP_RECORDS = 100  # kept matches: the oldest beyond this many are removed
+
+
 def data_dir(env: dict | None = None) -> Path:
     """Where termpool keeps files of its own: $XDG_DATA_HOME/termpool, else
     ~/.local/share/termpool."""
@@ -229,6 +234,26 @@ def data_dir(env: dict | None = None) -> Path:
     base = env.get("XDG_DATA_HOME") or str(Path(env.get("HOME", "~")).expanduser()
                                            / ".local" / "share")
     return Path(base) / "termpool"
+
+
+def records_dir(env: dict | None = None) -> Path:
+    """Where every match is kept (unless turned off): `records/` in the data directory."""
+    return data_dir(env) / RECORDS
+
+
+# A kept match's name in the records folder: the date and time, a number when two started in
+# the same second, the mode. Only files so named are ever removed.
+KEPT_NAME = re.compile(r"\d{8}-\d{6}(-\d+)?-[a-z0-9]+\.json")
+
+
+def kept_records(folder: str | os.PathLike) -> list[Path]:
+    """The matches kept in `folder`, oldest first (by when each was last written)."""
+    try:
+        entries = [e for e in os.scandir(folder) if KEPT_NAME.fullmatch(e.name)]
+        dated = [(e.stat().st_mtime, e.name, Path(e.path)) for e in entries if e.is_file()]
+    except OSError:
+        return []
+    return [p for _, _, p in sorted(dated)]
 
 
 def write_fallback(text: str, stem: str, env: dict | None = None) -> Path:

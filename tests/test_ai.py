@@ -629,6 +629,34 @@ def test_plans_say_what_kind_of_shot_they_are():
     assert ai.choose_shot(*brk.args(), State(mode="8ball", is_break=True)).kind == "break"
 
 
+def test_a_plan_s_target_is_the_ball_its_note_names_first():
+    # One source for the ball the computer is aiming at: the screen says "aiming at the
+    # <target>", and the note says what it is trying with that ball. Every plan that is not
+    # the break aims at a ball the shooter may hit and names it first.
+    lay, down = after_break()
+    plans = ai.score_shots(*lay.args(), State(mode="8ball", pocketed=tuple(down)),
+                           level="hard", max_candidates=1024)
+    assert {"pot", "combo", "safety", "kick"} & {p.kind for p in plans}
+    tries = 0
+    for p in plans:
+        assert p.target in lay.ids and p.target != "cue", p
+        if p.sees in ("win", "loss", "foul"):  # its note is the verdict (never on screen)
+            continue
+        if p.kind in ("safety", "kick"):
+            assert p.note.endswith(f" on the {p.target}"), p
+        elif p.sees == "pass":  # a pot tried that the batch saw miss: "try ..."
+            tries += 1
+            start = f"try {p.target} in " if p.kind == "pot" else f"try the {p.target} into "
+            assert p.note.startswith(start), p
+        elif p.sees == "pot" and p.kind == "pot" and "in by" not in p.note:
+            assert p.note.startswith(f"{p.target} in the "), p
+        elif p.sees == "pot" and p.kind == "combo" and "in by" not in p.note:
+            assert p.note.startswith(f"combination: the {p.target} into "), p
+    assert tries
+    brk = Layout({b: tuple(xy) for b, xy in zip(*_rack("8ball"), strict=True)})
+    assert ai.choose_shot(*brk.args(), State(mode="8ball", is_break=True)).target is None
+
+
 def test_a_shot_that_pots_is_a_pot_naming_what_dropped():
     # A safety or kick that the batch saw pot a ball it did not aim at (a kiss, a bank) is
     # chosen for that pot: it is a pot of that ball into that pocket, never a safety. Every

@@ -346,7 +346,8 @@ def test_the_top_help_speaks_to_players_and_names_watching_a_match() -> None:
     assert p.returncode == 0
     out = " ".join(p.stdout.split())
     assert "8-ball, 9-ball and practice" in out
-    assert "--record match.json" in out and "replay match.json --watch" in out
+    assert "--record match.json" in out and "replay FILE --watch" in out
+    assert "termpool records" in out
     assert "batched" not in out and "physics core" not in out
 
 

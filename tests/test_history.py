@@ -319,7 +319,9 @@ def headless(*args: str, keys: str) -> subprocess.CompletedProcess:
 
 def test_a_game_left_mid_match_is_in_the_history() -> None:
     p = headless("--mode", "practice", "--seed", "4", keys="enter space-hold 0.8 wait 20 q y")
-    assert p.returncode == 0 and not p.stderr
+    # (the one line said: where its record went)
+    assert p.returncode == 0 and p.stderr.startswith("termpool: record saved to ")
+    assert p.stderr.count("\n") == 1
     (only,) = h.read_history(h.history_path())[0]
     assert only["mode"] == "practice" and only["shots"] == 1 and only["result"] == "practice"
 
@@ -328,7 +330,7 @@ def test_an_unwritable_history_costs_the_player_one_line(tmp_path) -> None:
     data = tmp_path / "data"
     data.write_text("not a directory")
     p = subprocess.run([sys.executable, "-m", "termpool", "play", "--headless", "--keys", "-",
-                        "--mode", "practice", "--seed", "4"],
+                        "--mode", "practice", "--seed", "4", "--no-record"],  # (its own line)
                        input="enter space-hold 0.8 wait 20 q y", capture_output=True, text=True,
                        cwd=ROOT, timeout=120,
                        env={**os.environ, "PYTHONPATH": str(ROOT), "XDG_DATA_HOME": str(data)})

@@ -34,8 +34,11 @@ ROOT = Path(__file__).resolve().parent.parent
 
 # A value other than the default for every setting (names with what a name may hold).
 CHANGED = {"level": "hard", "table": "7ft", "frames": 5, "theme": "classic", "colors": "16",
-           "aid": "ghost", "power": "digits", "bell": True, "fast": "computer",
+           "aid": "ghost", "power": "digits", "bell": True, "fast": "computer", "records": False,
            "player1": "Zoë #1", "player2": "Bob = B"}
+
+
+KEYS = [s.key for s in SETTINGS]  # the Settings screen's order (↓ steps through it)
 
 
 def conf() -> Path:
@@ -292,8 +295,8 @@ def test_every_setting_can_be_changed_on_the_screen() -> None:
 
 def test_a_name_is_typed_and_plays_under_it() -> None:
     app = app_at_menu()
-    keys(app, menu_item("Settings"), *["down"] * 9, "enter", "q", "backspace", "Z", "o", "e",
-         "enter", "esc")
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("player1"), "enter", "q",
+         "backspace", "Z", "o", "e", "enter", "esc")
     assert app.state.opts.player1 == "Zoe"
     keys(app, "1")  # 8-ball against the computer
     assert app.state.match.players == ("Zoe", "Computer")
@@ -302,7 +305,8 @@ def test_a_name_is_typed_and_plays_under_it() -> None:
 
 def test_a_name_stops_at_its_length_and_esc_leaves_it_as_it_was() -> None:
     app = app_at_menu()
-    keys(app, menu_item("Settings"), *["down"] * 10, "enter", *["x"] * (MAX_NAME + 5), "enter")
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("player2"), "enter",
+         *["x"] * (MAX_NAME + 5), "enter")
     assert app.state.opts.player2 == "x" * MAX_NAME
     keys(app, "enter", "y", "esc")
     assert app.state.opts.player2 == "x" * MAX_NAME

@@ -708,6 +708,68 @@ def test_keys_that_do_not_apply_say_why():
     assert app.state.message[0][0] == "nothing to take back"
 
 
+def test_ball_in_hand_push_out_and_take_back_keys_say_why_in_every_phase():
+    # B with no ball in hand (aiming)
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    m = app.state.match
+    m.state = replace(m.state, is_break=False)
+    m.ball_in_hand = None
+    app.state = start_turn(app.state)
+    run_script(app, "b")
+    assert app.state.phase is Phase.AIM
+    assert app.state.message[0][0].startswith("no ball in hand")
+    # O and U with the ball in hand before the break (8-ball): why not
+    app = app_for(mode="8ball", opponent="human")
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "o")
+    assert app.state.message[0][0].startswith("a push-out is only for the shot right after")
+    run_script(app, "u")
+    assert app.state.message[0][0] == "take back and re-rack are for practice"
+    # while the balls roll: wait (and the verdict comes as ever)
+    for k, name in enumerate(("enter", "5", "space", "b", "o", "u")):  # 50%, struck at once
+        app.key(Key(name), 100.0 + k * 0.05)
+    assert app.state.phase is Phase.RUN
+    assert app.state.message[-1] == ("wait for the balls to stop", "dim")
+    assert sum(x == ("wait for the balls to stop", "dim") for x in app.state.message) == 1
+    run_script(app, "wait 20")
+    assert ("wait for the balls to stop", "dim") not in app.state.message
+    # 9-ball: a scratch on the break leaves ball in hand with the push-out to come
+    app = app_for(mode="9ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    m = app.state.match
+    m.state = replace(m.state, is_break=False, push_out="available")
+    m.ball_in_hand = "anywhere"
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "o")
+    assert app.state.message[0][0] == "put the cue ball down first (Enter), then push out"
+
+
+def test_take_back_works_with_the_ball_in_hand_in_practice():
+    app = app_for(mode="practice")
+    run_script(app, "enter space-hold 1.0 wait 20")
+    m = app.state.match
+    assert len(m.history) == 1
+    m.ball_in_hand = "anywhere"  # as after a scratch
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "u")
+    assert m.history == [] and app.state.message[0][0] == "took the last shot back"
+
+
+def test_the_bell_is_called_the_bell_in_the_help_the_settings_and_its_key():
+    from termpool.ui.controls import ACTIONS
+    from termpool.ui.settings import BY_KEY
+
+    word = BY_KEY["bell"].label.lower()
+    assert ACTIONS["bell"].startswith(f"{word} on/off")
+    app = app_for(mode="practice")
+    run_script(app, "n")
+    assert app.state.message[0][0] == f"{word} on"
+    assert "sound" not in ACTIONS["bell"] + BY_KEY["bell"].help
+
+
 # ------------------------------------------------------------- from QA round 2
 
 def eight_on_the_8(app: App):
@@ -971,19 +1033,47 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
     monkeypatch.setattr(__import__("termpool").ai.Computer, "shot",
-                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side"))
+                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side",
+                                                      target="3"))
     app.state = start_turn(app.state)
     stroke(app, angle=90.0)  # its stick starts away from its aim, on the 8
     app.tick(t)
     app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
     assert app.state.message == (verdict, ("Computer: 3 in the side", "turn"))
-    # While its stick turns it names no ball (the stick sweeps past others); on its aim, the 3.
+    # Its plan's ball from the start, the one its note names: not the 8 its stick is on.
     assert app.state.stroke.angle != 0.0
-    assert "Computer is aiming\n" in screen_text(app.cells(120, 40)[0])
+    assert "Computer is aiming at the 3\n" in screen_text(app.cells(120, 40)[0])
     app.tick(t + 0.2)  # the first frame with its plan: the stick starts to turn
     app.tick(t + 0.2 + 0.7)
     assert app.state.stroke.angle == 0.0 and "Computer is aiming at the 3" in \
         screen_text(app.cells(120, 40)[0])
+
+
+def test_the_computer_names_its_plan_s_ball_even_where_its_aim_meets_another(monkeypatch):
+    # Its aim's error sends the cue ball at the 8, but its plan (and note) is the 3: the
+    # status names the 3; without a ball to name it says so plainly; the break is a break.
+    app, base = cpu_to_shoot(monkeypatch)
+    m = app.state.match
+    m.on_table[:] = False
+    for b, p in {"cue": (0.5, 0.6), "3": (1.0, 0.6), "8": (0.5, 1.0)}.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    from termpool import ai
+
+    for plan, said in ((base._replace(angle=90.0, target="3"), "Computer is aiming at the 3\n"),
+                       (base._replace(angle=90.0), "Computer is aiming\n"),
+                       (base._replace(angle=90.0, kind="break", note="break"),
+                        "Computer is about to break\n")):
+        monkeypatch.setattr(ai.Computer, "shot", lambda *a, plan=plan, **k: plan)
+        app.state = start_turn(app.state)
+        put(app, stroke=replace(app.state.stroke, angle=90.0))
+        app.tick(0.0)
+        app.tick(0.1)
+        app.tick(1.0)  # on its aim, which meets the 8
+        assert app.state.stroke.angle == 90.0
+        pred = aid.prediction(aid.refresh(app.state))
+        assert pred is not None and m.ids[pred.ball] == "8"
+        assert said in screen_text(app.cells(120, 40)[0])
 
 
 def test_the_computer_s_thinking_time_does_not_eat_its_aim(monkeypatch):
@@ -1598,3 +1688,72 @@ def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(c
     right = text.splitlines()[bottom].index("┘")
     kc, kr, kw, kh = cue
     assert (bottom < kr or kr + kh <= top or right < kc or kc + kw <= left), (cue, text)
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24)])
+@pytest.mark.parametrize("where", [(0.5, 0.5), (0.3, 0.5), (0.5, 0.3), (0.7, 0.7)])
+def test_the_push_out_question_never_covers_the_players_row(cols, rows, where):
+    # The cue ball with balls all about it, so that no place on the table keeps them all in
+    # view: the box must still leave the players' row (whose call it is) alone.
+    app = app_for(mode="9ball", opponent="human")
+    run_script(app, "enter space-hold 1.2 wait 20")
+    if app.state.phase is Phase.PLACE:
+        app.key(Key("enter"), 100.0)
+    run_script(app, "o space-hold 0.3 wait 20")
+    assert app.state.phase is Phase.OPTION
+    m = app.state.match
+    c = m.ids.index("cue")
+    at = np.array([m.table.length * where[0], m.table.width * where[1]])
+    m.pos[c] = at
+    others = [k for k in range(len(m.ids)) if k != c and m.on_table[k]]
+    step = 2 * np.pi / len(others)
+    for n, k in enumerate(others):  # a ring 2.5 diameters out
+        m.pos[k] = at + 5 * m.radius[c] * np.array([np.cos(n * step), np.sin(n * step)])
+    lay = layout(cols, rows, m.table)
+    text = screen_text(app.cells(cols, rows)[0]).splitlines()
+    assert "s: shoot from here" in "\n".join(text)
+    _, row, _, _ = lay.panel_rect
+    assert "Player 1" in text[row] and "Player 2" in text[row], "\n".join(text)
+
+
+@pytest.mark.parametrize(("cols", "rows"), SMALL_SIZES)
+def test_the_aid_s_warning_leaves_the_last_verdict_in_view(cols, rows) -> None:
+    # The computer's shot said, then a foul aimed: both are in view, and whose turn it is.
+    app = app_for(mode="8ball", opponent="cpu")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)
+    m = app.state.match
+    m.state = replace(m.state, groups={0: "stripes", 1: "solids"})  # the 8 first: a foul
+    put(app, message=(("Computer potted the 3: nothing else went down, your turn", "plain"),))
+    stroke(app, angle=45.0)
+    aid_done(app)
+    assert aid.foreseen(app.state).foul is not None
+    text = " ".join(screen_text(app.cells(cols, rows)[0]).split())
+    assert "You to shoot" in text and "As aimed" in text, text
+    assert "Computer potted the 3" in text, text
+
+
+def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
+    # The cue ball alone in a corner of the table with the 3 and the 8 far off: aimed along
+    # the head cushion softly it stops short of every ball, a foul; aimed at the 3, no warning.
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)
+    m = app.state.match
+    m.on_table[:] = False
+    for b, p in {"cue": (0.3, 0.3), "3": (1.8, 0.9), "8": (2.0, 0.4)}.items():
+        m.pos[m.index(b)] = p
+        m.on_table[m.index(b)] = True
+    m.state = replace(m.state, groups={0: "solids", 1: "stripes"},
+                      pocketed=tuple(b for b in m.ids[1:] if b not in ("3", "8")))
+    put(app, last_power=0.1)
+    stroke(app, angle=90.0)  # up the screen's short side, softly
+    text = aid_done(app)
+    pred = aid.prediction(app.state)
+    assert pred.ball is None and pred.cue.end == "rest"
+    assert "As aimed, a foul: the cue ball hit no ball" in text, text
+    angle = math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3))
+    stroke(app, angle=angle)  # at the 3: a legal shot
+    put(app, last_power=0.5)
+    assert "As aimed" not in aid_done(app)
+    assert m.ids[aid.prediction(app.state).ball] == "3"

@@ -32,6 +32,7 @@ from termpool.ui.palette import (
     POCKET_C,
     RAIL_C,
     STRIPE_WHITE_C,
+    mono_glyph,
     pack,
 )
 from termpool.ui.table_view import MIN_COLS, MIN_ROWS, layout
@@ -497,3 +498,57 @@ def test_ball_numbers_take_the_ink_that_reads_best_on_their_ball():
         ink = number_colour(ball)
         other = NUMBER_LIGHT_C if ink == NUMBER_DARK_C else NUMBER_DARK_C
         assert _contrast(ball.rgb, ink.rgb) >= max(4.5, _contrast(ball.rgb, other.rgb)), ball
+
+
+# ------------------------------------------------------------ mono: every ball drawn
+
+MONO_BALLS = "●◐◉○"
+
+
+def _mono_table(ids, pos, cols, rows):
+    from termpool.ui.table_view import TableView
+
+    table = Table.preset("9ft")
+    lay = layout(cols, rows, table)
+    view = TableView(table, lay)
+    return view, view.mono(ids, pos)
+
+
+@pytest.mark.parametrize("mode", ["8ball", "9ball"])
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24), (120, 40)])
+def test_mono_draws_every_ball_of_a_rack(mode, cols, rows) -> None:
+    # A rack's balls are closer than a cell: each still gets a glyph of its own, as the
+    # colour modes draw every ball, and the cue ball keeps its own cell.
+    sc = load_scene({"table": "9ft", "balls": mode})
+    view, chars = _mono_table(sc.ids, sc.pos, cols, rows)
+    glyphs = [g for g in chars.ravel() if g in MONO_BALLS]
+    want = sorted(mono_glyph(view.style(b, k)) for k, b in enumerate(sc.ids))
+    assert sorted(glyphs) == want
+    x, y = view.layout.to_pixels(*sc.pos[sc.ids.index("cue")])
+    assert chars[int(y) // 2, int(x)] == "○"
+
+
+def test_mono_moves_no_ball_that_has_a_cell_of_its_own() -> None:
+    ids = ["cue", "1", "9", "8"]
+    pos = np.array([[0.5, 0.5], [1.0, 0.3], [1.6, 0.9], [2.2, 0.6]])
+    view, chars = _mono_table(ids, pos, 80, 24)
+    for k, b in enumerate(ids):
+        x, y = view.layout.to_pixels(*pos[k])
+        assert chars[int(y) // 2, int(x)] == mono_glyph(view.style(b, k))
+    assert sum(g in MONO_BALLS for g in chars.ravel()) == 4
+
+
+def test_mono_puts_a_hidden_ball_on_the_nearest_free_cloth() -> None:
+    # Two balls frozen along the table's length at 80x24 (4 cm a cell): the second goes to
+    # the free cell of cloth nearest its centre, on its side of the first.
+    from termpool.physics.params import BALL_RADIUS
+
+    table = Table.preset("9ft")
+    lay = layout(80, 24, table)
+    c, r = 40, 8
+    x0, y0 = lay.to_table(c, r)  # the centre of a cell of cloth
+    ids = ["1", "9"]
+    pos = np.array([[x0, y0], [x0 + 0.2 * BALL_RADIUS, y0]])  # the same cell, the 9 right
+    _, chars = _mono_table(ids, pos, 80, 24)
+    assert chars[r, c] == "●" and chars[r, c + 1] == "◐"
+    assert sum(g in MONO_BALLS for g in chars.ravel()) == 2

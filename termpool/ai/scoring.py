@@ -110,8 +110,9 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
             if not practice:  # in practice the same player shoots again: nothing to deny
                 leave_for.append((b, -1.0, nxt))
             word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
-            if word is None:
-                word = f"try {sunk} in the {pocket} pocket"
+            if word is None:  # the ball struck first named, as in a pot's note
+                word = f"try {sunk} in the {pocket} pocket" if sunk == tgt else \
+                    f"try the {tgt} into the {sunk}, {sunk} in the {pocket} pocket"
             notes.append(f"{word} on the {tgt}" if cands.kind[b] in ("safety", "kick")
                          else word)
             sees.append("pass")

@@ -51,6 +51,8 @@ class Plan(NamedTuple):
     pocket: str | None = None  # ... and the pocket it is sent to
     sees: str = ""  # what the batch saw the shot do: "win", "loss", "foul" (its note is then
     # the referee's verdict), "pot" (a pot that keeps the table) or "pass" ("": no batch)
+    target: str | None = None  # the ball the cue ball is sent at first (None: the break, or
+    # no ball on the table): the one ball its note and the screen's "aiming at" both name
 
 
 class _Eval(NamedTuple):
@@ -106,9 +108,10 @@ def _plan(ev: _Eval, b: int, score: float) -> Plan:
     if ev.flukes[b] is not None:  # played for the ball the batch saw drop: a pot, not a safety
         ball, pocket = ev.flukes[b]
         kind = "pot" if kind in ("safety", "kick") else kind
+    target = ev.t.ids[c.target[b]] if c.target[b] >= 0 else None
     return Plan(c.speed[b], (c.angle[b] + 180.0) % 360.0 - 180.0, c.side[b], c.top[b],
                 ev.calls[b], float(score), ev.notes[b][0], kind, ball, pocket,
-                ev.notes[b][1])
+                ev.notes[b][1], target)
 
 
 def score_shots(table: Table, physics: Physics, ids: Sequence[str], pos, radius, mass,

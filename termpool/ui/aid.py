@@ -132,21 +132,29 @@ def called(s: State) -> tuple[str, str]:
 def foreseen(s: State) -> Outcome | None:
     """The referee's outcome of the player's shot as the aid sees it (its first ball, that
     ball into a pocket, the cue ball into one after the hit; a cushion counted as reached,
-    which the aid does not follow that far), or None without a ball hit to judge (the aid
-    off, still running, no ball in its path; the break, whose rack it does not follow)."""
+    which the aid does not follow that far; or no ball hit at all, where the cue ball comes
+    to rest or drops without meeting one), or None with nothing sure to judge (the aid off
+    or still running, a cue ball that may yet meet a ball past the cushions the aid follows;
+    the break, whose rack it does not follow)."""
     m = s.match
     pred = prediction(s) if s.phase is Phase.AIM and not m.state.is_break else None
-    if pred is None or pred.ball is None:
+    if pred is None:
         return None
-    first = m.ids[pred.ball]
-    pocketed = {}
-    if pred.object is not None and pred.object.end == "pocket":
-        pocketed[first] = pred.object.pocket
-    if pred.after is not None and pred.after.end == "pocket":
-        pocketed["cue"] = pred.after.pocket
-    on = tuple(b for b, here in zip(m.ids, m.on_table, strict=True) if here)
-    summary = ShotSummary(first_contact=first, cushions_after_contact=1, rail_balls=on,
-                          pocketed=pocketed, scratch="cue" in pocketed)
+    if pred.ball is None:
+        if pred.cue.end not in ("rest", "pocket"):
+            return None
+        pocketed = {"cue": pred.cue.pocket} if pred.cue.end == "pocket" else {}
+        summary = ShotSummary(first_contact=None, pocketed=pocketed, scratch=bool(pocketed))
+    else:
+        first = m.ids[pred.ball]
+        pocketed = {}
+        if pred.object is not None and pred.object.end == "pocket":
+            pocketed[first] = pred.object.pocket
+        if pred.after is not None and pred.after.end == "pocket":
+            pocketed["cue"] = pred.after.pocket
+        on = tuple(b for b, here in zip(m.ids, m.on_table, strict=True) if here)
+        summary = ShotSummary(first_contact=first, cushions_after_contact=1, rail_balls=on,
+                              pocketed=pocketed, scratch="cue" in pocketed)
     state = replace(m.state, called=called(s) if m.needs_call() else None,
                     push_out="declared" if s.stroke.push_out else m.state.push_out)
     return judge(state, summary)[0]

@@ -72,14 +72,18 @@ def to_cells(canvas) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return chars, np.ascontiguousarray(top), np.ascontiguousarray(bot)
 
 
-def mono_cells(canvas) -> np.ndarray:
-    """(H/2, W) glyphs for the monochrome mode: each cell shows the glyph of the more important
-    of its two pixels' tags (a ball beats a pocket beats a rail beats felt)."""
+def mono_tags(canvas) -> np.ndarray:
+    """(H/2, W) tags for the monochrome mode: each cell's more important pixel's tag (a ball
+    beats a pocket beats a rail beats felt)."""
     tag = canvas.tag if isinstance(canvas, Canvas) else np.asarray(canvas, dtype=np.uint8)
     top = tag[0::2]
     bot = tag[1::2]
-    pick = np.where(_PRIO[top] >= _PRIO[bot], top, bot)
-    return _GLYPH[pick]
+    return np.where(_PRIO[top] >= _PRIO[bot], top, bot)
+
+
+def mono_cells(canvas) -> np.ndarray:
+    """(H/2, W) glyphs for the monochrome mode: each cell the glyph of its tag (`mono_tags`)."""
+    return _GLYPH[mono_tags(canvas)]
 
 
 def put_text(cells, row: int, col: int, text: str, fg=None, bg=None) -> None:

@@ -51,7 +51,7 @@ ACTIONS: dict[str, str] = {
     "aim_aid": "aim aid: every path, then the ghost ball only, then off (cycles)",
     "call_pocket": "next called pocket",
     "push_out": "push out (9-ball)",
-    "bell": "sound on/off",
+    "bell": "bell on/off (a pot or a foul rings it)",
     "undo": "undo the shot (practice)",
     "rerack": "rerack (practice)",
 }

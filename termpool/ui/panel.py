@@ -117,6 +117,9 @@ def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str,
     return [*lines[:room - 1], (text + "…", tone)]
 
 
+KEPT_TONES = ("plain", "good", "foul")  # verdicts and warnings: the status lines kept longest
+
+
 def fit_status(status: Sequence[tuple[str, str]], room: int,
                width: int) -> list[tuple[str, str]]:
     """The status lines (text, tone) for `room` rows `width` wide. Where they do not all fit
@@ -129,7 +132,7 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
         return [line for w in wrapped for line in w]
     keep = list(range(len(wrapped)))
     while len(keep) > max(room, 0):
-        lesser = [k for k in keep[1:] if status[k][1] not in ("plain", "good", "foul")]
+        lesser = [k for k in keep[1:] if status[k][1] not in KEPT_TONES]
         keep.remove(lesser[-1] if lesser else keep[-1])
     spare = room - len(keep)
     out = []
@@ -265,7 +268,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         for p in players:
             _put_line(cells, r, c0, player_line(p, info, mono, w))
             r += 1
-    for s, tone in fit_status(info.status, r0 + nrows - 1 - r, w):
+    room = r0 + nrows - 1 - r
+    # What to do now, a verdict and a warning are never lost for the keys' line: where they
+    # do not get a row each, that row is theirs too (H still opens the help).
+    must = 1 + sum(tone in KEPT_TONES for _, tone in info.status[1:])
+    hint = must <= room
+    for s, tone in fit_status(info.status, room if hint else room + 1, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
     if info.legend and r < r0 + nrows - 1:  # a row to spare: which colour is which number
@@ -274,7 +282,9 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
             pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
         if sum(len(t) for t, _, _ in pieces) <= w:
             _put_line(cells, r, c0, pieces)
-    put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+    if hint:
+        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb,
+                 BACKDROP_C.rgb)
 
 
 def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:

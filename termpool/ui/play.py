@@ -57,9 +57,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
                    "'right*5 wait 0.2 space-hold 1.5'")
     p.add_argument("--record", metavar="FILE",
-                   help="keep every match played (JSON, for `termpool replay`): the first in "
-                        "FILE, the next in FILE-2, FILE-3 ..., each written when it ends or "
-                        "is left and on every way out ('-': all to stdout at the end)")
+                   help="keep every match played (JSON, for `termpool replay`) in FILE "
+                        "instead of the data directory's records/: the first in FILE, the "
+                        "next in FILE-2, FILE-3 ..., each written after every shot and on "
+                        "every way out ('-': all to stdout at the end)")
+    p.add_argument("--no-record", dest="records", action="store_false", default=None,
+                   help="keep no record of this run's matches (the same as --no-records; by "
+                        "default each is kept in the data directory's records/)")
     p.add_argument("--force", action="store_true",
                    help="let --record replace an existing file (without it, one is refused)")
 
@@ -116,7 +120,8 @@ def _check_record(args: argparse.Namespace) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Play; returns the exit status. Raises PlayError for bad options (one line, status 2).
-    The record (--record) is saved on every way out: the end, Q, Ctrl-C, a signal, a crash."""
+    The records (the data directory's records/, or --record) are saved after every shot and
+    on every way out: the end, Q, Ctrl-C, a signal, a crash."""
     store, values = _settings(args)
     opts = _options(args, values)
     if not args.headless:
@@ -125,10 +130,12 @@ def run(args: argparse.Namespace) -> int:
                 raise PlayError(f"{flag}: only with --headless (a terminal has its own size "
                                 "and keys)")
     _check_record(args)
+    from termpool.files import records_dir
     from termpool.game.history import Recorder
     from termpool.ui.records import Records
 
-    files = {"prefs": store, "history": Recorder(), "records": Records(args.record, args.force)}
+    records = Records(args.record, args.force, folder=records_dir())
+    files = {"prefs": store, "history": Recorder(), "records": records}
     if args.headless:
         app, play = _headless(args, opts, _keymap(args.keymap), files)
     else:
@@ -148,7 +155,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _leave(app, args: argparse.Namespace) -> int:
-    """However the game ended: the match in play is saved (--record) and goes into the
+    """However the game ended: the match in play is saved (its record) and goes into the
     history, and what is left to say is said: where each match of the session went. Returns
     0, or 1 when a record could not go where asked."""
     from termpool.text import say

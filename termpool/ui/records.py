@@ -1,11 +1,16 @@
-"""`--record FILE` for a whole session: every match played is kept, each in a file of its own.
+"""Every match played is kept, each in a file of its own: by default in the data directory's
+`records/` (`files.records_dir`), or where `--record FILE` says.
 
-The first match with a shot goes to FILE, the second to FILE-2 (`m.json` -> `m-2.json`), the
-third to FILE-3, and so on. A match is written as soon as it ends or is left (a new game, the
-menu) and once more on the way out if it changed, atomically each time, so a session killed
-later still has it. A file that was there before play is replaced only with --force (the first
-one is checked before play); a file this session wrote is its own to rewrite. A file that
-cannot be written sends its match to the data directory instead (`files.write_fallback`).
+By default a match goes to `records/<date>-<time>-<mode>.json` (the time it was first
+written); the newest `files.KEEP_RECORDS` such files are kept and older ones removed. The
+setting `records` (`--no-record`) turns this off. With `--record FILE` the first match with a
+shot goes to FILE, the second to FILE-2 (`m.json` -> `m-2.json`), the third to FILE-3, and so
+on, and nothing goes to `records/`. A match is written after every shot, when it ends or is
+left (a new game, the menu) and once more on the way out if it changed, atomically each time,
+so a session killed later still has it. A --record file that was there before play is
+replaced only with --force (the first one is checked before play); a file this session wrote
+is its own to rewrite. A file that cannot be written sends its match to the data directory
+instead (`files.write_fallback`).
 Nothing is printed while the game holds the terminal: the lines saying where each match went
 are kept for the end (`lines`). With FILE "-" the matches go to standard output at the end
 as JSON Lines: each match one JSON object on a line of its own, in the order played (one line
@@ -16,6 +21,7 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -37,19 +43,29 @@ class _Kept:
     shots: int = 0  # as last written
     where: str | None = None  # the file it is in (None: lost)
     why: str | None = None  # why it is not in its own file
+    target: str | None = None  # its own file in the records folder (chosen when first kept)
 
 
 class Records:
-    def __init__(self, path: str | None, force: bool = False) -> None:
+    def __init__(self, path: str | None, force: bool = False,
+                 folder: str | os.PathLike | None = None,
+                 most: int = files.KEEP_RECORDS) -> None:
+        """`path`: --record FILE (it wins); else `folder`: every match in a file of its own
+        there, the newest `most` kept; neither: nothing is kept."""
         self.path, self.force = path, force
+        self.folder = None if path else folder
+        self.most = most
         self._kept: list[_Kept] = []  # in the order the matches were first kept
         self._ours: set[str] = set()  # files this session wrote
         self._replaced: set[str] = set()  # ... of which were there before
 
-    def keep(self, match, empty: bool = False) -> None:
+    def keep(self, match, empty: bool = False, on: bool = True) -> None:
         """Save `match` (not one without shots unless `empty`; again only if it has more
-        shots since)."""
-        if not self.path or match is None or match.running is not None:
+        shots since). `on`: the setting that keeps matches in the records folder (--record
+        FILE keeps them whatever it says)."""
+        if match is None or match.running is not None:
+            return
+        if not (self.path or (self.folder is not None and on)):
             return
         if not (match.history or empty):
             return
@@ -59,12 +75,51 @@ class Records:
             self._kept.append(kept)
         elif kept.shots == len(match.history) and kept.where is not None:
             return
-        kept.shots = len(match.history)
         if self.path != "-":
-            self._write(self._kept.index(kept) + 1, kept)
+            self._write(self._kept.index(kept) + 1, kept, len(match.history))
+        else:
+            kept.shots = len(match.history)
 
-    def _write(self, k: int, kept: _Kept) -> None:
-        target = slot_path(self.path, k)
+    def kept_at(self, match) -> str | None:
+        """The file `match` was last written to (None: not kept, or lost)."""
+        kept = next((x for x in self._kept if x.match is match), None)
+        return None if kept is None else kept.where
+
+    def _name(self, kept: _Kept) -> str:
+        """A new file in the records folder for `kept` (the folder is made if need be; if it
+        cannot be, writing the file says why)."""
+        try:
+            os.makedirs(self.folder, exist_ok=True)
+        except OSError:
+            pass
+        stamp = time.strftime("%Y%m%d-%H%M%S")
+        mode = kept.match.mode
+        n = 1
+        while True:
+            name = f"{stamp}-{mode}.json" if n == 1 else f"{stamp}-{n}-{mode}.json"
+            target = os.path.join(self.folder, name)
+            if target not in self._ours and not os.path.lexists(target):
+                return target
+            n += 1
+
+    def _prune(self) -> None:
+        """Remove the oldest kept matches beyond the newest `most` (never this session's)."""
+        old = files.kept_records(self.folder)
+        for p in old[:max(0, len(old) - self.most)]:
+            if str(p) not in self._ours:
+                try:
+                    p.unlink()
+                except OSError:
+                    pass
+
+    def _write(self, k: int, kept: _Kept, shots: int) -> None:
+        if self.path:
+            target = slot_path(self.path, k)
+        else:
+            if kept.target is None:
+                kept.target = self._name(kept)
+            target = kept.target
+        fresh = target not in self._ours
         try:
             text = files.to_json(kept.match.to_json(), indent=1) + "\n"
         except ValueError as e:  # JSON has no NaN: no file could hold it
@@ -80,17 +135,24 @@ class Records:
                     self._ours.add(target)
                     if existed:
                         self._replaced.add(target)
-                    kept.where, kept.why = target, None
+                    kept.where, kept.why, kept.shots = target, None, shots
+                    if self.folder is not None and fresh:
+                        self._prune()
                     return
                 except OSError as e:
                     why = e.strerror or str(e)
             kept.why = f"cannot write the record to '{target}' ({why})"
+            if self.folder is not None:  # the data directory is where it failed: no spare
+                if kept.where is not None:  # its file keeps the match as it was
+                    kept.why = f"cannot update the record '{target}' ({why})"
+                return
             try:
                 if kept.where in self._ours and kept.where != target:
                     files.write_atomic(kept.where, text)  # its spare from before
                 else:
                     kept.where = str(files.write_fallback(text, "record"))
                     self._ours.add(kept.where)
+                kept.shots = shots
             except OSError as e:
                 kept.where = None
                 kept.why += f" nor to the data directory ({e.strerror or e})"
@@ -101,7 +163,7 @@ class Records:
         did not go where asked. A session whose only match (`current`) has no shot yet still
         saves it: its rack and settings are a record too."""
         if not self.path:
-            return [], 0
+            return self._said(), 0  # the records folder's trouble is a warning, no more
         if not self._kept and current is not None:
             self.keep(current, empty=True)
         if not self._kept:
@@ -115,6 +177,10 @@ class Records:
                     lines.append(f"cannot write the record: {e}: it is lost")
             sys.stdout.flush()
             return lines, int(bool(lines))
+        return self._said(), int(any(x.why for x in self._kept))
+
+    def _said(self) -> list[str]:
+        """One line per match kept: where it went, or why it did not."""
         lines = []
         for x in self._kept:
             what = f"{x.shots} {'shot' if x.shots == 1 else 'shots'}"
@@ -126,4 +192,4 @@ class Records:
                 replaced = "; it replaced the file that was there" \
                     if x.where in self._replaced else ""
                 lines.append(f"record saved to {x.where} ({what}{replaced})")
-        return lines, int(any(x.why for x in self._kept))
+        return lines

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from termpool.files import MAX_CONFIG_BYTES, FileError, read_text, write_atomic
+from termpool.files import KEEP_RECORDS, MAX_CONFIG_BYTES, FileError, read_text, write_atomic
 from termpool.ui.controls import config_path
 
 FILE_NAME = "settings.conf"
@@ -122,6 +122,9 @@ SETTINGS: tuple[Setting, ...] = (
             kind="switch"),
     Setting("fast", "Fast-forward", "shots start at x4: never, the computer's, or every "
             "shot (F toggles during one)", "off", values=("off", "computer", "always")),
+    Setting("records", "Keep records", "keep every match for `termpool replay`, in the data "
+            f"directory's records/ (the last {KEEP_RECORDS}; `termpool records` lists them)", True,
+            kind="switch"),
     Setting("player1", "Player 1", "player 1's name (empty: You against the computer, "
             "Player 1 in a two-player game)", "", kind="name", later=True),
     Setting("player2", "Player 2", "player 2's name in a two-player game (empty: Player 2)",

@@ -74,6 +74,7 @@ class Options:
     power: str = DEFAULTS["power"]  # "hold", "meter" or "digits"
     bell: bool = DEFAULTS["bell"]
     fast: str = DEFAULTS["fast"]  # shots start fast-forwarded: "off", "computer", "always"
+    records: bool = DEFAULTS["records"]  # every match kept in the data directory's records/
     player1: str = DEFAULTS["player1"]  # names; empty: the usual ones
     player2: str = DEFAULTS["player2"]
 
@@ -269,7 +270,8 @@ class Controls:
 @dataclass(frozen=True)
 class Files:
     """The session's files: the settings (ui.settings.Store), the history of play
-    (game.history.Recorder) and --record (ui.records.Records); None for those not kept."""
+    (game.history.Recorder) and the matches' records (ui.records.Records); None for those
+    not kept."""
 
     prefs: Any = None
     history: Any = None

@@ -24,7 +24,7 @@ from termpool.physics.engine import POCKETED
 from termpool.physics.params import BALL_RADIUS
 from termpool.physics.table import Table
 from termpool.scene import table_to_dict
-from termpool.ui.canvas import Canvas, mono_cells, to_cells
+from termpool.ui.canvas import Canvas, mono_cells, mono_tags, to_cells
 from termpool.ui.palette import (
     BACKDROP,
     BACKDROP_C,
@@ -343,6 +343,7 @@ class TableView:
         self.background = draw_background(table, lay)
         self._canvas = self.background.copy()
         self._styles: dict[tuple[str, int], object] = {}
+        self._felt: np.ndarray | None = None  # the cells of cloth (mono), when first needed
 
     def style(self, ball_id: str, index: int):
         key = (ball_id, index)
@@ -421,14 +422,55 @@ class TableView:
 
     def mono(self, ids, pos, state=None, radius=None) -> np.ndarray:
         """Glyph cells for the monochrome mode: the table's glyphs, and each ball as one glyph
-        in the cell holding its centre (a ball never smears over several cells)."""
+        in the cell holding its centre (a ball never smears over several cells). Balls closer
+        than a cell (a rack, a cluster) would share one and hide each other: each ball after
+        the first in a cell goes to the free cell of cloth nearest its centre (`mono_spots`),
+        so that every ball on the table is drawn, as the colour modes draw them all."""
         chars = mono_cells(self.background)
-        rows, cols = chars.shape
-        for x, y, _rr, style in self._balls(ids, pos, state, radius):
-            c, r = int(math.floor(x)), int(math.floor(y)) // 2
-            if 0 <= r < rows and 0 <= c < cols:
+        if self._felt is None:
+            self._felt = mono_tags(self.background) == FELT
+        balls = self._balls(ids, pos, state, radius)
+        for (c, r), (_x, _y, _rr, style) in zip(mono_spots(balls, self._felt), balls,
+                                                strict=True):
+            if c is not None:
                 chars[r, c] = mono_glyph(style)
         return chars
+
+
+MONO_REACH = 3  # cells (each way) a ball may move in mono to a cell of its own
+
+
+def mono_spots(balls, felt: np.ndarray) -> list[tuple[int | None, int | None]]:
+    """The cell (col, row) of each ball of `balls` ((pixel x, pixel y, radius, style), as
+    `TableView._balls` gives them) in mono: the cell holding its centre, or, where an earlier
+    ball (the cue ball first, then in order) has that one, the free cell of cloth (`felt`,
+    rows x cols) nearest its centre within MONO_REACH cells; (None, None) if none is free.
+    Balls on cells of their own stay exactly where they are."""
+    rows, cols = felt.shape
+    order = sorted(range(len(balls)), key=lambda k: balls[k][3].tag != CUE)
+    out: list[tuple[int | None, int | None]] = [(None, None)] * len(balls)
+    taken: set[tuple[int, int]] = set()
+    for k in order:
+        x, y = balls[k][0], balls[k][1]
+        c, r = int(math.floor(x)), int(math.floor(y)) // 2
+        if not (0 <= r < rows and 0 <= c < cols):
+            continue
+        if (c, r) in taken:
+            best = None
+            for rr in range(max(0, r - MONO_REACH), min(rows, r + MONO_REACH + 1)):
+                for cc in range(max(0, c - MONO_REACH), min(cols, c + MONO_REACH + 1)):
+                    if (cc, rr) in taken or not felt[rr, cc]:
+                        continue
+                    # pixels are square-ish: a cell is 1 wide and 2 tall
+                    d = (cc + 0.5 - x) ** 2 + (2 * rr + 1 - y) ** 2
+                    if best is None or d < best[0]:
+                        best = (d, cc, rr)
+            if best is None:
+                continue
+            c, r = best[1], best[2]
+        taken.add((c, r))
+        out[k] = (c, r)
+    return out
 
 
 class Geometry:

@@ -9,6 +9,8 @@ different sizes can draw one state.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from termpool.game.layout import head_string
@@ -50,7 +52,6 @@ from termpool.ui.state import (
     Settings,
     State,
     Stats,
-    Thinking,
     Waiting,
     cue_index,
     help_of,
@@ -186,20 +187,32 @@ def _question(s: State, cells, lay: Layout) -> None:
         at = None
         if m.on_table[c]:
             near = np.hypot(*(m.pos - m.pos[c]).T) <= NEAR_BALLS * 2 * m.radius[c]
-            col, row, _, _ = lay.panel_rect  # off the panel too, where there is room
-            table = (lay.cols, row) if lay.panel == "bottom" else (col, lay.rows)
-            for which, within in ((near & m.on_table, table), (near & m.on_table, None),
-                                  (np.arange(len(m.ids)) == c, None)):
+            col, row, _, _ = lay.panel_rect  # off the panel, whose players' row says whose
+            table = (lay.cols, row) if lay.panel == "bottom" else (col, lay.rows)  # call it is
+            tight = [x for x in lines if x]  # without its blank line: a row shorter
+            cue = np.arange(len(m.ids)) == c
+            # The cue ball and the balls by it in view, else the cue ball alone, on the
+            # table: the box a row shorter if it must be; only then over the panel.
+            for which, text, within in ((near & m.on_table, lines, table),
+                                        (near & m.on_table, tight, table),
+                                        (cue, lines, table), (cue, tight, table),
+                                        (near & m.on_table, lines, None), (cue, lines, None)):
                 keep = _cells_of(lay, m.pos[which], m.radius[which])
-                at = box_clear_of(cells, lines, keep, "your call", within=within)
+                at = box_clear_of(cells, text, keep, "your call", within=within)
                 if at is not None:
+                    lines = text
                     break
         draw_box(cells, lines, "your call", at=at)
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
-        draw_box(cells, [words.game_won(voice(s), m.winner), why, "",
-                         "n: new game   m: menu   q: quit", "w: watch this match"],
-                 "game over", "good")
+        lines = [words.game_won(voice(s), m.winner), why, "",
+                 "n: new game   m: menu   q: quit", "w: watch this match"]
+        records = s.files.records
+        where = records.kept_at(m) if records is not None else None
+        if where is not None:  # where to find it again (`termpool records` lists them)
+            folder, name = os.path.split(where)
+            lines.append(f"kept as {shown(os.path.join(os.path.basename(folder), name))}")
+        draw_box(cells, lines, "game over", "good")
 
 
 def _cells_of(lay: Layout, pos, radius) -> tuple[int, int, int, int]:
@@ -322,12 +335,15 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
     elif isinstance(s.part, Run):
         out.append(("fast ×4 (F)" if s.part.fast else "F: fast forward", "dim"))
     elif s.phase is Phase.CPU:
-        part = s.part
-        on_aim = isinstance(part, Aiming) and s.stroke.angle == part.plan.angle
-        pred = aid.prediction(s) if on_aim else None  # not the balls its stick turns past
-        at = f" at the {m.ids[pred.ball]}" if pred is not None and pred.ball is not None else ""
-        out.append((f"{name} is thinking…" if isinstance(part, Thinking) else
-                    f"{name} is aiming{at}", "dim"))
+        plan = s.part.plan if isinstance(s.part, Aiming) else None
+        if plan is None:  # deciding (a shot, or the answer to an option)
+            out.append((f"{name} is thinking…", "dim"))
+        elif plan.kind == "break":
+            out.append((f"{name} is about to break", "dim"))
+        else:  # the ball its plan is about, as its note names it (not the aid's first ball,
+            # which its stick sweeps past, and its aim's error may change)
+            at = f" at the {plan.target}" if plan.target is not None else ""
+            out.append((f"{name} is aiming{at}", "dim"))
     elif s.phase is Phase.REMOTE:
         doing = ("answering" if m.option is not None else
                  "placing the cue ball" if m.ball_in_hand and not s.part.placed else "aiming")

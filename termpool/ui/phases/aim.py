@@ -95,10 +95,21 @@ def key(s: State, key, action: str | None, t: float) -> State:
     if action == "push_out":
         if m.state.push_out == "available":
             return replace(s, stroke=replace(st, push_out=not st.push_out))
-        return say(s, "a push-out is only for the shot after a 9-ball break")
-    if action == "place" and m.ball_in_hand:
-        x, y = m.pos[cue_index(s)]
-        return replace(s, part=Place((float(x), float(y))))
+        return say(s, NO_PUSH_OUT)
+    if action == "place":
+        if m.ball_in_hand:
+            x, y = m.pos[cue_index(s)]
+            return replace(s, part=Place((float(x), float(y))))
+        return say(s, "no ball in hand: the cue ball is played from where it lies")
+    return practice(s, action)
+
+
+NO_PUSH_OUT = "a push-out is only for the shot right after a 9-ball break"
+
+
+def practice(s: State, action: str | None) -> State:
+    """Practice's take-back and re-rack (elsewhere, a word on why they do nothing)."""
+    m = s.match
     if action in ("undo", "rerack") and m.state.mode != "practice":
         return say(s, "take back and re-rack are for practice")
     if action == "undo":

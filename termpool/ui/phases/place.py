@@ -5,8 +5,9 @@ from __future__ import annotations
 from dataclasses import replace
 
 from termpool.game.layout import head_string
+from termpool.ui.phases.aim import NO_PUSH_OUT, practice
 from termpool.ui.phases.turn import own_move, tell
-from termpool.ui.state import Aim, Place, State, cue_index, nearest_angle, voice
+from termpool.ui.state import Aim, Place, State, cue_index, nearest_angle, say, voice
 
 PLACE_TAP, PLACE_FINE = 0.01, 0.002  # m a tap moves the ball in hand (shift: fine)
 ARROWS = {"left": (-1, 0), "right": (1, 0), "up": (0, 1), "down": (0, -1)}
@@ -40,7 +41,12 @@ def key(s: State, key, action: str | None, t: float) -> State:
         swallow = (key.name, t, False) if action == "shoot" else None
         s = replace(s, message=(), part=Aim(), controls=replace(s.controls, swallow=swallow))
         return replace(s, stroke=replace(s.stroke, angle=nearest_angle(s)))
-    return s
+    if key.kind != "press":
+        return s
+    if action == "push_out":
+        return say(s, "put the cue ball down first (Enter), then push out"
+                   if s.match.state.push_out == "available" else NO_PUSH_OUT)
+    return practice(s, action)
 
 
 def point(s: State, x: float, y: float) -> State:

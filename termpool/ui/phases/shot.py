@@ -13,7 +13,13 @@ def key(s: State, key, action: str | None, t: float) -> State:
         s.controls.charge.observe(key, t)  # a key still held after the strike: its repeats
     elif action == "fast_forward" and key.kind == "press":
         return replace(s, part=replace(s.part, fast=not s.part.fast))
+    elif action in WAIT_FOR_REST and key.kind == "press" and WAIT not in s.message:
+        return replace(s, message=(*s.message, WAIT))  # the verdict takes its place
     return s
+
+
+WAIT_FOR_REST = ("place", "push_out", "undo", "rerack", "call_pocket")  # keys of the next shot
+WAIT = ("wait for the balls to stop", "dim")
 
 
 def tick(s: State, t: float) -> State:

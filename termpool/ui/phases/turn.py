@@ -178,17 +178,19 @@ def finish_shot(s: State) -> State:
         out = s.part.shot.finish()
     verdict = words.verdict(out, voice(s))
     s = replace(s, message=(*s.shot_note, verdict))
+    if s.files.records is not None:  # on disk after every shot, whatever comes next
+        s.files.records.keep(m, on=s.opts.records)
     if s.opts.bell and (out.foul or int(m.on_table.sum()) < before):
         s = replace(s, bells=s.bells + 1)  # a pocketed ball or a foul
     return start_turn(s)
 
 
 def log_match(s: State) -> State:
-    """The match in play has ended or is being left: save it (--record) and add it to the
+    """The match in play has ended or is being left: save its record and add it to the
     history of play (once; not one without shots). A file that cannot be written is one line
     for the terminal when the game ends."""
     if s.files.records is not None:
-        s.files.records.keep(s.match)
+        s.files.records.keep(s.match, on=s.opts.records)
     sides = tuple(p for p in (0, 1) if p not in s.remote)  # online: this player's; none
     if s.files.history is not None and s.match is not None and sides:  # when watching
         warning = s.files.history.add(s.match, s.cpu, s.opts.level, sides=sides)
