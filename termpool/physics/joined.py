@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 
 from termpool.physics.balls import Balls
-from termpool.physics.cluster import Rows, solve_inelastic, solve_psd
+from termpool.physics.cluster import PLAIN, TOL, Rows, inelastic_plain, solve_inelastic, solve_psd
 from termpool.physics.flat import flat
 from termpool.physics.motion import Col
 from termpool.physics.params import Physics
@@ -241,6 +241,22 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
     J's rows starts[q] to starts[q] + counts[q], and touch no ball of another set. Element
     for element the same operations as `Rows.matrix`, so the same bits."""
     out = []
+    for A, ct in _padded(J, starts, counts, k):
+        out += [A[q, :r, :r] for q, r in enumerate(ct)]
+    return out
+
+
+def block_lists(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> list:
+    """`blocks` as lists of rows (for the plain-float solves of small sets)."""
+    out = []
+    for A, ct in _padded(J, starts, counts, k):
+        out += [[row[:r] for row in Aq[:r]] for Aq, r in zip(A.tolist(), ct, strict=True)]
+    return out
+
+
+def _padded(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray):
+    """`blocks`' matrices, BLOCKS sets at a time: (matrices padded to the largest set of
+    them, their sets' sizes as a list)."""
     for s in range(0, len(starts), BLOCKS):
         st, ct = starts[s:s + BLOCKS], counts[s:s + BLOCKS]
         top = int(ct.max()) if ct.size else 0
@@ -252,10 +268,8 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
         by_a = (a[:, None, :] == a[:, :, None]).astype(float) - (c[:, None, :] == a[:, :, None])
         by_c = (c[:, None, :] == c[:, :, None]).astype(float) - (a[:, None, :] == c[:, :, None])
         kc = np.where(ball, k[np.maximum(c, 0)], 0.0)
-        A = (k[a][:, :, None] * (nn * by_a)
-             + kc[:, :, None] * (nn * np.where(ball[:, :, None], by_c, 0.0)))
-        out += [A[q, :r, :r] for q, r in enumerate(ct.tolist())]
-    return out
+        yield (k[a][:, :, None] * (nn * by_a)
+               + kc[:, :, None] * (nn * np.where(ball[:, :, None], by_c, 0.0))), ct.tolist()
 
 
 class Sets:
@@ -267,26 +281,51 @@ class Sets:
         self.J, self.ball_group, self.row_group, self.count = J, ball_group, row_group, count
         self.counts = np.bincount(row_group, minlength=count)
         self.starts = np.concatenate([[0], np.cumsum(self.counts)[:-1]]).astype(np.int64)
+        self.first = self.starts.tolist()
+        self._key: bytes | None = None  # the inverse masses of the matrices kept in _mats
+        self._mats: dict[int, list] = {}
+
+    def matrices(self, k: np.ndarray, q_list: list[int]) -> list:
+        """`block_lists` of groups q_list for inverse masses k, each group's built once for
+        the same k (push solves again with the same masses after turning the forces)."""
+        key = k.tobytes()
+        if key != self._key:
+            self._key, self._mats = key, {}
+        need = [q for q in q_list if q not in self._mats]
+        if need:
+            q_need = np.array(need, dtype=np.int64)
+            self._mats.update(zip(need, block_lists(self.J, self.starts[q_need],
+                                                    self.counts[q_need], k), strict=True))
+        return [self._mats[q] for q in q_list]
 
     def rows(self, q: int) -> slice:
         return slice(int(self.starts[q]), int(self.starts[q] + self.counts[q]))
 
     def solve(self, free, k, bend, chosen: np.ndarray) -> np.ndarray:
         """`_solve` for the groups `chosen` (bools per group): their balls' accelerations,
-        each group's contact forces found on its own (other balls: anything)."""
+        each group's contact forces found on its own (other balls: anything). The groups'
+        few contacts are solved in plain floats, as `solve_inelastic` does."""
         J = self.J
-        q_list = np.flatnonzero(chosen)
-        mats = blocks(J, self.starts[q_list], self.counts[q_list], k)
-        b = J.speeds(free) + bend
-        lam = np.zeros(len(J))
-        for q, A in zip(q_list.tolist(), mats, strict=True):
-            live = np.abs(A).sum(axis=1) > 0
-            if live.any():
-                rows = self.rows(q)
-                part = np.zeros(A.shape[0])
-                part[live] = solve_inelastic(A[np.ix_(live, live)], b[rows][live])
-                lam[rows] = part
-        return free + J.spread(lam, k)
+        q_list = np.flatnonzero(chosen).tolist()
+        b = (J.speeds(free) + bend).tolist()
+        lam = [0.0] * len(J)
+        for q, A in zip(q_list, self.matrices(k, q_list), strict=True):
+            # Rows with nothing that can move carry no force (as np.abs(A).sum(axis=1) > 0).
+            live = [i for i, row in enumerate(A) if sum(map(abs, row)) > 0]
+            if not live:
+                continue
+            s = self.first[q]
+            if len(live) < len(A):
+                A = [[A[i][j] for j in live] for i in live]
+            bl = [b[s + i] for i in live]
+            if len(live) > PLAIN:
+                part = solve_inelastic(np.array(A, dtype=float), np.array(bl, dtype=float))
+                part = part.tolist()
+            else:
+                part = inelastic_plain([list(c) for c in zip(*A, strict=True)], bl, TOL)
+            for i, x in zip(live, part, strict=True):
+                lam[s + i] = x
+        return free + J.spread(np.array(lam, dtype=float).reshape(len(J)), k)
 
     def resting(self, v, k) -> np.ndarray:
         """`_resting` of every group."""

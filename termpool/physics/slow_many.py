@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from termpool.physics.balls import Balls
-from termpool.physics.cluster import Rows, solve_inelastic
+from termpool.physics.cluster import PLAIN, TOL, Columns, Rows, inelastic_plain, solve_inelastic
 from termpool.physics.features import Features
 from termpool.physics.joined import Groups, Sets, blocks, push_many
 from termpool.physics.motion import Col, snap
@@ -95,19 +95,22 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     Rf, mf = balls.radius[tarr].ravel(), balls.mass[tarr].ravel()
     slip = _norm(V + Rf[:, None] * _perp(W[:, :2]))
     snaps = (slip <= EPS_U) & (ph.mu_slide > 0)
-    A = blocks(J, starts, counts, np.where(snaps, 5.0 / 7.0, 1.0) / mf)
     inv_m = 1.0 / mf
     # Velocities: each cluster until none of its contacts closes.
     live = np.ones(C, dtype=bool)
+    cols: dict = {}  # the live clusters' matrices (often none is: a settling rack at rest)
+    first, ends = starts.tolist(), (starts + counts).tolist()
     for _ in range(20):
         u0 = J.speeds(V)
         live &= any_by(u0 < -V_MIN, rq_, C)
         if not live.any():
             break
-        lam = np.zeros(len(J))
-        for q in np.flatnonzero(live).tolist():
-            s = slice(int(starts[q]), int(starts[q] + counts[q]))
-            lam[s] = solve_inelastic(A[q], u0[s])
+        if not cols:  # the clusters live now are all that may be later
+            qs = np.flatnonzero(live)
+            cols = {q: Columns(M) for q, M in zip(
+                qs.tolist(), blocks(J, starts[qs], counts[qs],
+                                    np.where(snaps, 5.0 / 7.0, 1.0) / mf), strict=True)}
+        lam = _solved(cols, u0, live, first, ends)
         k = gm[live[mq]]
         V[k] = (V + J.spread(lam, inv_m))[k]
         _, V[k], W[k], _ = snap(ph, P[k], V[k], W[k], Rf[k], None, move=False)
@@ -122,11 +125,10 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         live &= any_by(gaps < -1e-12, rq_, C)
         if not live.any():
             break
-        lam = np.zeros(len(J))
         qs = np.flatnonzero(live)
-        for q, M in zip(qs.tolist(), blocks(J, starts[qs], counts[qs], inv_m), strict=True):
-            s = slice(int(starts[q]), int(starts[q] + counts[q]))
-            lam[s] = solve_inelastic(M, np.minimum(gaps[s], 0.0))
+        mats = {q: Columns(M) for q, M in
+                zip(qs.tolist(), blocks(J, starts[qs], counts[qs], inv_m), strict=True)}
+        lam = _solved(mats, np.minimum(gaps, 0.0), live, first, ends)
         k = gm[live[mq]]
         P = P.copy()
         P[k] = (P + J.spread(lam, inv_m))[k]
@@ -147,6 +149,21 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         hit = moved[mq == q]
         out.append((mem, [k for k, h in zip(mem, hit.tolist(), strict=True) if h]))
     return out
+
+
+def _solved(mats, u0: np.ndarray, live: np.ndarray, starts: list, ends: list) -> np.ndarray:
+    """`solve_inelastic` of each live cluster q (its rows starts[q] to ends[q]) with the
+    `Columns` mats[q] of its matrix and u0's rows: the impulses of all rows (0 for the
+    others), the small problems in plain floats from one list of u0."""
+    lam = [0.0] * len(u0)
+    u = u0.tolist()
+    for q in np.flatnonzero(live).tolist():
+        s, e = starts[q], ends[q]
+        if e - s > PLAIN:
+            lam[s:e] = solve_inelastic(mats[q].A, u0[s:e]).tolist()
+        else:
+            lam[s:e] = inelastic_plain(mats[q], u[s:e], TOL)
+    return np.array(lam, dtype=float).reshape(len(u0))
 
 
 def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.ndarray,
