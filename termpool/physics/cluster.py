@@ -246,8 +246,16 @@ def inelastic_plain(col, u0: list, tol: float) -> list:
     """_inelastic_array in plain floats, operation for operation (bit-identical), with
     col[j] the matrix's column j as a list (a list of columns, or `Columns`)."""
     k = len(u0)
+    if k == 1:  # one contact (most of a group's): the loop below, written out
+        x = u0[0]
+        tol = tol * max(abs(x), 1e-300)
+        if not x < -tol:
+            return [0.0]
+        sol = _one(col[0][0], -x)
+        if not sol < -tol:
+            return [sol if sol > 0.0 else 0.0]
     lam = [0.0] * k
-    tol = tol * max(max((abs(x) for x in u0), default=0.0), 1e-300)
+    tol = tol * max(max(map(abs, u0)), 1e-300) if k else tol * 1e-300
     active = [x < -tol for x in u0]
     for n in range(4 * k + 8):
         bulk = n < 8
@@ -256,7 +264,11 @@ def inelastic_plain(col, u0: list, tol: float) -> list:
         u = u0
         if a:
             cols = [col[j] for j in a]
-            sol = _solve_few([[c[i] for c in cols] for i in a], [-u0[i] for i in a])
+            if len(a) == 1:
+                i = a[0]
+                sol = [_one(cols[0][i], -u0[i])]
+            else:
+                sol = _solve_few([[c[i] for c in cols] for i in a], [-u0[i] for i in a])
             if any(x < -tol for x in sol):
                 if bulk:
                     for i, x in zip(a, sol, strict=True):
@@ -279,3 +291,8 @@ def inelastic_plain(col, u0: list, tol: float) -> list:
         else:
             active[min(bad, key=u.__getitem__)] = True
     return lam
+
+
+def _one(d: float, b: float) -> float:
+    """`_solve_few([[d]], [b])[0]`: b / d, or 0 for a pivot too small (no pivot at all)."""
+    return b / d if d > RANK_TOL * d else 0.0

@@ -42,15 +42,16 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     # Each cluster grown from its seeds over its table's slow contacts.
     slow = closing <= cap[pq]
     pq, pa, pc, pd, pdist = pq[slow], pa[slow], pc[slow], pd[slow], pdist[slow]
-    adj: list[list[list[int]]] = [[[] for _ in range(N)] for _ in range(C)]
-    for q, a, c in zip(pq.tolist(), pa.tolist(), pc.tolist(), strict=True):
-        adj[q][a].append(c)
+    # (The pairs come ordered by table, a, c: ball a's of table q are one run of them.)
+    bounds = np.searchsorted(pq * N + pa, np.arange(C * N + 1)).tolist()
+    partner = pc.tolist()
     members: list[list[int]] = []
     for q in range(C):
         mem = list(dict.fromkeys(seeds[q]))
         seen = set(mem)
-        for a in mem:
-            for c in adj[q][a]:
+        base = q * N
+        for a in mem:  # grows while we walk it
+            for c in partner[bounds[base + a]:bounds[base + a + 1]]:
                 if c not in seen:
                     seen.add(c)
                     mem.append(c)
