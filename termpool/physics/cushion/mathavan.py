@@ -65,36 +65,41 @@ FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-
 # over the steps outweighs the work (the two forms agree to the bit, so either may run)
 
 
-def _step(dv, s, c, k, mu_w, mu_s, st, go) -> None:
-    """One impulse step on the arrays of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
+def _step(dv, s, c, k, mu_w, mu_s, st, go, new) -> None:
+    """One impulse step on the rows of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
     `go`: the normal part takes dv off vy, then friction at the nose and on the slate.
-    k: the slips' responses to friction, `_gains(s)`."""
-    vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2 = st
-    k2, x1, x2 = k
+    k: the slips' responses to friction, `_gains(s)` with their rows (3.5, k2) and (x1, x2);
+    new: room for the next rows. The pairs (a1, a2), (b1, b2), (fi1, fi2), (fc1, fc2) are
+    each worked as one array of two rows: the same operations, element for element, as
+    `_step_one`, in fewer calls."""
+    _, _, _, g, x = k
     dp = dv / c
-    vy = vy - dv
-    a2 = a2 + s * dv
-    b2 = b2 - dv
-    slip = np.sqrt(a1 * a1 + a2 * a2)
+    vy = st[0] - dv
+    a = st[1:3].copy()
+    a[1] += s * dv
+    b = st[3:5].copy()
+    b[1] -= dv
+    sq = a * a
+    slip = np.sqrt(sq[0] + sq[1])
     live = slip > 0.0
     safe = np.where(live, slip, 1.0)
-    d1, d2 = a1 / safe, a2 / safe
-    j = np.minimum(mu_w * dp, slip / np.where(live, 3.5 * (d1 * d1) + k2 * (d2 * d2), 1.0))
-    a1 = a1 - j * (3.5 * d1)
-    a2 = a2 - j * (k2 * d2)
-    b1 = b1 - j * (x1 * d1)
-    b2 = b2 - j * (x2 * d2)
-    vy = vy + j * (s * d2)
-    fi1 = fi1 + j * d1
-    fi2 = fi2 + j * d2
-    up = np.maximum(s * dp + j * (c * d2), 0.0)
-    slip = np.sqrt(b1 * b1 + b2 * b2)
-    safe = np.where(slip > 0.0, slip, 1.0)
-    e1, e2 = b1 / safe, b2 / safe
+    d = a / safe
+    sq = g * (d * d)
+    j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], 1.0))
+    a -= j * (g * d)
+    b -= j * (x * d)
+    vy = vy + j * (s * d[1])
+    np.add(st[5:7], j * d, out=new[5:7])
+    up = np.maximum(s * dp + j * (c * d[1]), 0.0)
+    sq = b * b
+    slip = np.sqrt(sq[0] + sq[1])
+    e = b / np.where(slip > 0.0, slip, 1.0)
     j = np.minimum(mu_s * up, slip / 3.5)
-    new = np.stack([vy - j * e2, a1 - j * (x1 * e1), a2 - j * (x2 * e2), b1 - j * (3.5 * e1),
-                    b2 - j * (3.5 * e2), fi1, fi2, fc1 + j * e1, fc2 + j * e2])
-    st[:] = np.where(go, new, st)
+    np.subtract(vy, j * e[1], out=new[0])
+    np.subtract(a, j * (x * e), out=new[1:3])
+    np.subtract(b, j * (3.5 * e), out=new[3:5])
+    np.add(st[7:9], j * e, out=new[7:9])
+    np.copyto(st, new, where=go)
 
 
 def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
@@ -156,7 +161,9 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     zero = np.zeros_like(vy)
     st = np.stack([vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy,
                    vy + r * wx, zero, zero, zero, zero])
-    k = _gains(s)
+    k2, x1, x2 = _gains(s)
+    k = (k2, x1, x2, np.stack([np.full_like(s, 3.5), k2]), np.stack([x1, x2]))
+    new = np.empty_like(st)
     work = zero
     last = ~hit
     # Compression: until a step's normal impulse stops the ball moving into the cushion.
@@ -169,7 +176,7 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
         last = last | (go & (vn <= 0.0))
         vn = np.maximum(vn, 0.0)
         work = np.where(go, work + 0.5 * (vy * vy - vn * vn), work)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go)
+        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
     vy = st[0]
     go = hit & (vy > 0.0)
     work = np.where(go, work + 0.5 * (vy * vy), work)
@@ -186,7 +193,7 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
         end = gain >= rest
         vn = np.where(end, -np.sqrt(vy * vy + 2.0 * rest), vn)
         rest = np.where(go, np.where(end, 0.0, rest - gain), rest)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go)
+        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
     vy = st[0]
     vy = np.minimum(np.where(hit & (rest > 0.0), -np.sqrt(vy * vy + 2.0 * rest), vy), 0.0)
     q = 2.5 / r  # R m / I: spin per unit of friction impulse per unit mass
