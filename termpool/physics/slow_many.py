@@ -73,16 +73,20 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     rq, ra, rc_ = [bq], [a], [c]
     rn, rg = [-pd[k] / pdist[k][:, None]], [np.zeros(a.size)]
     rkind = [np.zeros(a.size, dtype=np.int64)]
-    seg_gap, beside, tip_gap, tip_dir = features.gaps(P[gm], balls.rc[tarr[mq], mb])
-    capm = cap[mq][:, None]
-    slow = dots(V[gm], tab.seg_n) >= -capm
+    # Only members by the rails can touch a rail, jaw or tip (the rest of a rack pays nothing).
+    pm, rcm = P[gm], balls.rc[tarr[mq], mb]
+    by = np.flatnonzero(by_rails(features, pm, rcm))
+    seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
+    mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
+    capm = cap[mq_][:, None]
+    slow = dots(vm, tab.seg_n) >= -capm
     x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
-    for z, val in ((rq, mq[x]), (ra, mb[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
+    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
                    (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
         z.append(val)
-    slow = (V[gm][:, None] * tip_dir).sum(axis=2) >= -capm
+    slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
     x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
-    for z, val in ((rq, mq[x]), (ra, mb[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
+    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
                    (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
         z.append(val)
     rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
@@ -150,6 +154,26 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         hit = moved[mq == q]
         out.append((mem, [k for k, h in zip(mem, hit.tolist(), strict=True) if h]))
     return out
+
+
+def by_rails(features: Features, p: np.ndarray, rc: np.ndarray) -> np.ndarray:
+    """Which balls at p (M, 2) with contact reach rc may be within CLUSTER_GAP of a rail,
+    jaw or jaw tip (`Features.gaps`): on a table whose every segment and tip lies beyond one
+    of its bed's edges (x <= 0, x >= length, y <= 0 or y >= width, as every preset's do), a
+    ball farther than its reach and twice the gap from all four edges is farther than that
+    from every feature, whatever the rounding. On any other table, every ball."""
+    t = features.table
+    L, W = t.length, t.width
+    ends = np.stack([t.seg_a, t.seg_b])
+    beyond = (((ends[..., 0] <= 0.0).all(axis=0) | (ends[..., 0] >= L).all(axis=0)
+               | (ends[..., 1] <= 0.0).all(axis=0) | (ends[..., 1] >= W).all(axis=0)).all()
+              and ((t.points[:, 0] <= 0.0) | (t.points[:, 0] >= L) | (t.points[:, 1] <= 0.0)
+                   | (t.points[:, 1] >= W)).all())
+    if not beyond:
+        return np.ones(len(p), dtype=bool)
+    d = rc + 2.0 * CLUSTER_GAP
+    x, y = p[:, 0], p[:, 1]
+    return (x < d) | (x > L - d) | (y < d) | (y > W - d)
 
 
 def _solved(mats, u0: np.ndarray, live: np.ndarray, starts: list, ends: list) -> np.ndarray:
