@@ -286,16 +286,24 @@ class Sets:
         self._mats: dict[int, list] = {}
 
     def matrices(self, k: np.ndarray, q_list: list[int]) -> list:
-        """`block_lists` of groups q_list for inverse masses k, each group's built once for
-        the same k (push solves again with the same masses after turning the forces)."""
+        """The contact matrices of groups q_list for inverse masses k (`block_lists`), cut
+        to the rows with anything that can move (as np.abs(A).sum(axis=1) > 0 keeps them):
+        (those rows, the cut matrix's columns, or its rows when it is too large for plain
+        floats), each group's built once for the same k (push solves again with the same
+        masses after turning the forces)."""
         key = k.tobytes()
         if key != self._key:
             self._key, self._mats = key, {}
         need = [q for q in q_list if q not in self._mats]
         if need:
             q_need = np.array(need, dtype=np.int64)
-            self._mats.update(zip(need, block_lists(self.J, self.starts[q_need],
-                                                    self.counts[q_need], k), strict=True))
+            for q, A in zip(need, block_lists(self.J, self.starts[q_need], self.counts[q_need],
+                                              k), strict=True):
+                live = [i for i, row in enumerate(A) if sum(map(abs, row)) > 0]
+                if len(live) < len(A):
+                    A = [[A[i][j] for j in live] for i in live]
+                cols = [list(c) for c in zip(*A, strict=True)] if len(live) <= PLAIN else A
+                self._mats[q] = (live, cols)
         return [self._mats[q] for q in q_list]
 
     def rows(self, q: int) -> slice:
@@ -309,20 +317,17 @@ class Sets:
         q_list = np.flatnonzero(chosen).tolist()
         b = (J.speeds(free) + bend).tolist()
         lam = [0.0] * len(J)
-        for q, A in zip(q_list, self.matrices(k, q_list), strict=True):
-            # Rows with nothing that can move carry no force (as np.abs(A).sum(axis=1) > 0).
-            live = [i for i, row in enumerate(A) if sum(map(abs, row)) > 0]
+        for q, (live, A) in zip(q_list, self.matrices(k, q_list), strict=True):
+            # Rows with nothing that can move carry no force.
             if not live:
                 continue
             s = self.first[q]
-            if len(live) < len(A):
-                A = [[A[i][j] for j in live] for i in live]
             bl = [b[s + i] for i in live]
             if len(live) > PLAIN:
                 part = solve_inelastic(np.array(A, dtype=float), np.array(bl, dtype=float))
                 part = part.tolist()
             else:
-                part = inelastic_plain([list(c) for c in zip(*A, strict=True)], bl, TOL)
+                part = inelastic_plain(A, bl, TOL)
             for i, x in zip(live, part, strict=True):
                 lam[s + i] = x
         return free + J.spread(np.array(lam, dtype=float).reshape(len(J)), k)

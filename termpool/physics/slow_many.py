@@ -226,8 +226,6 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
         balls.t_trans[bt, bi] = t + duration
         balls.motion[bt, bi, :Col.RATE] = np.concatenate(
             [t[:, None], P[hb], vj, acc, wj, alpha], axis=1)
-    for q, h in enumerate(held):
-        b = int(tarr[q])
-        if h:
-            groups.label[b, [k % N for k in h]] = h[0] % N
-        groups.count[b] = int((groups.label[b] >= 0).sum())
+        # Each group labelled by its first ball (the tables are distinct).
+        groups.label[bt, bi] = np.array([h[0] % N if h else -1 for h in held])[hq]
+    groups.count[tarr] = (groups.label[tarr] >= 0).sum(axis=1)
