@@ -102,8 +102,9 @@ def _step(dv, s, c, k, mu_w, mu_s, st, go, new) -> None:
     np.copyto(st, new, where=go)
 
 
-def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
-    """`_step` for one ball in plain floats, operation for operation."""
+def _step_one(dv, s, c, k, mu_w, mu_s, st) -> tuple:
+    """`_step` for one ball in plain floats, operation for operation: the next st (a tuple;
+    np.minimum and np.maximum written out as vec.min_one and vec.max_one do them)."""
     vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2 = st
     k2, x1, x2 = k
     dp = dv / c
@@ -111,10 +112,14 @@ def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
     a2 = a2 + s * dv
     b2 = b2 - dv
     slip = math.sqrt(a1 * a1 + a2 * a2)
-    live = slip > 0.0
-    safe = slip if live else 1.0
-    d1, d2 = a1 / safe, a2 / safe
-    j = min_one(mu_w * dp, slip / (3.5 * (d1 * d1) + k2 * (d2 * d2) if live else 1.0))
+    if slip > 0.0:
+        d1, d2 = a1 / slip, a2 / slip
+        y = slip / (3.5 * (d1 * d1) + k2 * (d2 * d2))
+    else:
+        d1, d2 = a1 / 1.0, a2 / 1.0
+        y = slip / 1.0
+    x = mu_w * dp
+    j = x if (x < y or x != x) else y
     a1 = a1 - j * (3.5 * d1)
     a2 = a2 - j * (k2 * d2)
     b1 = b1 - j * (x1 * d1)
@@ -122,13 +127,16 @@ def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
     vy = vy + j * (s * d2)
     fi1 = fi1 + j * d1
     fi2 = fi2 + j * d2
-    up = max_one(s * dp + j * (c * d2), 0.0)
+    up = s * dp + j * (c * d2)
+    if not (up > 0.0 or up != up):
+        up = 0.0
     slip = math.sqrt(b1 * b1 + b2 * b2)
     safe = slip if slip > 0.0 else 1.0
     e1, e2 = b1 / safe, b2 / safe
-    j = min_one(mu_s * up, slip / 3.5)
-    st[:] = [vy - j * e2, a1 - j * (x1 * e1), a2 - j * (x2 * e2), b1 - j * (3.5 * e1),
-             b2 - j * (3.5 * e2), fi1, fi2, fc1 + j * e1, fc2 + j * e2]
+    x, y = mu_s * up, slip / 3.5
+    j = x if (x < y or x != x) else y
+    return (vy - j * e2, a1 - j * (x1 * e1), a2 - j * (x2 * e2), b1 - j * (3.5 * e1),
+            b2 - j * (3.5 * e2), fi1, fi2, fc1 + j * e1, fc2 + j * e2)
 
 
 def _gains(s):
@@ -213,8 +221,8 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
     ee = ph.e_cushion if vy > ph.v_inelastic else 0.0
     mu_w, mu_s = ph.mu_cushion, ph.mu_slide
     cdp = c * (vy / (c * STEPS))
-    st = [vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy, vy + r * wx,
-          0.0, 0.0, 0.0, 0.0]
+    st = (vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy, vy + r * wx,
+          0.0, 0.0, 0.0, 0.0)
     k = _gains(s)
     work = 0.0
     for _ in range(MAX_STEPS):
@@ -225,13 +233,13 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
         last = vn <= 0.0
         vn = max_one(vn, 0.0)
         work = work + 0.5 * (vy * vy - vn * vn)
-        _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
+        st = _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
         if last:
             break
     vy = st[0]
     if vy > 0.0:
         work = work + 0.5 * (vy * vy)
-        st[0] = 0.0
+        st = (0.0, *st[1:])
     rest = ee * ee * work
     for _ in range(MAX_STEPS):
         if not rest > 0.0:
@@ -243,7 +251,7 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
             vn, rest = -math.sqrt(vy * vy + 2.0 * rest), 0.0
         else:
             rest = rest - gain
-        _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
+        st = _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
     vy = st[0]
     if rest > 0.0:
         vy = -math.sqrt(vy * vy + 2.0 * rest)
