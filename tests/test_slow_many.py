@@ -18,6 +18,7 @@ from termpool.physics.cluster import Rows
 from termpool.physics.engine import Engine
 from termpool.physics.features import Features
 from termpool.physics.params import BALL_RADIUS, Physics
+from termpool.physics.schedule import Due
 from termpool.physics.state import CLUSTER_GAP
 from termpool.physics.table import Table
 from termpool.scene import load_scene
@@ -232,3 +233,52 @@ def test_groups_solved_together_are_each_groups_own_solve_bit_for_bit(seed):
             assert got[s].tobytes() == joined._solve(free[s], kk[s], own, bend[r]).tobytes()
             start += case.balls
             rows += len(case)
+
+
+def _grouped(B: int, seed: int) -> Engine:
+    """B racks at rest with their balls in groups of every size (labels as `Groups` keeps
+    them: a group's first ball), some balls in none."""
+    sc = load_scene(ROOT / "bench/scenes/break.json")
+    pos = np.broadcast_to(sc.pos, (B,) + sc.pos.shape).copy()
+    eng = Engine(sc.table, sc.physics, pos, np.zeros_like(pos), None, sc.radius, sc.mass)
+    rng = np.random.default_rng(seed)
+    N = eng.balls.N
+    for b in range(B):
+        cut = np.sort(rng.choice(np.arange(1, N), 4, replace=False))
+        for part in np.split(rng.permutation(N), cut):
+            if part.size > 1 or rng.uniform() < 0.5:
+                eng.groups.label[b, part] = part.min() if part.size > 1 else -1
+        eng.groups.count[b] = int((eng.groups.label[b] >= 0).sum())
+    return eng
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_groups_broken_at_once_are_broken_as_event_by_event(seed):
+    """break_up frees the groups of every table's event at once: the labels, counts, freed
+    balls and their motions are those of breaking them one event at a time, for bounces,
+    fast pairs of grouped and ungrouped balls and events that break nothing (a transition,
+    a check), each table once."""
+    B = 40
+    rng = np.random.default_rng(seed)
+    tabs = rng.permutation(B)[:30]
+    i = rng.integers(0, 16, 30)
+    j = np.where(rng.uniform(size=30) < 0.5, (i + rng.integers(1, 16, 30)) % 16, -1)
+    due = np.where(j >= 0, Due.PAIR, rng.choice([Due.TRANSITION, Due.CHECK, Due.CUSHION], 30))
+    runs = []
+    for form in ("at once", "each"):
+        eng = _grouped(B, seed)
+        involved = eng.groups.involved(tabs, i, j, due)
+        assert involved.any() and not involved.all()
+        with np.errstate(all="ignore"):  # (as the engine starts balls at rest)
+            if form == "at once":
+                out = eng.groups.break_up(tabs, i, j, due, involved)
+            else:
+                sel = np.flatnonzero(involved & (due >= Due.CUSHION))
+                out = eng.groups._break_each(tabs, i, j, sel)
+        runs.append((eng, [np.concatenate(x) if x else np.zeros(0, int) for x in out]))
+    (a, (ab, ai)), (b, (bb, bi)) = runs
+    assert ab.size > 0
+    assert np.array_equal(ab, bb) and np.array_equal(ai, bi)
+    assert np.array_equal(a.groups.label, b.groups.label)
+    assert np.array_equal(a.groups.count, b.groups.count)
+    assert a.balls.motion.tobytes() == b.balls.motion.tobytes()

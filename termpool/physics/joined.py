@@ -471,8 +471,38 @@ class Groups:
         again (those still pressed together are joined again as their predictions find them:
         a cheap step where a break's impacts cross a group). Returns the balls set moving
         anew, (tables, balls) arrays, for their predictions."""
+        sel = np.flatnonzero(involved & (due >= Due.CUSHION))
+        if not sel.size:
+            return [], []
+        tb = tabs[sel]
+        if np.unique(tb).size < tb.size:  # (a table twice in a pass: one event after another)
+            return self._break_each(tabs, i, j, sel)
+        # Every table's groups broken at once: a ball is freed with an event's own balls if
+        # it shares a group with either.
+        at = np.arange(sel.size)
+        ii, jj = i[sel], j[sel]
+        label = self.label[tb]
+        k = np.arange(self.balls.N)
+        own = (k == ii[:, None]) | (k == jj[:, None])
+        gi = label[at, ii][:, None]
+        gj = np.where(jj >= 0, label[at, np.maximum(jj, 0)], -1)[:, None]
+        members = own | ((label == gi) & (gi >= 0)) | ((label == gj) & (gj >= 0))
+        label = np.where(members, -1, label)
+        self.label[tb] = label
+        self.count[tb] = (label >= 0).sum(axis=1)
+        row, ball = np.nonzero(members & ~own)
+        if not row.size:
+            return [], []
+        bb = tb[row]
+        tt = self.tb[bb]
+        self.balls.set(bb, ball, tt, *self.balls.eval(bb, ball, tt))
+        return [bb], [ball]
+
+    def _break_each(self, tabs, i, j, sel) -> tuple[list, list]:
+        """`break_up` event by event (events `sel`), each seeing the groups the ones before
+        it left."""
         out_b, out_i = [], []
-        for n in np.flatnonzero(involved & (due >= Due.CUSHION)).tolist():
+        for n in sel.tolist():
             b = int(tabs[n])
             own = {int(x) for x in (i[n], j[n]) if x >= 0}
             members = {k for x in own for k in self.members(b, x)}
