@@ -189,14 +189,14 @@ class SlowContacts:
                                        *(x[ends[n]:ends[n + 1]] for x in pairs))
                          for n, (b, c) in enumerate(zip(part, chunk, strict=True))]
             solved += [(f, st) for f, st in zip(found, before, strict=True)]
+        flat: list[int] = []
         for c, (n, _, _, own) in enumerate(clusters):
             b = tables[c]
             (members, moved), before = solved[c]
             out.sizes.append(len(members))
             if own and not moved:
                 out.quiet.add(n)
-            out.tables.append(np.full(len(members), b))
-            out.balls.append(np.array(members, dtype=np.int64))
+            flat += members
             ends = []
             if record:
                 # A group renewed when one of its balls stops may stop the others with it:
@@ -209,6 +209,9 @@ class SlowContacts:
             if due[n] != Due.TRANSITION:  # a transition renews a group: others move by rounding
                 skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(out.extra.get(n, ()))
                 out.extra.setdefault(n, []).extend(k for k in moved if k not in skip)
+        # The balls set moving, all clusters' in one pair of arrays.
+        out.tables.append(np.repeat(np.array(tables, dtype=np.int64), out.sizes))
+        out.balls.append(np.array(flat, dtype=np.int64))
         return out
 
     def _approach(self, b, i) -> np.ndarray:
