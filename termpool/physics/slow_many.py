@@ -65,7 +65,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     # Contact rows, cluster by cluster: its pairs of balls in the order of their places
     # among its members, then its rails and jaws, then its jaw tips.
     place = np.full((C, N), -1)
-    place[mq, mb] = np.concatenate([np.arange(n) for n in sizes.tolist()])
+    place[mq, mb] = np.arange(mq.size) - np.repeat(np.cumsum(sizes) - sizes, sizes)
     ia, ic = place[pq, pa], place[pq, pc]
     k = np.flatnonzero((ia >= 0) & (ia < ic))
     k = k[np.lexsort((ic[k], ia[k], pq[k]))]
@@ -150,9 +150,11 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     row = balls.motion[tarr[mq], mb]
     moved = (row[:, Col.V] != V_in[gm]).any(axis=1) | (row[:, Col.P] != P0[gm]).any(axis=1)
     out = []
-    for q, mem in enumerate(members):
-        hit = moved[mq == q]
-        out.append((mem, [k for k, h in zip(mem, hit.tolist(), strict=True) if h]))
+    hits = moved.tolist()  # the members cluster by cluster
+    s = 0
+    for mem in members:
+        out.append((mem, [k for k, h in zip(mem, hits[s:s + len(mem)], strict=True) if h]))
+        s += len(mem)
     return out
 
 
