@@ -394,13 +394,13 @@ class SlowContacts:
         # of the push (the slip completion, motion.snap): it answers as if 7/5 as heavy.
         slip = _norm(v + R[:, None] * _perp(w[:, :2]))
         snaps = (slip <= EPS_U) & (self.physics.mu_slide > 0)
-        A = J.matrix(np.where(snaps, 5.0 / 7.0, 1.0) / m)
+        k_snap = np.where(snaps, 5.0 / 7.0, 1.0) / m
         inv_m = 1.0 / m
         for _ in range(20):
             u0 = J.speeds(v)
             if not (u0 < -V_MIN).any():
                 break
-            lam = solve_inelastic(A, u0)
+            lam = solve_inelastic(J.matrix(k_snap), u0)  # (built once, when first needed)
             v = v + J.spread(lam, inv_m)
             # A push leaves a rolling ball with a tiny slip that is completed at once; do it
             # here so that the solve sees the velocities that result.
