@@ -246,16 +246,34 @@ def inelastic_plain(col, u0: list, tol: float) -> list:
     """_inelastic_array in plain floats, operation for operation (bit-identical), with
     col[j] the matrix's column j as a list (a list of columns, or `Columns`)."""
     k = len(u0)
-    if k == 1:  # one contact (most of a group's): the loop below, written out
-        x = u0[0]
-        tol = tol * max(abs(x), 1e-300)
-        if not x < -tol:
-            return [0.0]
-        sol = _one(col[0][0], -x)
-        if not sol < -tol:
-            return [sol if sol > 0.0 else 0.0]
-    lam = [0.0] * k
     tol = tol * max(max(map(abs, u0)), 1e-300) if k else tol * 1e-300
+    # The loop's first pass where at most one contact closes (the usual problem), written
+    # out: it ends there unless that contact's push is negative or closes another.
+    first = -1
+    for i, x in enumerate(u0):
+        if x < -tol:
+            if first >= 0:
+                return _inelastic_loop(col, u0, tol)
+            first = i
+    if first < 0:
+        return [0.0] * k
+    c = col[first]
+    sol = _one(c[first], -u0[first])
+    if sol < -tol:
+        return _inelastic_loop(col, u0, tol)
+    push = sol if sol > 0.0 else 0.0  # as np.maximum(x, 0.0): -0.0 becomes 0.0
+    for i, (x, y) in enumerate(zip(u0, c, strict=True)):
+        if i != first and x + y * push < -tol:
+            return _inelastic_loop(col, u0, tol)
+    lam = [0.0] * k
+    lam[first] = push
+    return lam
+
+
+def _inelastic_loop(col, u0: list, tol: float) -> list:
+    """`inelastic_plain`'s loop (tol already scaled by the largest speed)."""
+    k = len(u0)
+    lam = [0.0] * k
     active = [x < -tol for x in u0]
     for n in range(4 * k + 8):
         bulk = n < 8
