@@ -183,3 +183,66 @@ def test_the_complementarity_problem_in_plain_floats_and_arrays_gives_the_same_b
         assert np.array_equal(plain, arrays)
         assert np.array_equal(np.signbit(plain), np.signbit(arrays))
 
+
+
+def _problems(rows: Rows, seed: int):
+    """Complementarity problems of the case as the solves meet them: random speeds, all of
+    them closing, and a frozen cluster (every speed an exact 0 or -0.0) with one contact
+    closing, as a slow ball meets a rack at rest."""
+    k = _masses(rows, seed % 2)
+    u = rows.speeds(_velocities(k, seed))
+    one = np.where(np.arange(len(rows)) % 2 == 0, 0.0, -0.0)
+    one[seed % len(rows)] = -1e-3
+    return rows.matrix(k), (u, -np.abs(u), one)
+
+
+def _parting(rows: Rows, seed: int) -> np.ndarray:
+    """One contact closing, every other parting fast: only the closing one is pushed."""
+    u0 = np.full(len(rows), 1.0)
+    u0[seed % len(rows)] = -1e-3
+    return u0
+
+
+@pytest.mark.parametrize("name", CASES)
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_the_plain_solve_reading_columns_gives_the_bits_of_the_array_solve(name, seed):
+    """The plain-float complementarity solve reads the matrix column by column (Columns)
+    and writes out one contact and one-contact eliminations: the same bits as the array
+    form, signed zeros included, on racks, packs on a rail, a corner, a wedged ball, held
+    balls; it reads the columns of the contacts it pushes, and only those: one contact
+    closing while the others part reads one column."""
+    rows = CASES[name]
+    if len(rows) > PLAIN:
+        pytest.skip("solved on arrays only")
+    A, problems = _problems(rows, seed)
+    for u0 in (*problems, _parting(rows, seed)):
+        cols = _Counted(A)
+        plain = np.array(cluster.inelastic_plain(cols, u0.tolist(), 1e-12))
+        arrays = cluster._inelastic_array(A, u0, 1e-12)
+        assert plain.tobytes() == arrays.tobytes()
+        assert set(np.flatnonzero(plain > 0).tolist()) <= cols.read
+    assert cols.read == {seed % len(rows)}  # the parting case: one column read, of them all
+
+
+class _Counted(cluster.Columns):
+    """Columns that note which columns are read."""
+
+    def __init__(self, A: np.ndarray) -> None:
+        super().__init__(A)
+        self.read: set[int] = set()
+
+    def __getitem__(self, j: int) -> list:
+        self.read.add(j)
+        return super().__getitem__(j)
+
+
+@pytest.mark.parametrize("d", [1.0, 2.5e3, 1e-300, 5e-324, 0.0, -0.0, -1.0, math.inf,
+                               math.nan])
+@pytest.mark.parametrize("u", [-1.0, -1e-13, -5e-324, 0.0, -0.0, 1.0, -math.inf, math.nan])
+def test_one_contact_written_out_gives_the_bits_of_the_array_solve(d, u):
+    """A single contact (a group's usual problem): any diagonal, even one the elimination
+    refuses (zero, negative, not a number), any speed, closing or not."""
+    with np.errstate(all="ignore"):
+        plain = np.array(cluster.inelastic_plain([[d]], [u], 1e-12))
+        arrays = cluster._inelastic_array(np.array([[d]]), np.array([u]), 1e-12)
+    assert plain.tobytes() == arrays.tobytes()

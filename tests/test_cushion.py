@@ -363,3 +363,24 @@ def test_a_saved_match_from_before_the_choice_keeps_the_simple_cushion():
     data = simple_match()
     del data["match"]["physics"]["cushion"]
     assert Match.from_json(data).physics.cushion == "simple"
+
+
+@pytest.mark.parametrize("ph", [Physics(cushion="mathavan"),
+                                Physics(cushion="mathavan", e_cushion=1.0, mu_cushion=0.0),
+                                Physics(cushion="mathavan", mu_cushion=5.0, mu_slide=3.0,
+                                        cushion_height=0.01)])
+def test_mathavan_on_arrays_gives_the_float_forms_bits_signed_zeros_included(ph):
+    """The array form steps the slips and impulses in pairs of rows: every ball's rebound
+    is the float form's to the bit (zeros' signs too), for zero, grazing and huge speeds and
+    spins, balls moving along or off the rail, and random approaches, all in one array."""
+    cases = [(n, v, w, R, M) for n, v, w in extreme_cases()]
+    cases += list(random_cases(7, 300))
+    cases += [(UP, [0.0, 0.0], [0.0, 0.0, 0.0], R, M), (UP, [1.0, -0.0], [-0.0, 0.0, 0.0], R, M)]
+    n, v, w, r, m = (np.array(x, dtype=float) for x in zip(*cases, strict=True))
+    with np.errstate(all="ignore"):
+        V, W = mathavan.bounce_many(n.reshape(-1, 2), v.reshape(-1, 2), w.reshape(-1, 3), r, m,
+                                    ph)
+    for x, (nx, vx, wx, rx, mx) in enumerate(cases):
+        vo, wo = mathavan.bounce_one(list(nx), list(vx), list(wx), rx, mx, ph)
+        assert np.array(vo).tobytes() == V[x].tobytes()
+        assert np.array(wo).tobytes() == W[x].tobytes()

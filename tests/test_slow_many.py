@@ -5,15 +5,22 @@ racks, touching triangles, rows of frozen balls and the example and bench scenes
 
 from __future__ import annotations
 
+import copy
 import glob
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-from termpool.physics import joined
+from termpool.physics import joined, slow_many
 from termpool.physics.cluster import Rows
 from termpool.physics.engine import Engine
+from termpool.physics.features import Features
+from termpool.physics.params import BALL_RADIUS, Physics
+from termpool.physics.schedule import Due
+from termpool.physics.state import CLUSTER_GAP
+from termpool.physics.table import Table
 from termpool.scene import load_scene
 from tests.test_cluster import CASES, _masses
 
@@ -105,3 +112,173 @@ def test_a_batch_with_clusters_solved_together_is_the_same(name):
         one.run_events()
         assert one.pos.tobytes() == batched.pos[b:b + 1].tobytes()
         assert one.events[0] == batched.events[b]
+
+
+def _on_the_rails(B: int) -> tuple:
+    """B tables of frozen balls exactly touching a rail (centres at their reach) and each
+    other (2R apart): a row along a side rail and a pair on the foot rail, each met by a
+    ball a hair away rolling at a few mm/s (some below the inelastic speed, some above), and
+    a pair in the middle of the table met so."""
+    table = Table.preset("9ft")
+    R = BALL_RADIUS
+    rc = Engine(table, Physics(), np.array([[0.5, 0.5]])).balls.rc[0, 0]
+    L = table.length
+    pos = np.array([[0.6 - 2 * R - 1e-4, rc], [0.6, rc], [0.6 + 2 * R, rc], [0.6 + 4 * R, rc],
+                    [L - rc, 0.5 - 2 * R - 1e-4], [L - rc, 0.5], [L - rc, 0.5 + 2 * R],
+                    [1.2 - 2 * R - 1e-4, 0.6], [1.2, 0.6]])
+    pos = np.broadcast_to(pos, (B,) + pos.shape).copy()
+    speed = np.linspace(0.001, 0.012, B)[:, None]
+    vel = np.zeros_like(pos)
+    vel[:, 0, 0] = speed[:, 0]
+    vel[:, 4, 1] = speed[:, 0]
+    vel[:, 7, 0] = speed[:, 0]
+    w = np.zeros(pos.shape[:2] + (3,))
+    w[:, [0, 7], 1] = speed / R  # rolling: w = z x v / R
+    w[:, 4, 0] = -speed[:, 0] / R
+    return table, pos, vel, w
+
+
+def test_clusters_against_the_rails_solved_together_are_the_same(monkeypatch):
+    """Rows of frozen balls on the rails nudged slowly, 16 tables at once: the batched solve,
+    which looks for rail, jaw and tip contacts only among balls by the table's edges
+    (by_rails), gives the bits of one cluster at a time, which looks at every ball."""
+    table, pos, vel, w = _on_the_rails(16)
+    seen = []
+    real = slow_many.by_rails
+
+    def counted(features, p, rc):
+        out = real(features, p, rc)
+        seen.append(out)
+        return out
+
+    monkeypatch.setattr(slow_many, "by_rails", counted)
+    _same_run(lambda: Engine(table, Physics(), pos, vel, w))
+    flags = np.concatenate(seen)
+    assert flags.any() and not flags.all()  # balls by the rails, and balls away from them
+
+
+@pytest.mark.parametrize("preset", ["7ft", "8ft", "9ft"])
+def test_balls_by_the_rails_are_all_those_near_a_rail_jaw_or_tip(preset):
+    """by_rails keeps every ball within CLUSTER_GAP of a rail, jaw or jaw tip by the
+    features' own gaps: balls exactly on a rail, sunk a little into one, in the pocket
+    mouths against the jaws and their tips, exactly 2R from a ball on a rail, and random
+    balls over the whole bed and beyond; and it leaves out a rack in the middle."""
+    table = Table.preset(preset)
+    feat = Features(table)
+    rc = Engine(table, Physics(), np.array([[0.5, 0.5]])).balls.rc[0, 0]
+    L, W, R = table.length, table.width, BALL_RADIUS
+    rng = np.random.default_rng(3)
+    exact = [(rc, 0.5), (L - rc, 0.5), (0.7, rc), (0.7, W - rc), (rc - 1e-7, 0.6),
+             (0.7, W - rc + 5e-7), (0.7 + 2 * R, rc), (rc + 2 * R, 0.5)]
+    # Points by each jaw and tip, at the reach along each feature's normal, with a jitter.
+    tips = table.points + rng.normal(0.0, 1e-3, table.points.shape)
+    p = np.concatenate([np.array(exact), tips,
+                        rng.uniform([-0.05, -0.05], [L + 0.05, W + 0.05], (4000, 2)),
+                        rng.uniform([0.0, 0.0], [0.06, W], (2000, 2))])
+    for f in range(feat.nseg):  # on each rail and jaw's line, beside it
+        t = rng.uniform(0.0, 1.0, 50)[:, None]
+        on = table.seg_a[f] + t * (table.seg_b[f] - table.seg_a[f]) + rc * table.seg_n[f]
+        p = np.concatenate([p, on])
+    r = np.full(len(p), rc)
+    seg_gap, beside, tip_gap, _ = feat.gaps(p, r)
+    near = (((np.abs(seg_gap) < CLUSTER_GAP) & beside).any(axis=1)
+            | (tip_gap < CLUSTER_GAP).any(axis=1))
+    kept = slow_many.by_rails(feat, p, r)
+    assert near.sum() > 100  # the points do test it
+    assert not (near & ~kept).any()
+    rack = np.array([(0.75 * L + 3 ** 0.5 * R * i, W / 2 + (j - i / 2) * 2 * R)
+                     for i in range(5) for j in range(i + 1)])
+    assert not slow_many.by_rails(feat, rack, np.full(15, rc)).any()
+
+
+def test_a_table_with_features_inside_its_bed_keeps_every_ball():
+    """Where a rail or tip does not lie beyond the bed's edges (a bed longer than its rails
+    here), the bound does not hold: every ball is looked at."""
+    table = copy.copy(Table.preset("9ft"))
+    table.length += 0.1
+    p = np.array([[1.2, 0.6], [0.5, 0.5]])
+    assert slow_many.by_rails(SimpleNamespace(table=table), p, np.full(2, 0.03)).all()
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_groups_solved_together_are_each_groups_own_solve_bit_for_bit(seed):
+    """Sets.solve of every case of test_cluster at once (balls numbered apart), with equal,
+    mixed and held (0) inverse masses, asked twice with the same masses (the matrices kept)
+    and once with others: each group's accelerations are `joined._solve` of the group alone,
+    rows with nothing that can move included."""
+    rng = np.random.default_rng(seed)
+    cases = list(CASES.values())
+    a, c, n, ks, first, groups, rowg = [], [], [], [], 0, [], []
+    for q, case in enumerate(cases):
+        a.append(case.a + first)
+        c.append(np.where(case.c >= 0, case.c + first, -1))
+        n.append(case.n)
+        ks.append(_masses(case, seed))
+        groups.append(np.full(case.balls, q))
+        rowg.append(np.full(len(case), q))
+        first += case.balls
+    J = Rows(np.concatenate(a), np.concatenate(c), np.concatenate(n), first)
+    sets = joined.Sets(J, np.concatenate(groups), np.concatenate(rowg), len(cases))
+    bend = rng.uniform(0.0, 0.1, len(J)) * (rng.uniform(size=len(J)) < 0.3)
+    k = np.concatenate(ks)
+    every = np.ones(len(cases), dtype=bool)
+    for kk in (k, k, np.where(rng.uniform(size=k.size) < 0.2, 0.0, k)):
+        free = rng.normal(0.0, 1.0, (first, 2))
+        got = sets.solve(free, kk, bend, every)
+        start = rows = 0
+        for case in cases:
+            s = slice(start, start + case.balls)
+            r = slice(rows, rows + len(case))
+            own = Rows(case.a, case.c, case.n, case.balls)
+            assert got[s].tobytes() == joined._solve(free[s], kk[s], own, bend[r]).tobytes()
+            start += case.balls
+            rows += len(case)
+
+
+def _grouped(B: int, seed: int) -> Engine:
+    """B racks at rest with their balls in groups of every size (labels as `Groups` keeps
+    them: a group's first ball), some balls in none."""
+    sc = load_scene(ROOT / "bench/scenes/break.json")
+    pos = np.broadcast_to(sc.pos, (B,) + sc.pos.shape).copy()
+    eng = Engine(sc.table, sc.physics, pos, np.zeros_like(pos), None, sc.radius, sc.mass)
+    rng = np.random.default_rng(seed)
+    N = eng.balls.N
+    for b in range(B):
+        cut = np.sort(rng.choice(np.arange(1, N), 4, replace=False))
+        for part in np.split(rng.permutation(N), cut):
+            if part.size > 1 or rng.uniform() < 0.5:
+                eng.groups.label[b, part] = part.min() if part.size > 1 else -1
+        eng.groups.count[b] = int((eng.groups.label[b] >= 0).sum())
+    return eng
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_groups_broken_at_once_are_broken_as_event_by_event(seed):
+    """break_up frees the groups of every table's event at once: the labels, counts, freed
+    balls and their motions are those of breaking them one event at a time, for bounces,
+    fast pairs of grouped and ungrouped balls and events that break nothing (a transition,
+    a check), each table once."""
+    B = 40
+    rng = np.random.default_rng(seed)
+    tabs = rng.permutation(B)[:30]
+    i = rng.integers(0, 16, 30)
+    j = np.where(rng.uniform(size=30) < 0.5, (i + rng.integers(1, 16, 30)) % 16, -1)
+    due = np.where(j >= 0, Due.PAIR, rng.choice([Due.TRANSITION, Due.CHECK, Due.CUSHION], 30))
+    runs = []
+    for form in ("at once", "each"):
+        eng = _grouped(B, seed)
+        involved = eng.groups.involved(tabs, i, j, due)
+        assert involved.any() and not involved.all()
+        with np.errstate(all="ignore"):  # (as the engine starts balls at rest)
+            if form == "at once":
+                out = eng.groups.break_up(tabs, i, j, due, involved)
+            else:
+                sel = np.flatnonzero(involved & (due >= Due.CUSHION))
+                out = eng.groups._break_each(tabs, i, j, sel)
+        runs.append((eng, [np.concatenate(x) if x else np.zeros(0, int) for x in out]))
+    (a, (ab, ai)), (b, (bb, bi)) = runs
+    assert ab.size > 0
+    assert np.array_equal(ab, bb) and np.array_equal(ai, bi)
+    assert np.array_equal(a.groups.label, b.groups.label)
+    assert np.array_equal(a.groups.count, b.groups.count)
+    assert a.balls.motion.tobytes() == b.balls.motion.tobytes()

@@ -19,6 +19,7 @@ import numpy as np
 
 RANK_TOL = 1e-12  # a pivot this small against the largest diagonal marks a redundant contact
 PLAIN = 64  # systems up to this size are solved in plain floats (the same bits, faster)
+TOL = 1e-12  # solve_inelastic's tolerance on closing speeds, against the largest
 
 
 class Rows:
@@ -174,7 +175,7 @@ def _solve_few(S: list, b: list) -> list:
     return out
 
 
-def solve_inelastic(A: np.ndarray, u0: np.ndarray, tol: float = 1e-12) -> np.ndarray:
+def solve_inelastic(A: np.ndarray, u0: np.ndarray, tol: float = TOL) -> np.ndarray:
     """Return lam >= 0 with u = u0 + A lam >= 0 and lam * u = 0 (A symmetric PSD).
 
     Active-set method: contacts that close are pushed until their normal speed is zero; a
@@ -184,8 +185,26 @@ def solve_inelastic(A: np.ndarray, u0: np.ndarray, tol: float = 1e-12) -> np.nda
     """
     k = len(u0)
     if k <= PLAIN:
-        return np.array(_inelastic_few(A.tolist(), u0.tolist(), tol), dtype=float).reshape(k)
+        return np.array(inelastic_plain(Columns(A), u0.tolist(), tol), dtype=float).reshape(k)
     return _inelastic_array(A, u0, tol)
+
+
+class Columns:
+    """The columns of a matrix (k, k) as lists, each taken from it when first asked for: the
+    plain-float solve reads only the columns of the contacts it pushes (one or two of a
+    rack's thirty, usually)."""
+
+    __slots__ = ("A", "_got")
+
+    def __init__(self, A: np.ndarray) -> None:
+        self.A = A
+        self._got: dict[int, list] = {}
+
+    def __getitem__(self, j: int) -> list:
+        col = self._got.get(j)
+        if col is None:
+            col = self._got[j] = self.A[:, j].tolist()
+        return col
 
 
 def _inelastic_array(A: np.ndarray, u0: np.ndarray, tol: float) -> np.ndarray:
@@ -219,10 +238,42 @@ def _inelastic_array(A: np.ndarray, u0: np.ndarray, tol: float) -> np.ndarray:
 
 
 def _inelastic_few(A: list, u0: list, tol: float) -> list:
-    """_inelastic_array in plain floats, operation for operation (bit-identical)."""
+    """_inelastic_array in plain floats (A as lists of rows), operation for operation."""
+    return inelastic_plain([list(col) for col in zip(*A, strict=True)], u0, tol)
+
+
+def inelastic_plain(col, u0: list, tol: float) -> list:
+    """_inelastic_array in plain floats, operation for operation (bit-identical), with
+    col[j] the matrix's column j as a list (a list of columns, or `Columns`)."""
+    k = len(u0)
+    tol = tol * max(max(map(abs, u0)), 1e-300) if k else tol * 1e-300
+    # The loop's first pass where at most one contact closes (the usual problem), written
+    # out: it ends there unless that contact's push is negative or closes another.
+    first = -1
+    for i, x in enumerate(u0):
+        if x < -tol:
+            if first >= 0:
+                return _inelastic_loop(col, u0, tol)
+            first = i
+    if first < 0:
+        return [0.0] * k
+    c = col[first]
+    sol = _one(c[first], -u0[first])
+    if sol < -tol:
+        return _inelastic_loop(col, u0, tol)
+    push = sol if sol > 0.0 else 0.0  # as np.maximum(x, 0.0): -0.0 becomes 0.0
+    for i, (x, y) in enumerate(zip(u0, c, strict=True)):
+        if i != first and x + y * push < -tol:
+            return _inelastic_loop(col, u0, tol)
+    lam = [0.0] * k
+    lam[first] = push
+    return lam
+
+
+def _inelastic_loop(col, u0: list, tol: float) -> list:
+    """`inelastic_plain`'s loop (tol already scaled by the largest speed)."""
     k = len(u0)
     lam = [0.0] * k
-    tol = tol * max(max((abs(x) for x in u0), default=0.0), 1e-300)
     active = [x < -tol for x in u0]
     for n in range(4 * k + 8):
         bulk = n < 8
@@ -230,7 +281,12 @@ def _inelastic_few(A: list, u0: list, tol: float) -> list:
         a = [i for i in range(k) if active[i]]
         u = u0
         if a:
-            sol = _solve_few([[A[i][j] for j in a] for i in a], [-u0[i] for i in a])
+            cols = [col[j] for j in a]
+            if len(a) == 1:
+                i = a[0]
+                sol = [_one(cols[0][i], -u0[i])]
+            else:
+                sol = _solve_few([[c[i] for c in cols] for i in a], [-u0[i] for i in a])
             if any(x < -tol for x in sol):
                 if bulk:
                     for i, x in zip(a, sol, strict=True):
@@ -241,11 +297,9 @@ def _inelastic_few(A: list, u0: list, tol: float) -> list:
                 continue
             for i, x in zip(a, sol, strict=True):
                 lam[i] = x if x > 0.0 else 0.0  # as np.maximum(x, 0.0): -0.0 becomes 0.0
-            u = list(u0)
-            for j in a:
+            for j, c in zip(a, cols, strict=True):  # u0 + A lam, in the order of the contacts
                 lj = lam[j]
-                for i in range(k):
-                    u[i] = u[i] + A[i][j] * lj
+                u = [x + y * lj for x, y in zip(u, c, strict=True)]
         bad = [i for i in range(k) if not active[i] and u[i] < -tol]
         if not bad:
             break
@@ -255,3 +309,8 @@ def _inelastic_few(A: list, u0: list, tol: float) -> list:
         else:
             active[min(bad, key=u.__getitem__)] = True
     return lam
+
+
+def _one(d: float, b: float) -> float:
+    """`_solve_few([[d]], [b])[0]`: b / d, or 0 for a pivot too small (no pivot at all)."""
+    return b / d if d > RANK_TOL * d else 0.0

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 
 from termpool.physics.balls import Balls
-from termpool.physics.cluster import Rows, solve_inelastic, solve_psd
+from termpool.physics.cluster import PLAIN, TOL, Rows, inelastic_plain, solve_inelastic, solve_psd
 from termpool.physics.flat import flat
 from termpool.physics.motion import Col
 from termpool.physics.params import Physics
@@ -241,6 +241,22 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
     J's rows starts[q] to starts[q] + counts[q], and touch no ball of another set. Element
     for element the same operations as `Rows.matrix`, so the same bits."""
     out = []
+    for A, ct in _padded(J, starts, counts, k):
+        out += [A[q, :r, :r] for q, r in enumerate(ct)]
+    return out
+
+
+def block_lists(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> list:
+    """`blocks` as lists of rows (for the plain-float solves of small sets)."""
+    out = []
+    for A, ct in _padded(J, starts, counts, k):
+        out += [[row[:r] for row in Aq[:r]] for Aq, r in zip(A.tolist(), ct, strict=True)]
+    return out
+
+
+def _padded(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray):
+    """`blocks`' matrices, BLOCKS sets at a time: (matrices padded to the largest set of
+    them, their sets' sizes as a list)."""
     for s in range(0, len(starts), BLOCKS):
         st, ct = starts[s:s + BLOCKS], counts[s:s + BLOCKS]
         top = int(ct.max()) if ct.size else 0
@@ -249,13 +265,12 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
         a, c, n, ball = J.a[idx], J.c[idx], J.n[idx], J.ball[idx]
         # n_i . n_j as numpy's two-term sum adds it (from 0.0: -0.0 comes out 0.0)
         nn = (0.0 + n[:, :, None, 0] * n[:, None, :, 0]) + n[:, :, None, 1] * n[:, None, :, 1]
-        by_a = (a[:, None, :] == a[:, :, None]).astype(float) - (c[:, None, :] == a[:, :, None])
-        by_c = (c[:, None, :] == c[:, :, None]).astype(float) - (a[:, None, :] == c[:, :, None])
+        # The signs -1, 0, 1 in small ints: exact as floats, and cheaper to build.
+        by_a = (a[:, None, :] == a[:, :, None]).astype(np.int8) - (c[:, None, :] == a[:, :, None])
+        by_c = (c[:, None, :] == c[:, :, None]).astype(np.int8) - (a[:, None, :] == c[:, :, None])
         kc = np.where(ball, k[np.maximum(c, 0)], 0.0)
-        A = (k[a][:, :, None] * (nn * by_a)
-             + kc[:, :, None] * (nn * np.where(ball[:, :, None], by_c, 0.0)))
-        out += [A[q, :r, :r] for q, r in enumerate(ct.tolist())]
-    return out
+        yield (k[a][:, :, None] * (nn * by_a)
+               + kc[:, :, None] * (nn * np.where(ball[:, :, None], by_c, 0))), ct.tolist()
 
 
 class Sets:
@@ -267,26 +282,56 @@ class Sets:
         self.J, self.ball_group, self.row_group, self.count = J, ball_group, row_group, count
         self.counts = np.bincount(row_group, minlength=count)
         self.starts = np.concatenate([[0], np.cumsum(self.counts)[:-1]]).astype(np.int64)
+        self.first = self.starts.tolist()
+        self._key: bytes | None = None  # the inverse masses of the matrices kept in _mats
+        self._mats: dict[int, list] = {}
+
+    def matrices(self, k: np.ndarray, q_list: list[int]) -> list:
+        """The contact matrices of groups q_list for inverse masses k (`block_lists`), cut
+        to the rows with anything that can move (as np.abs(A).sum(axis=1) > 0 keeps them):
+        (those rows, the cut matrix's columns, or its rows when it is too large for plain
+        floats), each group's built once for the same k (push solves again with the same
+        masses after turning the forces)."""
+        key = k.tobytes()
+        if key != self._key:
+            self._key, self._mats = key, {}
+        need = [q for q in q_list if q not in self._mats]
+        if need:
+            q_need = np.array(need, dtype=np.int64)
+            for q, A in zip(need, block_lists(self.J, self.starts[q_need], self.counts[q_need],
+                                              k), strict=True):
+                live = [i for i, row in enumerate(A) if sum(map(abs, row)) > 0]
+                if len(live) < len(A):
+                    A = [[A[i][j] for j in live] for i in live]
+                cols = [list(c) for c in zip(*A, strict=True)] if len(live) <= PLAIN else A
+                self._mats[q] = (live, cols)
+        return [self._mats[q] for q in q_list]
 
     def rows(self, q: int) -> slice:
         return slice(int(self.starts[q]), int(self.starts[q] + self.counts[q]))
 
     def solve(self, free, k, bend, chosen: np.ndarray) -> np.ndarray:
         """`_solve` for the groups `chosen` (bools per group): their balls' accelerations,
-        each group's contact forces found on its own (other balls: anything)."""
+        each group's contact forces found on its own (other balls: anything). The groups'
+        few contacts are solved in plain floats, as `solve_inelastic` does."""
         J = self.J
-        q_list = np.flatnonzero(chosen)
-        mats = blocks(J, self.starts[q_list], self.counts[q_list], k)
-        b = J.speeds(free) + bend
-        lam = np.zeros(len(J))
-        for q, A in zip(q_list.tolist(), mats, strict=True):
-            live = np.abs(A).sum(axis=1) > 0
-            if live.any():
-                rows = self.rows(q)
-                part = np.zeros(A.shape[0])
-                part[live] = solve_inelastic(A[np.ix_(live, live)], b[rows][live])
-                lam[rows] = part
-        return free + J.spread(lam, k)
+        q_list = np.flatnonzero(chosen).tolist()
+        b = (J.speeds(free) + bend).tolist()
+        lam = [0.0] * len(J)
+        for q, (live, A) in zip(q_list, self.matrices(k, q_list), strict=True):
+            # Rows with nothing that can move carry no force.
+            if not live:
+                continue
+            s = self.first[q]
+            bl = [b[s + i] for i in live]
+            if len(live) > PLAIN:
+                part = solve_inelastic(np.array(A, dtype=float), np.array(bl, dtype=float))
+                part = part.tolist()
+            else:
+                part = inelastic_plain(A, bl, TOL)
+            for i, x in zip(live, part, strict=True):
+                lam[s + i] = x
+        return free + J.spread(np.array(lam, dtype=float).reshape(len(J)), k)
 
     def resting(self, v, k) -> np.ndarray:
         """`_resting` of every group."""
@@ -427,8 +472,38 @@ class Groups:
         again (those still pressed together are joined again as their predictions find them:
         a cheap step where a break's impacts cross a group). Returns the balls set moving
         anew, (tables, balls) arrays, for their predictions."""
+        sel = np.flatnonzero(involved & (due >= Due.CUSHION))
+        if not sel.size:
+            return [], []
+        tb = tabs[sel]
+        if np.unique(tb).size < tb.size:  # (a table twice in a pass: one event after another)
+            return self._break_each(tabs, i, j, sel)
+        # Every table's groups broken at once: a ball is freed with an event's own balls if
+        # it shares a group with either.
+        at = np.arange(sel.size)
+        ii, jj = i[sel], j[sel]
+        label = self.label[tb]
+        k = np.arange(self.balls.N)
+        own = (k == ii[:, None]) | (k == jj[:, None])
+        gi = label[at, ii][:, None]
+        gj = np.where(jj >= 0, label[at, np.maximum(jj, 0)], -1)[:, None]
+        members = own | ((label == gi) & (gi >= 0)) | ((label == gj) & (gj >= 0))
+        label = np.where(members, -1, label)
+        self.label[tb] = label
+        self.count[tb] = (label >= 0).sum(axis=1)
+        row, ball = np.nonzero(members & ~own)
+        if not row.size:
+            return [], []
+        bb = tb[row]
+        tt = self.tb[bb]
+        self.balls.set(bb, ball, tt, *self.balls.eval(bb, ball, tt))
+        return [bb], [ball]
+
+    def _break_each(self, tabs, i, j, sel) -> tuple[list, list]:
+        """`break_up` event by event (events `sel`), each seeing the groups the ones before
+        it left."""
         out_b, out_i = [], []
-        for n in np.flatnonzero(involved & (due >= Due.CUSHION)).tolist():
+        for n in sel.tolist():
             b = int(tabs[n])
             own = {int(x) for x in (i[n], j[n]) if x >= 0}
             members = {k for x in own for k in self.members(b, x)}

@@ -189,14 +189,14 @@ class SlowContacts:
                                        *(x[ends[n]:ends[n + 1]] for x in pairs))
                          for n, (b, c) in enumerate(zip(part, chunk, strict=True))]
             solved += [(f, st) for f, st in zip(found, before, strict=True)]
+        flat: list[int] = []
         for c, (n, _, _, own) in enumerate(clusters):
             b = tables[c]
             (members, moved), before = solved[c]
             out.sizes.append(len(members))
             if own and not moved:
                 out.quiet.add(n)
-            out.tables.append(np.full(len(members), b))
-            out.balls.append(np.array(members, dtype=np.int64))
+            flat += members
             ends = []
             if record:
                 # A group renewed when one of its balls stops may stop the others with it:
@@ -209,6 +209,9 @@ class SlowContacts:
             if due[n] != Due.TRANSITION:  # a transition renews a group: others move by rounding
                 skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(out.extra.get(n, ()))
                 out.extra.setdefault(n, []).extend(k for k in moved if k not in skip)
+        # The balls set moving, all clusters' in one pair of arrays.
+        out.tables.append(np.repeat(np.array(tables, dtype=np.int64), out.sizes))
+        out.balls.append(np.array(flat, dtype=np.int64))
         return out
 
     def _approach(self, b, i) -> np.ndarray:
@@ -391,13 +394,13 @@ class SlowContacts:
         # of the push (the slip completion, motion.snap): it answers as if 7/5 as heavy.
         slip = _norm(v + R[:, None] * _perp(w[:, :2]))
         snaps = (slip <= EPS_U) & (self.physics.mu_slide > 0)
-        A = J.matrix(np.where(snaps, 5.0 / 7.0, 1.0) / m)
+        k_snap = np.where(snaps, 5.0 / 7.0, 1.0) / m
         inv_m = 1.0 / m
         for _ in range(20):
             u0 = J.speeds(v)
             if not (u0 < -V_MIN).any():
                 break
-            lam = solve_inelastic(A, u0)
+            lam = solve_inelastic(J.matrix(k_snap), u0)  # (built once, when first needed)
             v = v + J.spread(lam, inv_m)
             # A push leaves a rolling ball with a tiny slip that is completed at once; do it
             # here so that the solve sees the velocities that result.

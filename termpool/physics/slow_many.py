@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from termpool.physics.balls import Balls
-from termpool.physics.cluster import Rows, solve_inelastic
+from termpool.physics.cluster import PLAIN, TOL, Columns, Rows, inelastic_plain, solve_inelastic
 from termpool.physics.features import Features
 from termpool.physics.joined import Groups, Sets, blocks, push_many
 from termpool.physics.motion import Col, snap
@@ -42,15 +42,16 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     # Each cluster grown from its seeds over its table's slow contacts.
     slow = closing <= cap[pq]
     pq, pa, pc, pd, pdist = pq[slow], pa[slow], pc[slow], pd[slow], pdist[slow]
-    adj: list[list[list[int]]] = [[[] for _ in range(N)] for _ in range(C)]
-    for q, a, c in zip(pq.tolist(), pa.tolist(), pc.tolist(), strict=True):
-        adj[q][a].append(c)
+    # (The pairs come ordered by table, a, c: ball a's of table q are one run of them.)
+    bounds = np.searchsorted(pq * N + pa, np.arange(C * N + 1)).tolist()
+    partner = pc.tolist()
     members: list[list[int]] = []
     for q in range(C):
         mem = list(dict.fromkeys(seeds[q]))
         seen = set(mem)
-        for a in mem:
-            for c in adj[q][a]:
+        base = q * N
+        for a in mem:  # grows while we walk it
+            for c in partner[bounds[base + a]:bounds[base + a + 1]]:
                 if c not in seen:
                     seen.add(c)
                     mem.append(c)
@@ -64,7 +65,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     # Contact rows, cluster by cluster: its pairs of balls in the order of their places
     # among its members, then its rails and jaws, then its jaw tips.
     place = np.full((C, N), -1)
-    place[mq, mb] = np.concatenate([np.arange(n) for n in sizes.tolist()])
+    place[mq, mb] = np.arange(mq.size) - np.repeat(np.cumsum(sizes) - sizes, sizes)
     ia, ic = place[pq, pa], place[pq, pc]
     k = np.flatnonzero((ia >= 0) & (ia < ic))
     k = k[np.lexsort((ic[k], ia[k], pq[k]))]
@@ -72,16 +73,20 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     rq, ra, rc_ = [bq], [a], [c]
     rn, rg = [-pd[k] / pdist[k][:, None]], [np.zeros(a.size)]
     rkind = [np.zeros(a.size, dtype=np.int64)]
-    seg_gap, beside, tip_gap, tip_dir = features.gaps(P[gm], balls.rc[tarr[mq], mb])
-    capm = cap[mq][:, None]
-    slow = dots(V[gm], tab.seg_n) >= -capm
+    # Only members by the rails can touch a rail, jaw or tip (the rest of a rack pays nothing).
+    pm, rcm = P[gm], balls.rc[tarr[mq], mb]
+    by = np.flatnonzero(by_rails(features, pm, rcm))
+    seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
+    mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
+    capm = cap[mq_][:, None]
+    slow = dots(vm, tab.seg_n) >= -capm
     x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
-    for z, val in ((rq, mq[x]), (ra, mb[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
+    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
                    (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
         z.append(val)
-    slow = (V[gm][:, None] * tip_dir).sum(axis=2) >= -capm
+    slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
     x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
-    for z, val in ((rq, mq[x]), (ra, mb[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
+    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
                    (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
         z.append(val)
     rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
@@ -95,19 +100,22 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     Rf, mf = balls.radius[tarr].ravel(), balls.mass[tarr].ravel()
     slip = _norm(V + Rf[:, None] * _perp(W[:, :2]))
     snaps = (slip <= EPS_U) & (ph.mu_slide > 0)
-    A = blocks(J, starts, counts, np.where(snaps, 5.0 / 7.0, 1.0) / mf)
     inv_m = 1.0 / mf
     # Velocities: each cluster until none of its contacts closes.
     live = np.ones(C, dtype=bool)
+    cols: dict = {}  # the live clusters' matrices (often none is: a settling rack at rest)
+    first, ends = starts.tolist(), (starts + counts).tolist()
     for _ in range(20):
         u0 = J.speeds(V)
         live &= any_by(u0 < -V_MIN, rq_, C)
         if not live.any():
             break
-        lam = np.zeros(len(J))
-        for q in np.flatnonzero(live).tolist():
-            s = slice(int(starts[q]), int(starts[q] + counts[q]))
-            lam[s] = solve_inelastic(A[q], u0[s])
+        if not cols:  # the clusters live now are all that may be later
+            qs = np.flatnonzero(live)
+            cols = {q: Columns(M) for q, M in zip(
+                qs.tolist(), blocks(J, starts[qs], counts[qs],
+                                    np.where(snaps, 5.0 / 7.0, 1.0) / mf), strict=True)}
+        lam = _solved(cols, u0, live, first, ends)
         k = gm[live[mq]]
         V[k] = (V + J.spread(lam, inv_m))[k]
         _, V[k], W[k], _ = snap(ph, P[k], V[k], W[k], Rf[k], None, move=False)
@@ -122,11 +130,10 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         live &= any_by(gaps < -1e-12, rq_, C)
         if not live.any():
             break
-        lam = np.zeros(len(J))
         qs = np.flatnonzero(live)
-        for q, M in zip(qs.tolist(), blocks(J, starts[qs], counts[qs], inv_m), strict=True):
-            s = slice(int(starts[q]), int(starts[q] + counts[q]))
-            lam[s] = solve_inelastic(M, np.minimum(gaps[s], 0.0))
+        mats = {q: Columns(M) for q, M in
+                zip(qs.tolist(), blocks(J, starts[qs], counts[qs], inv_m), strict=True)}
+        lam = _solved(mats, np.minimum(gaps, 0.0), live, first, ends)
         k = gm[live[mq]]
         P = P.copy()
         P[k] = (P + J.spread(lam, inv_m))[k]
@@ -143,10 +150,47 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     row = balls.motion[tarr[mq], mb]
     moved = (row[:, Col.V] != V_in[gm]).any(axis=1) | (row[:, Col.P] != P0[gm]).any(axis=1)
     out = []
-    for q, mem in enumerate(members):
-        hit = moved[mq == q]
-        out.append((mem, [k for k, h in zip(mem, hit.tolist(), strict=True) if h]))
+    hits = moved.tolist()  # the members cluster by cluster
+    s = 0
+    for mem in members:
+        out.append((mem, [k for k, h in zip(mem, hits[s:s + len(mem)], strict=True) if h]))
+        s += len(mem)
     return out
+
+
+def by_rails(features: Features, p: np.ndarray, rc: np.ndarray) -> np.ndarray:
+    """Which balls at p (M, 2) with contact reach rc may be within CLUSTER_GAP of a rail,
+    jaw or jaw tip (`Features.gaps`): on a table whose every segment and tip lies beyond one
+    of its bed's edges (x <= 0, x >= length, y <= 0 or y >= width, as every preset's do), a
+    ball farther than its reach and twice the gap from all four edges is farther than that
+    from every feature, whatever the rounding. On any other table, every ball."""
+    t = features.table
+    L, W = t.length, t.width
+    ends = np.stack([t.seg_a, t.seg_b])
+    beyond = (((ends[..., 0] <= 0.0).all(axis=0) | (ends[..., 0] >= L).all(axis=0)
+               | (ends[..., 1] <= 0.0).all(axis=0) | (ends[..., 1] >= W).all(axis=0)).all()
+              and ((t.points[:, 0] <= 0.0) | (t.points[:, 0] >= L) | (t.points[:, 1] <= 0.0)
+                   | (t.points[:, 1] >= W)).all())
+    if not beyond:
+        return np.ones(len(p), dtype=bool)
+    d = rc + 2.0 * CLUSTER_GAP
+    x, y = p[:, 0], p[:, 1]
+    return (x < d) | (x > L - d) | (y < d) | (y > W - d)
+
+
+def _solved(mats, u0: np.ndarray, live: np.ndarray, starts: list, ends: list) -> np.ndarray:
+    """`solve_inelastic` of each live cluster q (its rows starts[q] to ends[q]) with the
+    `Columns` mats[q] of its matrix and u0's rows: the impulses of all rows (0 for the
+    others), the small problems in plain floats from one list of u0."""
+    lam = [0.0] * len(u0)
+    u = u0.tolist()
+    for q in np.flatnonzero(live).tolist():
+        s, e = starts[q], ends[q]
+        if e - s > PLAIN:
+            lam[s:e] = solve_inelastic(mats[q].A, u0[s:e]).tolist()
+        else:
+            lam[s:e] = inelastic_plain(mats[q], u[s:e], TOL)
+    return np.array(lam, dtype=float).reshape(len(u0))
 
 
 def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.ndarray,
@@ -184,8 +228,6 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
         balls.t_trans[bt, bi] = t + duration
         balls.motion[bt, bi, :Col.RATE] = np.concatenate(
             [t[:, None], P[hb], vj, acc, wj, alpha], axis=1)
-    for q, h in enumerate(held):
-        b = int(tarr[q])
-        if h:
-            groups.label[b, [k % N for k in h]] = h[0] % N
-        groups.count[b] = int((groups.label[b] >= 0).sum())
+        # Each group labelled by its first ball (the tables are distinct).
+        groups.label[bt, bi] = np.array([h[0] % N if h else -1 for h in held])[hq]
+    groups.count[tarr] = (groups.label[tarr] >= 0).sum(axis=1)

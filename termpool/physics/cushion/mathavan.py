@@ -65,40 +65,46 @@ FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-
 # over the steps outweighs the work (the two forms agree to the bit, so either may run)
 
 
-def _step(dv, s, c, k, mu_w, mu_s, st, go) -> None:
-    """One impulse step on the arrays of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
+def _step(dv, s, c, k, mu_w, mu_s, st, go, new) -> None:
+    """One impulse step on the rows of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
     `go`: the normal part takes dv off vy, then friction at the nose and on the slate.
-    k: the slips' responses to friction, `_gains(s)`."""
-    vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2 = st
-    k2, x1, x2 = k
+    k: the slips' responses to friction, `_gains(s)` with their rows (3.5, k2) and (x1, x2);
+    new: room for the next rows. The pairs (a1, a2), (b1, b2), (fi1, fi2), (fc1, fc2) are
+    each worked as one array of two rows: the same operations, element for element, as
+    `_step_one`, in fewer calls."""
+    _, _, _, g, x = k
     dp = dv / c
-    vy = vy - dv
-    a2 = a2 + s * dv
-    b2 = b2 - dv
-    slip = np.sqrt(a1 * a1 + a2 * a2)
+    vy = st[0] - dv
+    a = st[1:3].copy()
+    a[1] += s * dv
+    b = st[3:5].copy()
+    b[1] -= dv
+    sq = a * a
+    slip = np.sqrt(sq[0] + sq[1])
     live = slip > 0.0
     safe = np.where(live, slip, 1.0)
-    d1, d2 = a1 / safe, a2 / safe
-    j = np.minimum(mu_w * dp, slip / np.where(live, 3.5 * (d1 * d1) + k2 * (d2 * d2), 1.0))
-    a1 = a1 - j * (3.5 * d1)
-    a2 = a2 - j * (k2 * d2)
-    b1 = b1 - j * (x1 * d1)
-    b2 = b2 - j * (x2 * d2)
-    vy = vy + j * (s * d2)
-    fi1 = fi1 + j * d1
-    fi2 = fi2 + j * d2
-    up = np.maximum(s * dp + j * (c * d2), 0.0)
-    slip = np.sqrt(b1 * b1 + b2 * b2)
-    safe = np.where(slip > 0.0, slip, 1.0)
-    e1, e2 = b1 / safe, b2 / safe
+    d = a / safe
+    sq = g * (d * d)
+    j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], 1.0))
+    a -= j * (g * d)
+    b -= j * (x * d)
+    vy = vy + j * (s * d[1])
+    np.add(st[5:7], j * d, out=new[5:7])
+    up = np.maximum(s * dp + j * (c * d[1]), 0.0)
+    sq = b * b
+    slip = np.sqrt(sq[0] + sq[1])
+    e = b / np.where(slip > 0.0, slip, 1.0)
     j = np.minimum(mu_s * up, slip / 3.5)
-    new = np.stack([vy - j * e2, a1 - j * (x1 * e1), a2 - j * (x2 * e2), b1 - j * (3.5 * e1),
-                    b2 - j * (3.5 * e2), fi1, fi2, fc1 + j * e1, fc2 + j * e2])
-    st[:] = np.where(go, new, st)
+    np.subtract(vy, j * e[1], out=new[0])
+    np.subtract(a, j * (x * e), out=new[1:3])
+    np.subtract(b, j * (3.5 * e), out=new[3:5])
+    np.add(st[7:9], j * e, out=new[7:9])
+    np.copyto(st, new, where=go)
 
 
-def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
-    """`_step` for one ball in plain floats, operation for operation."""
+def _step_one(dv, s, c, k, mu_w, mu_s, st) -> tuple:
+    """`_step` for one ball in plain floats, operation for operation: the next st (a tuple;
+    np.minimum and np.maximum written out as vec.min_one and vec.max_one do them)."""
     vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2 = st
     k2, x1, x2 = k
     dp = dv / c
@@ -106,10 +112,14 @@ def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
     a2 = a2 + s * dv
     b2 = b2 - dv
     slip = math.sqrt(a1 * a1 + a2 * a2)
-    live = slip > 0.0
-    safe = slip if live else 1.0
-    d1, d2 = a1 / safe, a2 / safe
-    j = min_one(mu_w * dp, slip / (3.5 * (d1 * d1) + k2 * (d2 * d2) if live else 1.0))
+    if slip > 0.0:
+        d1, d2 = a1 / slip, a2 / slip
+        y = slip / (3.5 * (d1 * d1) + k2 * (d2 * d2))
+    else:
+        d1, d2 = a1 / 1.0, a2 / 1.0
+        y = slip / 1.0
+    x = mu_w * dp
+    j = x if (x < y or x != x) else y
     a1 = a1 - j * (3.5 * d1)
     a2 = a2 - j * (k2 * d2)
     b1 = b1 - j * (x1 * d1)
@@ -117,13 +127,16 @@ def _step_one(dv, s, c, k, mu_w, mu_s, st) -> None:
     vy = vy + j * (s * d2)
     fi1 = fi1 + j * d1
     fi2 = fi2 + j * d2
-    up = max_one(s * dp + j * (c * d2), 0.0)
+    up = s * dp + j * (c * d2)
+    if not (up > 0.0 or up != up):
+        up = 0.0
     slip = math.sqrt(b1 * b1 + b2 * b2)
     safe = slip if slip > 0.0 else 1.0
     e1, e2 = b1 / safe, b2 / safe
-    j = min_one(mu_s * up, slip / 3.5)
-    st[:] = [vy - j * e2, a1 - j * (x1 * e1), a2 - j * (x2 * e2), b1 - j * (3.5 * e1),
-             b2 - j * (3.5 * e2), fi1, fi2, fc1 + j * e1, fc2 + j * e2]
+    x, y = mu_s * up, slip / 3.5
+    j = x if (x < y or x != x) else y
+    return (vy - j * e2, a1 - j * (x1 * e1), a2 - j * (x2 * e2), b1 - j * (3.5 * e1),
+            b2 - j * (3.5 * e2), fi1, fi2, fc1 + j * e1, fc2 + j * e2)
 
 
 def _gains(s):
@@ -156,7 +169,9 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     zero = np.zeros_like(vy)
     st = np.stack([vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy,
                    vy + r * wx, zero, zero, zero, zero])
-    k = _gains(s)
+    k2, x1, x2 = _gains(s)
+    k = (k2, x1, x2, np.stack([np.full_like(s, 3.5), k2]), np.stack([x1, x2]))
+    new = np.empty_like(st)
     work = zero
     last = ~hit
     # Compression: until a step's normal impulse stops the ball moving into the cushion.
@@ -169,7 +184,7 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
         last = last | (go & (vn <= 0.0))
         vn = np.maximum(vn, 0.0)
         work = np.where(go, work + 0.5 * (vy * vy - vn * vn), work)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go)
+        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
     vy = st[0]
     go = hit & (vy > 0.0)
     work = np.where(go, work + 0.5 * (vy * vy), work)
@@ -186,7 +201,7 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
         end = gain >= rest
         vn = np.where(end, -np.sqrt(vy * vy + 2.0 * rest), vn)
         rest = np.where(go, np.where(end, 0.0, rest - gain), rest)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go)
+        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
     vy = st[0]
     vy = np.minimum(np.where(hit & (rest > 0.0), -np.sqrt(vy * vy + 2.0 * rest), vy), 0.0)
     q = 2.5 / r  # R m / I: spin per unit of friction impulse per unit mass
@@ -206,8 +221,8 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
     ee = ph.e_cushion if vy > ph.v_inelastic else 0.0
     mu_w, mu_s = ph.mu_cushion, ph.mu_slide
     cdp = c * (vy / (c * STEPS))
-    st = [vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy, vy + r * wx,
-          0.0, 0.0, 0.0, 0.0]
+    st = (vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy, vy + r * wx,
+          0.0, 0.0, 0.0, 0.0)
     k = _gains(s)
     work = 0.0
     for _ in range(MAX_STEPS):
@@ -218,13 +233,13 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
         last = vn <= 0.0
         vn = max_one(vn, 0.0)
         work = work + 0.5 * (vy * vy - vn * vn)
-        _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
+        st = _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
         if last:
             break
     vy = st[0]
     if vy > 0.0:
         work = work + 0.5 * (vy * vy)
-        st[0] = 0.0
+        st = (0.0, *st[1:])
     rest = ee * ee * work
     for _ in range(MAX_STEPS):
         if not rest > 0.0:
@@ -236,7 +251,7 @@ def bounce_one(n: list, v: list, w: list, r: float, m: float,
             vn, rest = -math.sqrt(vy * vy + 2.0 * rest), 0.0
         else:
             rest = rest - gain
-        _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
+        st = _step_one(vy - vn, s, c, k, mu_w, mu_s, st)
     vy = st[0]
     if rest > 0.0:
         vy = -math.sqrt(vy * vy + 2.0 * rest)
