@@ -65,9 +65,19 @@ class Lobby:
 
     def _players(self) -> None:
         """Everyone's list of who is here, after any change."""
-        names = [{"id": s.id, "name": s.name, "where": s.where} for s in self.seats.values()]
+        names = [{"id": s.id, "name": s.name, "where": s.where, "with": self._with(s)}
+                 for s in self.seats.values()]
         for seat in self.seats.values():
             self._send(seat, wire.PLAYERS, players=names, you=seat.id)
+
+    def _with(self, seat: Seat) -> str | None:
+        """Whom a player plays ("bob"), or what they watch ("ann v bob")."""
+        table = seat.table
+        if table is None:
+            return None
+        if seat.where == "watching":
+            return " v ".join(table.names)
+        return table.names[1] if table.names[0] == seat.name else table.names[0]
 
     async def connection(self, reader: asyncio.StreamReader,
                          writer: asyncio.StreamWriter) -> None:
@@ -130,7 +140,9 @@ class Lobby:
         elif other is None:
             self._send(seat, wire.REFUSED, why=wire.GONE)
         elif (other is seat or other.where != "lobby" or seat.challenge is not None
-              or any(s.challenge == other.id for s in self.seats.values())):
+              or other.challenge is not None  # waiting for their own answer
+              or any(s.challenge in (other.id, seat.id)  # one of them has one to answer
+                     for s in self.seats.values())):
             self._send(seat, wire.REFUSED, why=wire.BUSY)
         else:
             seat.challenge, seat.game = other.id, game

@@ -312,7 +312,7 @@ async def _serve(args: argparse.Namespace, directory: Path) -> int:
         password_auth=False, kbdint_auth=False)
     port = listener.sockets[0].getsockname()[1]
     print(f"termpool serve: listening on {args.host} port {port} "
-          f"(ssh -p {port} NAME@{args.host}); host key {directory / KEY_NAME}", flush=True)
+          f"(ssh -t -p {port} NAME@{args.host}); host key {directory / KEY_NAME}", flush=True)
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):

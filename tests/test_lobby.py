@@ -19,7 +19,8 @@ from termpool.ui.keys import Key
 from termpool.ui.link import Link, digest
 from termpool.ui.phases import remote
 from termpool.ui.phases.turn import shoot
-from termpool.ui.state import Options, Phase, Waiting, menu_entries
+from termpool.ui.stats import stats_lines
+from termpool.ui.state import Options, Over, Phase, Waiting, menu_entries
 
 WAIT_S = 20.0
 
@@ -322,6 +323,13 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     assert "ann has left the match" in text
     lines = [json.loads(x) for x in (tmp_path / "bob.jsonl").read_text().splitlines()]
     assert [x["player"] for x in lines] == ["bob"] and lines[0]["opponent"] == "ann"
+    # Bob was the second player, yet his Stats count the match, as one against someone
+    # online.
+    from termpool.game.history import read_history, summary
+
+    got = summary(read_history(tmp_path / "bob.jsonl")[0])
+    assert got["all"]["matches"] == 1 and list(got["per_opponent"]) == ["online"]
+    assert "someone online" in "\n".join(stats_lines(got))
     assert [json.loads(x)["player"] for x in
             (tmp_path / "ann.jsonl").read_text().splitlines()] == ["ann"]
 
@@ -475,3 +483,115 @@ def test_without_a_server_the_menu_has_no_online_entry():
     assert "online" not in [e[1] for e in menu_entries(app.state)]
     assert Link.open(None) is None
     assert Link.open(("/nonexistent/lobby", "t")) is None
+
+
+# ------------------------------------------------------------------ the lobby's own keys
+def in_lobby(lobby, name: str) -> App:
+    app = App(Options(colors="mono", player1=name), link=Link(lobby.path, lobby.admit(name)))
+    entries = [e[1] for e in menu_entries(app.state)]
+    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    return app
+
+
+def screen(app: App, cols: int = 80, rows: int = 24) -> str:
+    return "\n".join("".join(r) for r in app.cells(cols, rows)[0])
+
+
+def test_n_declines_a_challenge_and_esc_takes_one_back_or_leaves(lobby):
+    ann, bob = in_lobby(lobby, "ann"), in_lobby(lobby, "bob")
+    until([ann, bob], lambda: [p["where"] for p in ann.state.link.others()] == ["lobby"],
+          "bob in ann's lobby")
+    ann.key(Key("enter"), time.monotonic())
+    until([ann, bob], lambda: bob.state.link.challenged is not None, "the challenge")
+    bell = bob.state.opts.bell
+    bob.key(Key("n"), time.monotonic())  # N answers the challenge, not the bell
+    assert bob.state.opts.bell == bell and bob.state.link.challenged is None
+    until([ann, bob], lambda: "bob declined" in screen(ann), "ann told")
+    ann.key(Key("enter"), time.monotonic())  # again, then taken back with Esc
+    until([ann, bob], lambda: bob.state.link.challenged is not None, "the second challenge")
+    assert "waiting for bob (8-ball) to answer" in screen(ann)
+    ann.key(Key("esc"), time.monotonic())
+    assert ann.state.phase is Phase.LOBBY and ann.state.part.waiting is None
+    until([ann, bob], lambda: bob.state.link.challenged is None, "bob's challenge gone")
+    assert "ann withdrew the challenge" in screen(bob)
+    bob.key(Key("esc"), time.monotonic())  # nothing open: Esc leaves the lobby
+    assert bob.state.phase is Phase.MENU
+
+
+def test_leaving_the_lobby_by_the_quit_box_takes_ones_challenge_with_one(lobby):
+    ann, bob = in_lobby(lobby, "ann"), in_lobby(lobby, "bob")
+    until([ann, bob], lambda: [p["where"] for p in bob.state.link.others()] == ["lobby"],
+          "ann in bob's lobby")
+    bob.key(Key("enter"), time.monotonic())
+    until([ann, bob], lambda: ann.state.link.challenged is not None, "the challenge")
+    bob.key(Key("q"), time.monotonic())
+    bob.key(Key("m"), time.monotonic())  # Q, then M: the menu
+    assert bob.state.phase is Phase.MENU
+    until([ann, bob], lambda: ann.state.link.challenged is None
+          and [p["where"] for p in ann.state.link.others()] == ["menu"], "ann told")
+    ann.key(Key("y"), time.monotonic())  # nothing to accept: no match with nobody
+    until([ann, bob], lambda: True, "a tick")
+    assert ann.state.match is None and bob.state.match is None
+
+
+def test_the_choice_follows_the_player_as_others_come(lobby):
+    ann, cy = in_lobby(lobby, "ann"), in_lobby(lobby, "cy")
+    until([ann, cy], lambda: len(ann.state.link.others()) == 1, "cy in ann's lobby")
+    ann.key(Key("down"), time.monotonic())
+    assert ann.state.part.chosen == ann.state.link.others()[0]["id"]
+    bob = in_lobby(lobby, "bob")  # comes before cy by name
+    until([ann, bob, cy], lambda: len(ann.state.link.others()) == 2, "bob in ann's lobby")
+    assert [p["name"] for p in ann.state.link.others()] == ["bob", "cy"]
+    ann.key(Key("enter"), time.monotonic())
+    until([ann, bob, cy], lambda: cy.state.link.challenged is not None, "cy challenged")
+    assert bob.state.link.challenged is None
+
+
+def test_no_one_in_a_challenge_can_be_challenged_or_challenge(lobby):
+    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
+    for r in (ann, bob, cy):
+        r.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
+    ids = {p["name"]: p["id"] for p in seen["players"]}
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.next(wire.CHALLENGED)
+    cy.send(wire.CHALLENGE, to=ids["ann"], game=GAME)  # ann waits for bob's answer
+    assert cy.next(wire.REFUSED)["why"] == wire.BUSY
+    bob.send(wire.CHALLENGE, to=ids["cy"], game=GAME)  # bob has ann's to answer first
+    assert bob.next(wire.REFUSED)["why"] == wire.BUSY
+
+
+def test_the_lobby_says_whom_each_player_plays(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    cy = in_lobby(lobby, "cy")
+    until([ann, bob, cy], lambda: "playing" in screen(cy), "cy's list")
+    assert "ann  playing bob (Enter: watch)" in screen(cy)
+    assert "bob  playing ann" in screen(cy)
+
+
+def test_a_match_over_stays_on_show_when_the_other_player_goes(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    for app in (ann, bob):
+        app.state.match.winner = 0  # the match won, on both screens
+        app.state = replace(app.state, part=Over())
+    assert "n: the lobby" in screen(ann, 100, 30)
+    bob.key(Key("m"), time.monotonic())  # bob goes back to the menu
+    until([ann, bob], lambda: "bob has left" in screen(ann, 100, 30), "ann told")
+    assert ann.state.phase is Phase.OVER  # the end, the W to watch it, stay hers
+
+
+def test_a_watcher_joining_late_sees_the_table_as_it_is_not_old_shots(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    ann.key(Key("enter"), time.monotonic())
+    ann.state = shoot(ann.state, 8.0, 0.5, 0.0, 0.0)
+    until([ann, bob], lambda: bob.state.phase is not Phase.RUN and bob.state.match.history
+          and ann.state.phase is not Phase.RUN, "the break")
+    cy = in_lobby(lobby, "cy")
+    until([cy], lambda: any(p["where"] == "playing" for p in cy.state.link.others()),
+          "the players in cy's lobby")
+    cy.key(Key("enter"), time.monotonic())
+    until([ann, bob, cy], lambda: cy.state.match is not None
+          and len(cy.state.match.history) == 1, "cy caught up")
+    assert cy.state.phase is not Phase.RUN  # the break is over: not shown again
+    assert "watching" in screen(cy)
+    assert digest(cy.state.match) == digest(ann.state.match)

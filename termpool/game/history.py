@@ -11,7 +11,9 @@ A line is one JSON object (ASCII; a name's other characters are escaped)::
 `side`: the player's number in the match (0: player 1, who is you against the computer and in
 practice); `cpu`: this line's player is the computer; `level`: the computer's level when it
 played, else null; `opponent`: null in practice; `race`: frames to win; `won`, `lost`: frames;
-`result`: "won", "lost", "unfinished" (left before the end) or "practice".
+`result`: "won", "lost", "unfinished" (left before the end) or "practice"; `online`: present
+and true on the line of a match played against someone on another screen (`termpool serve`),
+where the file holds only this player's line, whichever side they were.
 
 Every figure comes from the match's shot records (the engine's final ball states and the
 referee's outcomes), never from its words:
@@ -93,8 +95,8 @@ def player_figures(history: list[dict], player: int) -> dict[str, int]:
 
 
 def match_lines(match, cpu: tuple[bool, bool], level: str | None,
-                when: datetime | None = None,
-                sides: tuple[int, ...] = (0, 1)) -> list[dict[str, Any]]:
+                when: datetime | None = None, sides: tuple[int, ...] = (0, 1),
+                online: bool = False) -> list[dict[str, Any]]:
     """The history lines of a match: one per player of `sides` (one in practice). `cpu`:
     which players are the computer; `level`: its level. (An online match keeps only the
     side of this screen's player: the other's is in their own history.)"""
@@ -118,6 +120,7 @@ def match_lines(match, cpu: tuple[bool, bool], level: str | None,
             "race": match.frames, "won": 0 if practice else match.scores[p],
             "lost": 0 if practice else match.scores[1 - p], "result": result, **figures,
             "pot_rate": round(figures["potting_shots"] / shots, 4) if shots else 0.0,
+            **({"online": True} if online and not practice else {}),
         })
     return lines
 
@@ -158,7 +161,8 @@ class Recorder:
         self._warned = False
 
     def add(self, match, cpu: tuple[bool, bool], level: str | None,
-            when: datetime | None = None, sides: tuple[int, ...] = (0, 1)) -> str | None:
+            when: datetime | None = None, sides: tuple[int, ...] = (0, 1),
+            online: bool = False) -> str | None:
         """Add `match` (nothing for one without shots, or already added), the lines of its
         players of `sides`; the warning line when the file cannot be written and none was
         given yet, else None."""
@@ -166,7 +170,7 @@ class Recorder:
             return None
         self._added.append(match)
         try:
-            append_lines(self.path, match_lines(match, cpu, level, when, sides))
+            append_lines(self.path, match_lines(match, cpu, level, when, sides, online))
         except OSError as e:
             if self._warned:
                 return None
@@ -203,6 +207,8 @@ def check_line(d: Any) -> dict:
         "pot_rate": lambda v: type(v) in (int, float) and 0 <= v <= 1,
         **{k: (lambda v: type(v) is int and 0 <= v <= MAX_COUNT) for k in COUNTS},
     }
+    if "online" in d and d["online"] is not True:
+        raise ValueError("online: not a valid value")
     for key, ok in checks.items():
         if key not in d:
             raise ValueError(f"missing '{key}'")
@@ -254,14 +260,17 @@ def read_history(path: Path) -> tuple[list[dict], str | None, bool]:
 
 # ------------------------------------------------------------------------------ summing up
 
-GROUPS = (*LEVELS, "player", "practice")  # whom the player played
+GROUPS = (*LEVELS, "player", "online", "practice")  # whom the player played
 LAST = 20  # matches listed (and charted) in the summary
 
 
 def group_of(line: dict) -> str:
-    """Whom a line's player played: the computer's level, "player" or "practice"."""
+    """Whom a line's player played: the computer's level, "player" (at the same keyboard),
+    "online" or "practice"."""
     if line["mode"] == "practice":
         return "practice"
+    if line.get("online"):
+        return "online"
     return line["level"] if line["level"] is not None else "player"
 
 
@@ -282,10 +291,12 @@ def totals(lines: list[dict]) -> dict[str, Any]:
 
 def summary(lines: list[dict]) -> dict[str, Any]:
     """What the Stats screen and `termpool stats` show: player 1's lines (you, against the
-    computer and in practice; the first player of a two-player game), so that each match
+    computer and in practice; the first player of a two-player game) and the lines of matches
+    played online (the file's only line of such a match, either side), so that each match
     counts once; the other player's lines are in the file, for the record. In all, per
     opponent (GROUPS: only those played), and the last LAST matches, oldest first."""
-    mine = [line for line in lines if line["side"] == 0 and not line["cpu"]]
+    mine = [line for line in lines
+            if not line["cpu"] and (line["side"] == 0 or line.get("online"))]
     per = {g: totals([ln for ln in mine if group_of(ln) == g]) for g in GROUPS}
     return {"all": totals(mine), "per_opponent": {g: t for g, t in per.items() if t["matches"]},
             "last": mine[-LAST:]}

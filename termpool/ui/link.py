@@ -49,6 +49,7 @@ class Link:
         self.start: dict | None = None  # a match to start: game, names, seat
         self.moves: deque = deque()  # the other player's moves, in order
         self.left: str | None = None  # the other player has left the match
+        self.backlog = 0  # moves made before this screen joined the match (to watch)
         self.aim: dict | None = None  # the other player's stick or ball in hand, the latest
         self._aim_out: tuple | None = None  # this player's, as last sent, and when
         self._aim_at = -1e9
@@ -120,6 +121,7 @@ class Link:
             past = msg.get("moves")  # a match joined to watch: its moves so far
             self.moves = deque(m for m in past if isinstance(m, dict)) \
                 if isinstance(past, list) else deque()
+            self.backlog = len(self.moves)  # made at once: they are over already
             self.left = None
         elif kind == wire.MOVE and isinstance(msg.get("move"), dict):
             self.moves.append(msg["move"])
@@ -138,8 +140,10 @@ class Link:
             self.send(wire.AIM, aim={"kind": kind, "values": values})
 
     def others(self) -> list[dict]:
-        """The other players online, in the order they came."""
-        return [p for p in self.players if p.get("id") != self.you]
+        """The other players online, by name (an order that does not change as people come
+        and go)."""
+        out = [p for p in self.players if p.get("id") != self.you]
+        return sorted(out, key=lambda p: (str(p.get("name", "")), str(p.get("id"))))
 
     def close(self) -> None:
         if not self.closed:

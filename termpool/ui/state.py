@@ -175,11 +175,12 @@ class Over:
 
 @dataclass(frozen=True)
 class Lobby:
-    """The players online (ui.link): the one chosen, the game a challenge is to, and the
-    player challenged while their answer is awaited."""
+    """The players online (ui.link): the one chosen (by their id: the list changes under
+    it), the game a challenge is to, and the player challenged while their answer is
+    awaited, with the game."""
 
     phase: ClassVar[Phase] = Phase.LOBBY
-    index: int = 0
+    chosen: int | None = None
     game: int = 0  # LOBBY_GAMES
     waiting: str | None = None
 
@@ -355,6 +356,14 @@ def shooter_is_cpu(s: State) -> bool:
 
 def shooter_is_remote(s: State) -> bool:
     return s.match.shooter in s.remote
+
+
+def lobby_choice(s: State) -> tuple[list[dict], int]:
+    """The other players online (ui.link) and the place of the one chosen among them (the
+    first when the one chosen has gone; 0 when there is nobody)."""
+    others = s.link.others()
+    ids = [p.get("id") for p in others]
+    return others, ids.index(s.part.chosen) if s.part.chosen in ids else 0
 
 
 def menu_entries(s: State) -> list:

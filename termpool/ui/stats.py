@@ -14,9 +14,10 @@ from termpool.game.history import group_of
 
 WIDTH = 74  # what the Stats box holds on an 80-column terminal
 GROUP_WORDS = {"easy": "computer, easy", "normal": "computer, normal", "hard": "computer, hard",
-               "pro": "computer, pro", "player": "a second player", "practice": "practice"}
+               "pro": "computer, pro", "player": "a second player", "online": "someone online",
+               "practice": "practice"}
 GROUP_MARK = {"easy": "e", "normal": "n", "hard": "h", "pro": "P", "player": "p",
-              "practice": "·"}
+              "online": "o", "practice": "·"}
 CHART_ROWS = 4
 BLOCKS = " ▁▂▃▄▅▆▇█"
 GAMES = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}
@@ -92,7 +93,7 @@ def stats_lines(summary: dict[str, Any]) -> list[str]:
         out.append(_totals_row(GROUP_WORDS[group], t, group == "practice"))
     last = summary["last"]
     chart_head = (f"Pot rate, the last {_plural(len(last), 'match', 'matches')} (oldest left; "
-                  "e n h P: the computer's level, p: a second player, · practice)")
+                  "e n h P: the computer's level, p: a second player, o: online, · practice)")
     out += ["", *textwrap.wrap(chart_head, WIDTH)]
     out += chart_lines([line["pot_rate"] for line in last],
                        [GROUP_MARK[group_of(line)] for line in last])

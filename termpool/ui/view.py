@@ -55,6 +55,7 @@ from termpool.ui.state import (
     Waiting,
     cue_index,
     help_of,
+    lobby_choice,
     menu_entries,
     voice,
 )
@@ -205,8 +206,9 @@ def _question(s: State, cells, lay: Layout) -> None:
         draw_box(cells, lines, "your call", at=at)
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
+        again = "n: the lobby" if s.remote else "n: new game"  # online: a new challenge
         lines = [words.game_won(voice(s), m.winner), why, "",
-                 "n: new game   m: menu   q: quit", "w: watch this match"]
+                 f"{again}   m: menu   q: quit", "w: watch this match"]
         records = s.files.records
         where = records.kept_at(m) if records is not None else None
         if where is not None:  # where to find it again (`termpool records` lists them)
@@ -347,7 +349,8 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
     elif s.phase is Phase.REMOTE:
         doing = ("answering" if m.option is not None else
                  "placing the cue ball" if m.ball_in_hand and not s.part.placed else "aiming")
-        out.append((f"{name} is {doing}, on their own screen…", "dim"))
+        watching = "watching · " if len(s.remote) == 2 else ""
+        out.append((f"{watching}{name} is {doing}, on their own screen…", "dim"))
     return out
 
 
@@ -418,7 +421,8 @@ def hint_lines(s: State) -> list[tuple]:
     if s.phase is Phase.OPTION:
         return [("answer with a letter in the box", 0), help_, quit_]
     if s.phase is Phase.OVER:
-        return [("N new game", 0), ("M menu", 0), ("W watch", 0), quit_]
+        return [("N lobby" if s.remote else "N new game", 0), ("M menu", 0), ("W watch", 0),
+                quit_]
     if s.phase is Phase.CPU:
         return [("any key: shoot now", 0), help_, (f"{k('pause')} pause", 2), quit_]
     if s.phase is Phase.REMOTE:
@@ -430,30 +434,39 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
     """The lobby's words: who is online (the one chosen marked), the game a challenge is to,
     a challenge to answer, and what to press."""
     link, part = s.link, s.part
-    others = link.others()
+    others, k = lobby_choice(s)
     lines = [("Players online", TURN_C), ("", None)]
-    where = {"lobby": "in the lobby", "menu": "in the menu", "playing": "playing"}
-    for k, p in enumerate(others):
-        mark = "▶ " if k == min(part.index, len(others) - 1) else "  "
-        text = f"{mark}{shown(str(p.get('name', '')))[:32]}  {where.get(p.get('where'), '')}"
-        lines.append((text, TURN_C if mark.strip() else TEXT_C.rgb))
+
+    def where(p: dict) -> str:
+        w, with_ = p.get("where"), shown(str(p.get("with") or ""))[:40]
+        if w == "playing":
+            return f"playing {with_} (Enter: watch)" if with_ else "playing (Enter: watch)"
+        if w == "watching":
+            return f"watching {with_}" if with_ else "watching"
+        return {"lobby": "in the lobby", "menu": "in the menu"}.get(w, "")
+
+    for n, p in enumerate(others):
+        mark = "▶ " if n == k else "  "
+        text = f"{mark}{shown(str(p.get('name', '')))[:16]}  {where(p)}"
+        lines.append((text, TURN_C if n == k else TEXT_C.rgb))
     if not others:
         lines.append(("  nobody else yet: ask a friend to connect", DIM_TEXT_C.rgb))
-    game = {"8ball": "8-ball", "9ball": "9-ball"}[LOBBY_GAMES[part.game]]
+    game = MODE_NAMES[LOBBY_GAMES[part.game]]
     lines += [("", None), (f"game: ◀ {game} ▶", TEXT_C.rgb), ("", None)]
     if link.challenged is not None:
         c = link.challenged
-        what = {"8ball": "8-ball", "9ball": "9-ball"}.get((c.get("game") or {}).get("mode"),
-                                                          "a game")
-        lines += [(f"{shown(str(c.get('name', '')))[:32]} challenges you to {what}", TURN_C),
+        what = MODE_NAMES.get((c.get("game") or {}).get("mode"), "a game")
+        lines += [(f"{shown(str(c.get('name', '')))[:16]} challenges you to {what}", TURN_C),
                   ("Y accept · N decline", TURN_C), ("", None)]
+        keys = "Y accept · N or Esc decline"
     elif part.waiting is not None:
-        lines += [(f"waiting for {shown(part.waiting)[:32]} to answer…", DIM_TEXT_C.rgb),
-                  ("", None)]
+        lines += [(f"waiting for {part.waiting} to answer…", DIM_TEXT_C.rgb), ("", None)]
+        keys = "Esc takes the challenge back"
+    else:
+        keys = "↑↓ choose · ←→ game · Enter challenge · Esc back"
     for text, tone in s.message:
         lines.append((text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb))
-    lines.append(("↑↓ choose · ←→ game · Enter challenge (or watch) · Esc back",
-                  DIM_TEXT_C.rgb))
+    lines.append((keys, DIM_TEXT_C.rgb))
     return lines
 
 

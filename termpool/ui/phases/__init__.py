@@ -17,7 +17,7 @@ from termpool.ui.state import Help, Pause, Phase, Quit, Run, Seen, State, shoote
 KEYS: dict[Phase, Callable] = {Phase.MENU: menu.key, Phase.AIM: aim.key, Phase.PLACE: place.key,
                                Phase.RUN: shot.key, Phase.CPU: cpu.key,
                                Phase.OPTION: answer.nothing, Phase.OVER: answer.nothing,
-                               Phase.LOBBY: lobby.key, Phase.REMOTE: answer.nothing}
+                               Phase.LOBBY: answer.nothing, Phase.REMOTE: answer.nothing}
 TICKS: dict[Phase, Callable] = {Phase.AIM: aim.tick, Phase.RUN: shot.tick, Phase.CPU: cpu.tick,
                                 Phase.LOBBY: lobby.tick, Phase.REMOTE: remote.tick}
 ONLINE_POLL_S = 0.25  # an online match looks for the other player leaving this often
@@ -38,6 +38,10 @@ def key(s: State, key, t: float, seen: Seen | None = None) -> State:
         return s
     if s.box is not None:
         return boxes.key(s, key, action, seen)
+    if s.phase is Phase.LOBBY:  # its letters (Y, N: a challenge's answer) come first
+        answered = lobby.key(s, key, action, t)
+        if answered is not None:
+            return answered
     if s.phase in (Phase.OPTION, Phase.OVER) and key.kind == "press":
         answered = answer.key(s, key)
         if answered is not None:

@@ -6,16 +6,19 @@ from __future__ import annotations
 from dataclasses import replace
 
 from termpool import wire
+from termpool.rules.words import MODE_NAMES
+from termpool.text import shown
 from termpool.ui.phases.turn import begin_match
 from termpool.ui.settings import MAX_FRAMES
-from termpool.ui.state import LOBBY_GAMES, Lobby, Menu, State
+from termpool.ui.state import LOBBY_GAMES, Lobby, Menu, State, lobby_choice
 
 LOBBY_POLL_S = 0.1  # how often the lobby looks for news while it is on screen
-REFUSALS = {wire.BUSY: "that player is busy: not in the lobby, or answering a challenge",
+REFUSALS = {wire.BUSY: "busy: not in the lobby, or in a challenge already",
             wire.GONE: "that player has left", wire.BAD: "the server could not read that"}
 
 
 def open_lobby(s: State) -> State:
+    s.link.news.clear()  # what happened while away is over
     s.link.send(wire.WHERE, lobby=True)
     s.link.poll()
     return replace(s, part=Lobby(), message=())
@@ -39,35 +42,48 @@ def challenge_game(s: State, mode: str) -> dict:
             "theme": o.theme}
 
 
-def key(s: State, key, action: str | None, t: float) -> State:
+def key(s: State, key, action: str | None, t: float) -> State | None:
+    """The lobby's keys; None for those it leaves to every screen (help, quit)."""
     if key.kind == "release":
         return s
     part, link = s.part, s.link
+    cancel = action == "cancel" or key.name == "esc"
     if link.challenged is not None:  # a challenge to answer comes first
-        if key.name in ("y", "n"):
-            link.send(wire.ANSWER, to=link.challenged.get("by"), yes=key.name == "y")
+        if key.name in ("y", "n") or cancel:
+            by = link.challenged
+            link.send(wire.ANSWER, to=by.get("by"), yes=key.name == "y")
             link.challenged = None
-            return s
-    others = link.others()
-    if key.name == "escape" or action == "back":
+            words = () if key.name == "y" else \
+                ((f"declined {shown(str(by.get('name', '')))[:16]}", "dim"),)
+            return replace(s, message=words)
+        return None if action in ("help", "quit") else s
+    if cancel:
+        if part.waiting is not None:  # the challenge is taken back; the lobby stays
+            link.send(wire.WHERE, lobby=False)
+            link.send(wire.WHERE, lobby=True)
+            return replace(s, part=replace(part, waiting=None),
+                           message=(("challenge taken back", "dim"),))
         return leave_lobby(s)
-    if key.name in ("up", "k"):
-        return replace(s, part=replace(part, index=max(0, part.index - 1)))
-    if key.name in ("down", "j"):
-        return replace(s, part=replace(part, index=min(max(0, len(others) - 1),
-                                                       part.index + 1)))
-    if key.name in ("left", "right"):
+    others, k = lobby_choice(s)
+    if key.name in ("up", "k", "down", "j") and others:
+        k = max(0, min(len(others) - 1, k + (1 if key.name in ("down", "j") else -1)))
+        return replace(s, part=replace(part, chosen=others[k].get("id")))
+    if key.name in ("left", "right") and part.waiting is None:
         step = 1 if key.name == "right" else -1
         return replace(s, part=replace(part, game=(part.game + step) % len(LOBBY_GAMES)))
-    if action in ("confirm", "shoot") and others and part.waiting is None:
-        who = others[min(part.index, len(others) - 1)]
+    if action in ("confirm", "shoot"):
+        if not others or part.waiting is not None:
+            return s
+        who = others[k]
         if who.get("where") == "playing":  # their match, to watch
             link.send(wire.WATCH, to=who.get("id"))
             return replace(s, message=())
-        link.send(wire.CHALLENGE, to=who.get("id"),
-                  game=challenge_game(s, LOBBY_GAMES[part.game]))
-        return replace(s, part=replace(part, waiting=str(who.get("name", ""))), message=())
-    return s
+        mode = LOBBY_GAMES[part.game]
+        link.send(wire.CHALLENGE, to=who.get("id"), game=challenge_game(s, mode))
+        waiting = f"{shown(str(who.get('name', '')))[:16]} ({MODE_NAMES[mode]})"
+        return replace(s, part=replace(part, chosen=who.get("id"), waiting=waiting),
+                       message=())
+    return None
 
 
 def tick(s: State, t: float) -> State:

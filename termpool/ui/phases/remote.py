@@ -35,6 +35,8 @@ def check(s: State) -> State:
     link.poll()
     if link.left is not None:
         name, link.left = link.left, None
+        if s.match is not None and s.match.winner is not None:  # over: its end stays on show
+            return replace(s, message=(*s.message, (f"{name} has left", "dim")))
         kept = "" if len(s.remote) == 2 else "; it is kept in your history"
         return ended(s, f"{name} has left the match{kept}")
     if link.closed:
@@ -81,6 +83,8 @@ def tick(s: State, t: float) -> State:
     if not s.link.moves:
         return shown_aim(s) if s.link.aim is not None else s
     move = s.link.moves.popleft()
+    behind = s.link.backlog > 0  # a move made before this screen came to watch
+    s.link.backlog = max(0, s.link.backlog - 1)
     m = s.match
     if not isinstance(move, dict) or move.get("at") != digest(m):
         return ended(s, OUT_OF_STEP)
@@ -106,9 +110,9 @@ def tick(s: State, t: float) -> State:
             s = shoot(s, float(move["speed"]), angle, side, top, called,
                       bool(move.get("push_out", False)))
             if isinstance(s.part, Run):
-                # A match joined to watch catches up at once: its shots before the last
-                # are played out without being shown.
-                return finish_shot(s) if s.link.moves else s
+                # A match joined to watch catches up at once: the shots made before are
+                # played out without being shown (and so is a shot when more are waiting).
+                return finish_shot(s) if behind or s.link.moves else s
             # Refused here, though the mover's match took it: the copies differ.
             return ended(s, OUT_OF_STEP)
     except (KeyError, TypeError, ValueError, ReplayError):

@@ -17,6 +17,7 @@ from termpool.ui.settings import player_names
 from termpool.ui.shots import DEFAULT_POWER, power_to_speed, simulate
 from termpool.ui.state import (
     Aim,
+    Lobby,
     Menu,
     Option,
     Over,
@@ -34,7 +35,7 @@ from termpool.ui.state import (
     voice,
 )
 from termpool.ui.term import signals_held
-from termpool.wire import LEAVE, MOVE
+from termpool.wire import LEAVE, MOVE, WHERE
 
 
 def set_input_mode(s: State, mode: str) -> State:
@@ -193,7 +194,8 @@ def log_match(s: State) -> State:
         s.files.records.keep(s.match, on=s.opts.records)
     sides = tuple(p for p in (0, 1) if p not in s.remote)  # online: this player's; none
     if s.files.history is not None and s.match is not None and sides:  # when watching
-        warning = s.files.history.add(s.match, s.cpu, s.opts.level, sides=sides)
+        warning = s.files.history.add(s.match, s.cpu, s.opts.level, sides=sides,
+                                      online=bool(s.remote))
         if warning:
             return replace(s, notes=(*s.notes, warning))
     return s
@@ -231,5 +233,8 @@ def to_menu(s: State) -> State:
     played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
     if s.remote:
         s.link.send(LEAVE)
+    elif isinstance(s.part, Lobby):  # out of the lobby (Q, then M): challenges are off
+        s.link.send(WHERE, lobby=False)
+        s.link.challenged = None
     return replace(s, box=None, part=Menu(), match=None, played=played, remote=(),
                    message=())
