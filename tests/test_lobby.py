@@ -19,8 +19,8 @@ from termpool.ui.keys import Key
 from termpool.ui.link import Link, digest
 from termpool.ui.phases import remote
 from termpool.ui.phases.turn import shoot
-from termpool.ui.stats import stats_lines
 from termpool.ui.state import Options, Over, Phase, Waiting, menu_entries
+from termpool.ui.stats import stats_lines
 
 WAIT_S = 20.0
 
