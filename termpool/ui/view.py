@@ -457,7 +457,7 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
         c = link.challenged
         what = MODE_NAMES.get((c.get("game") or {}).get("mode"), "a game")
         lines += [(f"{shown(str(c.get('name', '')))[:16]} challenges you to {what}", TURN_C),
-                  ("Y accept · N decline", TURN_C), ("", None)]
+                  ("", None)]
         keys = "Y accept · N or Esc decline"
     elif part.waiting is not None:
         lines += [(f"waiting for {part.waiting} to answer…", DIM_TEXT_C.rgb), ("", None)]
