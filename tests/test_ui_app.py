@@ -333,6 +333,18 @@ def test_panel_names_players_and_fouls_in_words() -> None:
     assert app.state.match.shooter == 1
 
 
+@pytest.mark.parametrize("three_foul", [False, True])
+def test_fouls_in_a_row_are_shown_only_under_the_three_foul_rule(three_foul) -> None:
+    from dataclasses import replace as _replace
+
+    app = App(Options(mode="9ball", opponent="human", colors="mono", seed=3,
+                      three_foul=three_foul))
+    m = app.state.match
+    m.state = _replace(m.state, fouls=(1, 0))
+    text = screen_text(app.cells(120, 40)[0])
+    assert ("fouls 1" in text) is three_foul
+
+
 def test_computer_takes_its_turn() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     run_script(app, "enter space wait 60")

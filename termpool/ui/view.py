@@ -240,7 +240,8 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
             down = [k for k in mine if not m.on_table[k]]
         label = words.group_label(group, s.opts.theme) if group and s.opts.theme != "standard" \
             else group
-        fouls = st.fouls[p] if st.mode == "9ball" else 0  # only 9-ball counts them
+        # Fouls in a row matter only under 9-ball's three-foul rule: shown only then.
+        fouls = st.fouls[p] if st.mode == "9ball" and st.three_foul else 0
         score = f"{m.scores[p]}/{frames}" if frames > 1 else None
         players.append(PlayerLine(m.players[p], label, balls, down, score,
                                   p == m.shooter and s.phase is not Phase.OVER, fouls))
