@@ -5,12 +5,19 @@ examples every run. Set HYPOTHESIS_PROFILE=explore to search new random examples
 """
 
 import os
+import signal
 
 import pytest
 from contact_check import checked_handle
 from hypothesis import settings
 
 from termpool.physics.engine import Engine
+
+# A suite started in the background by a non-interactive shell inherits SIGINT ignored, and
+# so would every game it starts: the tests that press Ctrl-C need it as a terminal gives it
+# (a handled signal is back to its default in a child after exec; an ignored one is not).
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 settings.register_profile("repeatable", derandomize=True)
 settings.register_profile("explore", derandomize=False)
