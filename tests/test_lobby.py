@@ -101,13 +101,28 @@ def where(players, name):
     return next((p["where"] for p in players if p["name"] == name), None)
 
 
+def in_lobby_raw(lobby, *names: str) -> tuple[list[Raw], dict[str, int]]:
+    """Games of `names` by hand, each with the lobby open, once the first sees them all
+    there; and everyone's id by name."""
+    raws = [Raw(lobby, n) for n in names]
+    for r in raws:
+        r.send(wire.WHERE, lobby=True)
+    seen = raws[0].players(lambda ps: all(where(ps, n) == "lobby" for n in names))
+    return raws, {p["name"]: p["id"] for p in seen["players"]}
+
+
+def matched(lobby, *names: str) -> tuple[list[Raw], dict[str, int]]:
+    """`in_lobby_raw`, then the first challenges the second, who accepts: both started."""
+    raws, ids = in_lobby_raw(lobby, *names)
+    raws[0].send(wire.CHALLENGE, to=ids[names[1]], game=GAME)
+    raws[1].send(wire.ANSWER, to=raws[1].next(wire.CHALLENGED)["by"], yes=True)
+    raws[0].next(wire.START)
+    return raws, ids
+
+
 def test_a_challenge_accepted_starts_one_match_for_both(lobby):
-    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
-    ann.send(wire.WHERE, lobby=True)
-    bob.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
-    bob_id = next(p["id"] for p in seen["players"] if p["name"] == "bob")
-    ann.send(wire.CHALLENGE, to=bob_id, game=GAME)
+    (ann, bob), ids = in_lobby_raw(lobby, "ann", "bob")
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
     got = bob.next(wire.CHALLENGED)
     assert got["name"] == "ann" and got["game"] == GAME
     bob.send(wire.ANSWER, to=got["by"], yes=True)
@@ -126,14 +141,7 @@ def test_a_challenge_accepted_starts_one_match_for_both(lobby):
 
 
 def test_a_match_can_be_watched_from_its_start_and_its_moves_follow(lobby):
-    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
-    for r in (ann, bob, cy):
-        r.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
-    ids = {p["name"]: p["id"] for p in seen["players"]}
-    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
-    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
-    ann.next(wire.START)
+    (ann, bob, cy), ids = matched(lobby, "ann", "bob", "cy")
     first = {"kind": "place", "at": "a", "x": 0.5, "y": 0.6}
     ann.send(wire.MOVE, move=first)
     assert bob.next(wire.MOVE)["move"] == first
@@ -163,12 +171,8 @@ def test_a_match_can_be_watched_from_its_start_and_its_moves_follow(lobby):
 
 
 def test_a_declined_challenge_says_so_and_starts_nothing(lobby):
-    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
-    ann.send(wire.WHERE, lobby=True)
-    bob.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
-    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
-             game=GAME)
+    (ann, bob), ids = in_lobby_raw(lobby, "ann", "bob")
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
     got = bob.next(wire.CHALLENGED)
     bob.send(wire.ANSWER, to=got["by"], yes=False)
     assert ann.next(wire.DECLINED)["name"] == "bob"
@@ -177,12 +181,8 @@ def test_a_declined_challenge_says_so_and_starts_nothing(lobby):
 
 
 def test_a_challenger_who_leaves_the_lobby_withdraws_the_challenge(lobby, tmp_path):
-    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
-    ann.send(wire.WHERE, lobby=True)
-    bob.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
-    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
-             game=GAME)
+    (ann, bob), ids = in_lobby_raw(lobby, "ann", "bob")
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
     by = bob.next(wire.CHALLENGED)["by"]
     ann.send(wire.WHERE, lobby=False)
     got = bob.next(wire.WITHDRAWN)
@@ -222,14 +222,7 @@ def test_who_may_be_challenged(lobby):
 
 
 def test_a_player_who_drops_is_gone_from_the_match_and_the_list(lobby):
-    ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
-    ann.send(wire.WHERE, lobby=True)
-    bob.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == "lobby")
-    ann.send(wire.CHALLENGE, to=next(p["id"] for p in seen["players"] if p["name"] == "bob"),
-             game=GAME)
-    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
-    ann.next(wire.START)
+    (ann, bob), _ = matched(lobby, "ann", "bob")
     bob.close()
     assert ann.next(wire.LEFT)["name"] == "bob"
     ann.players(lambda ps: [p["name"] for p in ps] == ["ann"])
@@ -404,14 +397,7 @@ def test_the_other_screen_follows_the_ball_in_hand_and_the_stick(lobby, tmp_path
 
 
 def test_aims_go_to_the_match_only_and_are_not_kept(lobby):
-    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
-    for r in (ann, bob, cy):
-        r.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
-    ids = {p["name"]: p["id"] for p in seen["players"]}
-    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
-    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
-    ann.next(wire.START)
+    (ann, bob, cy), ids = matched(lobby, "ann", "bob", "cy")
     cy.send(wire.WATCH, to=ids["ann"])
     assert cy.next(wire.START)["moves"] == []
     aim = {"kind": "stick", "values": [10.0, 0.0, 0.1]}
@@ -548,11 +534,7 @@ def test_the_choice_follows_the_player_as_others_come(lobby):
 
 
 def test_no_one_in_a_challenge_can_be_challenged_or_challenge(lobby):
-    ann, bob, cy = Raw(lobby, "ann"), Raw(lobby, "bob"), Raw(lobby, "cy")
-    for r in (ann, bob, cy):
-        r.send(wire.WHERE, lobby=True)
-    seen = ann.players(lambda ps: where(ps, "bob") == where(ps, "cy") == "lobby")
-    ids = {p["name"]: p["id"] for p in seen["players"]}
+    (ann, bob, cy), ids = in_lobby_raw(lobby, "ann", "bob", "cy")
     ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
     bob.next(wire.CHALLENGED)
     cy.send(wire.CHALLENGE, to=ids["ann"], game=GAME)  # ann waits for bob's answer
