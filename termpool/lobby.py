@@ -65,8 +65,8 @@ class Lobby:
 
     def _players(self) -> None:
         """Everyone's list of who is here, after any change."""
-        names = [{"id": s.id, "name": s.name, "where": s.where, "with": self._with(s)}
-                 for s in self.seats.values()]
+        names = [{"id": s.id, "name": s.name, "where": s.where, "with": self._with(s),
+                  "challenge": self._challenge_of(s)} for s in self.seats.values()]
         for seat in self.seats.values():
             self._send(seat, wire.PLAYERS, players=names, you=seat.id)
 
@@ -78,6 +78,13 @@ class Lobby:
         if seat.where == "watching":
             return " v ".join(table.names)
         return table.names[1] if table.names[0] == seat.name else table.names[0]
+
+    def _challenge_of(self, seat: Seat) -> str | None:
+        """The challenge a player in the lobby is in: "to bob" or "from ann"."""
+        if seat.challenge in self.seats:
+            return f"to {self.seats[seat.challenge].name}"
+        by = next((s for s in self.seats.values() if s.challenge == seat.id), None)
+        return None if by is None else f"from {by.name}"
 
     async def connection(self, reader: asyncio.StreamReader,
                          writer: asyncio.StreamWriter) -> None:
@@ -147,6 +154,7 @@ class Lobby:
         else:
             seat.challenge, seat.game = other.id, game
             self._send(other, wire.CHALLENGED, by=seat.id, name=seat.name, game=game)
+            self._players()  # both are now in a challenge, for everyone to see
 
     def _answer(self, seat: Seat, to, yes: bool) -> None:
         other = self.seats.get(to) if isinstance(to, int) else None
@@ -157,6 +165,7 @@ class Lobby:
         other.challenge = other.game = None
         if not yes or seat.where != "lobby" or other.where != "lobby":
             self._send(other, wire.DECLINED, name=seat.name)
+            self._players()
             return
         self._withdraw(seat)
         # The challenger is the first player.

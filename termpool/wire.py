@@ -5,7 +5,7 @@ bit for bit, so a shot sent is the shot struck on both sides.
 Game to server: HELLO (token), WHERE (in the lobby or not), CHALLENGE (to, game), ANSWER (to,
 yes), WATCH (to: a player whose match to watch), MOVE (move), AIM (aim: the stick or the
 ball in hand as the player moves it, for the other screens to show), LEAVE.
-Server to game: PLAYERS (players: id, name, where, with), CHALLENGED (by, name, game),
+Server to game: PLAYERS (players: id, name, where, with, challenge), CHALLENGED (by, name, game),
 DECLINED (name), WITHDRAWN (by, name: a challenge to this game is off), START (game, names,
 seat: 0 or 1, or None to watch; moves: the match's moves so far), MOVE (move), AIM (aim),
 LEFT (name), REFUSED (why: a code, below).

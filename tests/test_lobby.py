@@ -577,3 +577,14 @@ def test_a_watcher_joining_late_sees_the_table_as_it_is_not_old_shots(lobby, tmp
     assert cy.state.phase is not Phase.RUN  # the break is over: not shown again
     assert "watching" in screen(cy)
     assert digest(cy.state.match) == digest(ann.state.match)
+
+
+def test_the_lobby_shows_who_is_in_a_challenge(lobby):
+    ann, bob, cy = in_lobby(lobby, "ann"), in_lobby(lobby, "bob"), in_lobby(lobby, "cy")
+    until([ann, bob, cy], lambda: len(ann.state.link.others()) == 2
+          and all(p["where"] == "lobby" for p in ann.state.link.others()), "all in the lobby")
+    ann.key(Key("enter"), time.monotonic())  # bob, first by name
+    until([ann, bob, cy], lambda: "a challenge from ann" in screen(cy), "cy's list")
+    assert "ann  in the lobby, a challenge to bob" in screen(cy)
+    bob.key(Key("n"), time.monotonic())
+    until([ann, bob, cy], lambda: "a challenge" not in screen(cy), "the challenge gone")

@@ -444,6 +444,8 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
             return f"playing {with_} (Enter: watch)" if with_ else "playing (Enter: watch)"
         if w == "watching":
             return f"watching {with_}" if with_ else "watching"
+        if w == "lobby" and p.get("challenge"):  # "to bob" or "from ann"
+            return f"in the lobby, a challenge {shown(str(p['challenge']))[:24]}"
         return {"lobby": "in the lobby", "menu": "in the menu"}.get(w, "")
 
     for n, p in enumerate(others):
