@@ -35,6 +35,7 @@ from termpool import wire
 from termpool.files import data_dir, write_atomic
 from termpool.lobby import Lobby
 from termpool.text import say
+from termpool.ui.play import whole_number
 from termpool.ui.settings import MAX_NAME
 
 # A player's name: the game's own limit (it must fit the panel), and a directory's name.
@@ -50,25 +51,11 @@ BAD_NAME = (f"termpool: a player's name is 1 to {MAX_NAME} letters, digits, '_',
             "'.', beginning with a letter or digit (ssh NAME@host)\r\n")
 
 
-def _int_in(what: str, lo: int, hi: int):
-    def parse(text: str) -> int:
-        try:
-            val = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"not a whole number: '{text[:24]}'") from None
-        if not lo <= val <= hi:
-            raise argparse.ArgumentTypeError(f"must be from {lo} to {hi}, not {val}")
-        return val
-
-    parse.__name__ = what
-    return parse
-
-
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--host", default="127.0.0.1",
                    help="the address to listen on (default 127.0.0.1: this machine only; "
                         "0.0.0.0 for every network)")
-    p.add_argument("--port", type=_int_in("--port", 0, 65535), default=2222,
+    p.add_argument("--port", type=whole_number(0, 65535), default=2222,
                    help="the port (default 2222; 0 picks a free one, printed on start)")
     p.add_argument("--dir", metavar="DIR", default=None,
                    help="the server's host key and players' files (default: the data "
@@ -76,7 +63,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--authorized-keys", metavar="FILE", default=None,
                    help="let in only the keys in this file (OpenSSH authorized_keys form); "
                         "without it anyone who can reach the port may play, under any name")
-    p.add_argument("--max-sessions", type=_int_in("--max-sessions", 1, 1000),
+    p.add_argument("--max-sessions", type=whole_number(1, 1000),
                    default=MAX_SESSIONS,
                    help=f"the most players at once (default {MAX_SESSIONS})")
 
