@@ -91,10 +91,7 @@ def tick(s: State, t: float) -> State:
     kind = move.get("kind")
     try:
         if kind == "place":
-            x, y = float(move["x"]), float(move["y"])
-            if not (math.isfinite(x) and math.isfinite(y)) or m.placement_error(x, y):
-                raise ValueError("placement")
-            m.place_cue(x, y)
+            m.place_cue(float(move["x"]), float(move["y"]))  # ValueError: not there, not finite
             return replace(s, part=Waiting(placed=True))  # their shot comes next
         if kind == "choose":
             choice = Choice(move["choice"])
