@@ -8,7 +8,7 @@ from dataclasses import replace
 from termpool import wire
 from termpool.rules.words import MODE_NAMES
 from termpool.text import shown
-from termpool.ui.phases.turn import begin_match
+from termpool.ui.phases.turn import begin_match, to_menu
 from termpool.ui.settings import MAX_FRAMES
 from termpool.ui.state import LOBBY_GAMES, Lobby, Menu, State, lobby_choice
 
@@ -22,14 +22,6 @@ def open_lobby(s: State) -> State:
     s.link.send(wire.WHERE, lobby=True)
     s.link.poll()
     return replace(s, part=Lobby(), message=())
-
-
-def leave_lobby(s: State) -> State:
-    if s.link.challenged is not None:
-        s.link.send(wire.ANSWER, to=s.link.challenged.get("by"), yes=False)
-        s.link.challenged = None
-    s.link.send(wire.WHERE, lobby=False)
-    return replace(s, part=Menu(), message=())
 
 
 def challenge_game(s: State, mode: str) -> dict:
@@ -63,7 +55,7 @@ def key(s: State, key, action: str | None, t: float) -> State | None:
             link.send(wire.WHERE, lobby=True)
             return replace(s, part=replace(part, waiting=None),
                            message=(("challenge taken back", "dim"),))
-        return leave_lobby(s)
+        return to_menu(s)  # out of the lobby, as by the quit box
     others, k = lobby_choice(s)
     if key.name in ("up", "k", "down", "j") and others:
         k = max(0, min(len(others) - 1, k + (1 if key.name in ("down", "j") else -1)))

@@ -225,15 +225,16 @@ def record(s: State) -> tuple[State, Match | None]:
 
 
 def to_menu(s: State) -> State:
-    """Leave the match for the menu (it is saved and added to the history first). An online
-    match is left for the other player too."""
+    """Leave the match (or the lobby) for the menu: the match is saved and added to the
+    history first; an online match is left for the other player too, and the lobby's
+    challenges to and from this player are off (the server withdraws them)."""
     if isinstance(s.part, Run):
         s, _ = record(s)  # a shot still rolling is played out, as on the way out
     s = log_match(s)
     played = s.played + (s.match,) if s.match is not None and s.match.history else s.played
     if s.remote:
         s.link.send(LEAVE)
-    elif isinstance(s.part, Lobby):  # out of the lobby (Q, then M): challenges are off
+    elif isinstance(s.part, Lobby):
         s.link.send(WHERE, lobby=False)
         s.link.challenged = None
     return replace(s, box=None, part=Menu(), match=None, played=played, remote=(),
