@@ -467,25 +467,16 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
         keys = "Esc takes the challenge back"
     else:
         keys = "↑↓ choose · ←→ game · Enter challenge · Esc back"
-    for text, tone in s.message:
-        lines.append((text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb))
+    lines += _said(s)
     lines.append((keys, DIM_TEXT_C.rgb))
     return lines
 
 
 def _lobby_cells(s: State, cols: int, rows: int, mono: bool):
-    cells = blank_cells(cols, rows, mono)
-    lines = _lobby_lines(s)
-    top = max(0, (rows - len(lines)) // 2)
-    left = max(0, (cols - max(len(text) for text, _ in lines)) // 2)
-    for k, (text, colour) in enumerate(lines[:rows]):
-        if text:
-            put_text(cells, top + k, left, text[:cols], colour, (0, 0, 0))
-    return cells
+    return _centred(_lobby_lines(s), cols, rows, mono)
 
 
 def _menu_cells(s: State, cols: int, rows: int, mono: bool):
-    cells = blank_cells(cols, rows, mono)
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
     for k, (label, _what) in enumerate(menu_entries(s)):
         sel = k == s.menu_index
@@ -493,11 +484,21 @@ def _menu_cells(s: State, cols: int, rows: int, mono: bool):
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
     # What ended an online match (the other player left), said where the match was left.
-    lines += [(text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb) for text, tone in s.message]
+    lines += _said(s)
+    return _centred(lines, cols, rows, mono)
+
+
+def _said(s: State) -> list[tuple[str, object]]:
+    """The words on show, as lines of a menu or the lobby (a foul's in its colour)."""
+    return [(text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb) for text, tone in s.message]
+
+
+def _centred(lines: list[tuple[str, object]], cols: int, rows: int, mono: bool):
+    """A blank screen with `lines` (text, colour) in the middle, left-aligned as a block."""
+    cells = blank_cells(cols, rows, mono)
     top = max(0, (rows - len(lines)) // 2)
-    width = max(len(text) for text, _ in lines)
-    left = max(0, (cols - width) // 2)
+    left = max(0, (cols - max(len(text) for text, _ in lines)) // 2)
     for k, (text, colour) in enumerate(lines):
         if text:
-            put_text(cells, top + k, left, text, colour, (0, 0, 0))
+            put_text(cells, top + k, left, text, colour, (0, 0, 0))  # clipped to the screen
     return cells
