@@ -15,6 +15,7 @@ import pytest
 from termpool import wire
 from termpool.lobby import Lobby
 from termpool.ui.app import App
+from termpool.ui.headless import screen_text
 from termpool.ui.keys import Key
 from termpool.ui.link import Link, digest
 from termpool.ui.phases import remote
@@ -192,15 +193,13 @@ def test_a_challenger_who_leaves_the_lobby_withdraws_the_challenge(lobby, tmp_pa
 def test_a_withdrawn_challenge_leaves_the_screen(lobby):
     from termpool.ui.phases.lobby import tick
 
-    link = Link(lobby.path, lobby.admit("bob"))
-    app = App(Options(colors="mono"), link=link)
-    entries = [e[1] for e in menu_entries(app.state)]
-    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    app = in_lobby(lobby, "bob")
+    link = app.state.link
     link.challenged = {"t": wire.CHALLENGED, "by": 5, "name": "ann", "game": GAME}
     link._take({"t": wire.WITHDRAWN, "by": 5, "name": "ann"})
     app.state = tick(app.state, time.monotonic())
     assert link.challenged is None
-    text = "\n".join("".join(r) for r in app.cells(80, 24)[0])
+    text = screen(app, 80, 24)
     assert "ann withdrew the challenge" in text and "challenges you" not in text
 
 
@@ -257,26 +256,40 @@ def until(apps, test, what: str) -> None:
         time.sleep(0.005)
 
 
-def online(lobby, tmp_path) -> tuple[App, App]:
-    """Two apps (ann's, bob's) in an online 9-ball match that ann challenged bob to."""
+def in_lobby(lobby, name: str, history=None) -> App:
+    """`name`'s app with the lobby open (and its history in the file `history`, if given)."""
     from termpool.game.history import Recorder
 
-    apps = []
-    for name in ("ann", "bob"):
-        link = Link(lobby.path, lobby.admit(name))
-        app = App(Options(colors="mono", player1=name), link=link,
-                  history=Recorder(tmp_path / f"{name}.jsonl"))
-        entries = [e[1] for e in menu_entries(app.state)]
-        app.key(Key(str(entries.index("online") + 1)), time.monotonic())
-        assert app.state.phase is Phase.LOBBY
-        apps.append(app)
+    app = App(Options(colors="mono", player1=name), link=Link(lobby.path, lobby.admit(name)),
+              history=None if history is None else Recorder(history))
+    entries = [e[1] for e in menu_entries(app.state)]
+    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    assert app.state.phase is Phase.LOBBY
+    return app
+
+
+def screen(app: App, cols: int = 80, rows: int = 24) -> str:
+    return screen_text(app.cells(cols, rows)[0])
+
+
+def break_online(ann: App, bob: App) -> None:
+    """Ann puts the cue ball down and breaks; both screens until the balls stop."""
+    ann.key(Key("enter"), time.monotonic())
+    ann.state = shoot(ann.state, 8.0, 0.5, 0.0, 0.0)
+    until([ann, bob], lambda: bob.state.phase is not Phase.RUN and bob.state.match.history
+          and ann.state.phase is not Phase.RUN, "the break")
+
+
+def online(lobby, tmp_path) -> tuple[App, App]:
+    """Two apps (ann's, bob's) in an online 9-ball match that ann challenged bob to."""
+    apps = [in_lobby(lobby, name, tmp_path / f"{name}.jsonl") for name in ("ann", "bob")]
     ann, bob = apps
     until(apps, lambda: len(ann.state.link.others()) == 1
           and ann.state.link.others()[0]["where"] == "lobby", "bob in ann's lobby")
     ann.key(Key("right"), time.monotonic())  # 9-ball
     ann.key(Key("enter"), time.monotonic())
     until(apps, lambda: bob.state.link.challenged is not None, "the challenge")
-    text = "\n".join("".join(r) for r in bob.cells(80, 24)[0])
+    text = screen(bob, 80, 24)
     assert "ann challenges you to 9-ball" in text
     bob.key(Key("y"), time.monotonic())
     until(apps, lambda: ann.state.match is not None and bob.state.match is not None,
@@ -296,7 +309,7 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     assert ann.state.phase is Phase.AIM
     until([bob], lambda: bob.state.part == Waiting(placed=True), "bob to see her place it")
     assert digest(a) == digest(b)
-    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    text = screen(bob, 100, 30)
     assert "ann is aiming, on their own screen" in text
     ann.state = shoot(ann.state, 7.0, 1.5, 0.1, -0.2)
     until([ann, bob], lambda: ann.state.phase not in (Phase.RUN,)
@@ -312,7 +325,7 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     ann.key(Key("q"), time.monotonic())
     ann.key(Key("m"), time.monotonic())
     until([bob], lambda: bob.state.phase is Phase.MENU, "bob told")
-    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    text = screen(bob, 100, 30)
     assert "ann has left the match" in text
     lines = [json.loads(x) for x in (tmp_path / "bob.jsonl").read_text().splitlines()]
     assert [x["player"] for x in lines] == ["bob"] and lines[0]["opponent"] == "ann"
@@ -328,17 +341,9 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
 
 
 def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):
-    from termpool.game.history import Recorder
-
     ann, bob = online(lobby, tmp_path)
-    ann.key(Key("enter"), time.monotonic())
-    ann.state = shoot(ann.state, 8.0, 0.5, 0.0, 0.0)
-    until([ann, bob], lambda: bob.state.phase is not Phase.RUN and bob.state.match.history
-          and ann.state.phase is not Phase.RUN, "the break")
-    cy = App(Options(colors="mono", player1="cy"), link=Link(lobby.path, lobby.admit("cy")),
-             history=Recorder(tmp_path / "cy.jsonl"))
-    entries = [e[1] for e in menu_entries(cy.state)]
-    cy.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    break_online(ann, bob)
+    cy = in_lobby(lobby, "cy", tmp_path / "cy.jsonl")
     until([cy], lambda: any(p["where"] == "playing" for p in cy.state.link.others()),
           "the players in cy's lobby")
     cy.key(Key("enter"), time.monotonic())  # the first player listed: playing, so watched
@@ -356,7 +361,7 @@ def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):
                                       and a.state.phase is not Phase.RUN
                                       for a in (ann, bob, cy)), "the second shot")
     assert digest(cy.state.match) == digest(ann.state.match) == digest(bob.state.match)
-    text = "\n".join("".join(r) for r in cy.cells(80, 24)[0])
+    text = screen(cy, 80, 24)
     assert "ann" in text and "bob" in text
     cy.key(Key("q"), time.monotonic())
     cy.key(Key("m"), time.monotonic())  # cy goes; the match goes on
@@ -373,7 +378,7 @@ def test_the_other_screen_follows_the_ball_in_hand_and_the_stick(lobby, tmp_path
         ann.tick(time.monotonic())
     until([ann, bob], lambda: bob.state.part.cursor == ann.state.part.cursor,
           "bob to see the ball in hand where ann has it")
-    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    text = screen(bob, 100, 30)
     assert "ann is placing the cue ball" in text
     ann.key(Key("enter"), time.monotonic())
     for _ in range(3):
@@ -432,7 +437,7 @@ def test_a_move_that_cannot_be_made_ends_the_match(lobby, tmp_path, move):
 
 def test_the_waiting_screen_says_who_is_moving_and_takes_no_shot_keys(lobby, tmp_path):
     ann, bob = online(lobby, tmp_path)
-    text = "\n".join("".join(r) for r in bob.cells(100, 30)[0])
+    text = screen(bob, 100, 30)
     assert "ann is placing the cue ball, on their own screen" in text
     before = bob.state.match.to_json()
     for k in ("space", "enter", "left", "1"):
@@ -455,10 +460,7 @@ def test_the_server_going_ends_the_match(lobby, tmp_path):
 def test_a_match_that_cannot_be_built_is_said_and_left(lobby, bad):
     from termpool.ui.phases.lobby import start_online
 
-    link = Link(lobby.path, lobby.admit("ann"))
-    app = App(Options(colors="mono"), link=link)
-    entries = [e[1] for e in menu_entries(app.state)]
-    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
+    app = in_lobby(lobby, "ann")
     s = start_online(app.state, {"game": {**GAME, **bad}, "names": ["ann", "bob"], "seat": 1})
     assert s.phase is Phase.LOBBY and s.match is None
     assert "could not start" in s.message[0][0]
@@ -472,17 +474,6 @@ def test_without_a_server_the_menu_has_no_online_entry():
 
 
 # ------------------------------------------------------------------ the lobby's own keys
-def in_lobby(lobby, name: str) -> App:
-    app = App(Options(colors="mono", player1=name), link=Link(lobby.path, lobby.admit(name)))
-    entries = [e[1] for e in menu_entries(app.state)]
-    app.key(Key(str(entries.index("online") + 1)), time.monotonic())
-    return app
-
-
-def screen(app: App, cols: int = 80, rows: int = 24) -> str:
-    return "\n".join("".join(r) for r in app.cells(cols, rows)[0])
-
-
 def test_n_declines_a_challenge_and_esc_takes_one_back_or_leaves(lobby):
     ann, bob = in_lobby(lobby, "ann"), in_lobby(lobby, "bob")
     until([ann, bob], lambda: [p["where"] for p in ann.state.link.others()] == ["lobby"],
@@ -564,10 +555,7 @@ def test_a_match_over_stays_on_show_when_the_other_player_goes(lobby, tmp_path):
 
 def test_a_watcher_joining_late_sees_the_table_as_it_is_not_old_shots(lobby, tmp_path):
     ann, bob = online(lobby, tmp_path)
-    ann.key(Key("enter"), time.monotonic())
-    ann.state = shoot(ann.state, 8.0, 0.5, 0.0, 0.0)
-    until([ann, bob], lambda: bob.state.phase is not Phase.RUN and bob.state.match.history
-          and ann.state.phase is not Phase.RUN, "the break")
+    break_online(ann, bob)
     cy = in_lobby(lobby, "cy")
     until([cy], lambda: any(p["where"] == "playing" for p in cy.state.link.others()),
           "the players in cy's lobby")
