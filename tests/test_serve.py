@@ -68,6 +68,15 @@ def connect(port: int, name: str = "alice", **kw):
                             client_keys=kw.pop("client_keys", None), **kw)
 
 
+async def at_menu(conn, cols: int = 80, rows: int = 24, term: str = "xterm-256color"):
+    """A session of `conn` on a terminal of this size, its menu on screen: the process and
+    what its screen shows."""
+    p = await conn.create_process(term_type=term, term_size=(cols, rows), encoding=None)
+    seen = Seen(p, cols, rows)
+    await seen.until(lambda v: v.shows(MENU))
+    return p, seen
+
+
 class Seen:
     """What a session's screen shows: its output through a terminal emulator."""
 
@@ -107,10 +116,7 @@ def test_a_connection_plays_the_game_at_its_own_size_and_quits_cleanly(served):
 
     async def go():
         async with connect(s.port) as conn:
-            p = await conn.create_process(term_type="xterm-256color", term_size=(80, 24),
-                                          encoding=None)
-            seen = Seen(p, 80, 24)
-            await seen.until(lambda v: v.shows(MENU))
+            p, seen = await at_menu(conn)
             p.stdin.write(b"q")
             await seen.until(lambda v: False, timeout=10)  # to the end of the output
             await p.wait_closed()
@@ -129,10 +135,7 @@ def test_a_resize_reaches_the_game(served):
 
     async def go():
         async with connect(s.port) as conn:
-            p = await conn.create_process(term_type="xterm-256color", term_size=(80, 24),
-                                          encoding=None)
-            seen = Seen(p, 80, 24)
-            await seen.until(lambda v: v.shows(MENU))
+            p, seen = await at_menu(conn)
             p.stdin.write(b"\r")  # 8-ball against the computer: the table fills the width
             await seen.until(lambda v: v.shows("alice"))
             narrow = right_edge(seen)
@@ -152,10 +155,7 @@ def test_a_dropped_connection_hangs_up_the_game_which_keeps_its_history(served):
 
     async def go():
         conn = await connect(s.port, "bob")
-        p = await conn.create_process(term_type="xterm-256color", term_size=(100, 30),
-                                      encoding=None)
-        seen = Seen(p, 100, 30)
-        await seen.until(lambda v: v.shows(MENU))
+        p, seen = await at_menu(conn, 100, 30)
         p.stdin.write(b"\r")
         await seen.until(lambda v: v.shows("bob to break"))
         p.stdin.write(b"\r")  # the cue ball placed where it is offered
@@ -208,9 +208,7 @@ def test_past_the_most_sessions_a_player_is_told_the_server_is_full(served):
 
     async def go():
         async with connect(s.port) as first:
-            p = await first.create_process(term_type="xterm", term_size=(80, 24),
-                                           encoding=None)
-            await Seen(p, 80, 24).until(lambda v: v.shows(MENU))
+            p, _ = await at_menu(first, term="xterm")
             async with connect(s.port, "carol") as second:
                 r = await second.run(term_type="xterm", term_size=(80, 24), encoding=None)
             p.stdin.write(b"q")
@@ -255,10 +253,7 @@ def test_stopping_the_server_hangs_up_every_game(served):
 
     async def go():
         async with connect(s.port, "dave") as conn:
-            p = await conn.create_process(term_type="xterm", term_size=(80, 24),
-                                          encoding=None)
-            seen = Seen(p, 80, 24)
-            await seen.until(lambda v: v.shows(MENU))
+            p, seen = await at_menu(conn, term="xterm")
             s.proc.send_signal(signal.SIGTERM)
             await seen.until(lambda v: False, timeout=WAIT_S)  # to the end of the output
             await p.wait_closed()
@@ -298,13 +293,8 @@ def test_two_players_meet_in_the_lobby_and_play_one_match_on_two_screens(served)
 
     async def go():
         async with connect(s.port, "ann") as c1, connect(s.port, "bob") as c2:
-            p1 = await c1.create_process(term_type="xterm-256color", term_size=(100, 30),
-                                         encoding=None)
-            p2 = await c2.create_process(term_type="xterm-256color", term_size=(80, 24),
-                                         encoding=None)
-            ann, bob = Seen(p1, 100, 30), Seen(p2, 80, 24)
-            await ann.until(lambda v: v.shows("Play someone online"))
-            await bob.until(lambda v: v.shows("Play someone online"))
+            (p1, ann), (p2, bob) = await at_menu(c1, 100, 30), await at_menu(c2)
+            assert ann.shows("Play someone online") and bob.shows("Play someone online")
             p2.stdin.write(b"6")
             await bob.until(lambda v: v.shows("Players online"))
             p1.stdin.write(b"6")
