@@ -438,7 +438,7 @@ def _records(args: argparse.Namespace) -> int:
     lines = [f"{len(kept)} {'match' if len(kept) == 1 else 'matches'} kept in "
              f"{shown(folder)} (newest first):"]
     for p in shown_:
-        day, clock, *rest = p.stem.split("-")
+        day, clock, *rest = p.name.split(".")[0].split("-")
         when = f"{day[:4]}-{day[4:6]}-{day[6:]} {clock[:2]}:{clock[2:4]}:{clock[4:]}"
         try:
             size = f"{p.stat().st_size / 1024:.0f} KiB"

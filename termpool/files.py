@@ -3,7 +3,9 @@
 Every file the game reads goes through `read_text` (a size limit, so `/dev/zero` is refused
 instead of filling memory; UTF-8 with or without a byte order mark) and every JSON file through
 `parse_json` (integers of at most `MAX_INT_DIGITS` digits, nesting at most `MAX_DEPTH` deep, no
-NaN or Infinity). All JSON it writes is made by `to_json`, which refuses NaN and Infinity.
+NaN or Infinity). A gzip-compressed file is read through, to the same limit on its text (kept
+matches are written so: a record's many 17-digit floats shrink about sixfold). All JSON it
+writes is made by `to_json`, which refuses NaN and Infinity.
 Every file it writes goes through `write_atomic`: a temporary file in the same directory,
 flushed to disk, then renamed over the target, so a kill or a full disk never leaves a partial
 file. Errors are `FileError`s with one line naming the file.
@@ -18,6 +20,7 @@ import stat
 import sys
 import tempfile
 import time
+import zlib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -61,12 +64,37 @@ def read_text(path: str | os.PathLike, limit: int, what: str = "file") -> str:
         err = FileError(f"cannot read {what} '{name}': {e.strerror or e}")
         err.unreadable, err.missing = True, isinstance(e, FileNotFoundError)
         raise err from None
+    if data[:2] == GZIP_MAGIC:
+        data = _gunzip(data, limit, name)
     if len(data) > limit:
         raise FileError(too_big)
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise FileError(f"{name}: not UTF-8 text") from None
+
+
+GZIP_MAGIC = b"\x1f\x8b"
+
+
+def _gunzip(data: bytes, limit: int, name: str) -> bytes:
+    """The text of gzip `data`, stopping one byte past `limit` (a small file may unpack to
+    any size: the limit holds for what it unpacks to, and the caller refuses the excess)."""
+    z = zlib.decompressobj(wbits=31)
+    try:
+        out = z.decompress(data, limit + 1)
+    except zlib.error as e:
+        raise FileError(f"{name}: a damaged gzip file ({e})") from None
+    if len(out) <= limit and not z.eof:
+        raise FileError(f"{name}: a damaged gzip file (it ends too soon)")
+    return out
+
+
+def gzipped(text: str) -> bytes:
+    """`text` as a gzip file's bytes; the same text gives the same bytes (no time stamp)."""
+    import gzip
+
+    return gzip.compress(text.encode("utf-8"), compresslevel=6, mtime=0)
 
 
 def _int(text: str) -> int:
@@ -243,7 +271,8 @@ def records_dir(env: dict | None = None) -> Path:
 
 # A kept match's name in the records folder: the date and time, a number when two started in
 # the same second, the mode. Only files so named are ever removed.
-KEPT_NAME = re.compile(r"\d{8}-\d{6}(-\d+)?-[a-z0-9]+\.json")
+KEPT_NAME = re.compile(r"\d{8}-\d{6}(-\d+)?-[a-z0-9]+\.json(\.gz)?")
+KEPT_SUFFIX = ".json.gz"  # how they are written now (older ones, plain .json, still count)
 
 
 def kept_records(folder: str | os.PathLike) -> list[Path]:

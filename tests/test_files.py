@@ -48,6 +48,32 @@ def test_read_text_drops_a_byte_order_mark_and_refuses_other_encodings(tmp_path)
         read_text(p, 100)
 
 
+def test_read_text_reads_a_gzip_file_through(tmp_path) -> None:
+    p = tmp_path / "x.json.gz"
+    p.write_bytes(files.gzipped('{"a": "é"}'))
+    assert files.read_text(p, 100) == '{"a": "é"}'
+    assert files.gzipped("same") == files.gzipped("same")  # no time stamp: the same bytes
+
+
+def test_read_text_holds_a_gzip_file_to_the_limit_of_its_text(tmp_path) -> None:
+    p = tmp_path / "bomb.gz"
+    p.write_bytes(files.gzipped(" " * 10_000_000))  # 10 MB of text in about 10 kB
+    assert p.stat().st_size < 20_000
+    with pytest.raises(FileError, match=r"bomb.gz: larger than 1 MiB, the limit for a replay"):
+        files.read_text(p, 1 << 20, "replay")
+
+
+def test_read_text_names_a_damaged_gzip_file(tmp_path) -> None:
+    p = tmp_path / "cut.json.gz"
+    p.write_bytes(files.gzipped('{"shots": []}' * 50)[:20])
+    with pytest.raises(FileError, match=r"^\S*cut.json.gz: a damaged gzip file \(it ends too "
+                       r"soon\)$"):
+        files.read_text(p, 1000)
+    p.write_bytes(files.GZIP_MAGIC + b"not deflate at all")
+    with pytest.raises(FileError, match=r"^\S*cut.json.gz: a damaged gzip file \("):
+        files.read_text(p, 1000)
+
+
 def test_read_text_names_the_file_it_cannot_open(tmp_path) -> None:
     with pytest.raises(FileError, match=r"^cannot read replay '.*nope': No such file"):
         read_text(tmp_path / "nope", 100, "replay")

@@ -54,6 +54,20 @@ def test_quitting_while_the_balls_roll_saves_the_shot_played_out(capsys, tmp_pat
     assert replays(rec, capsys) == "1 shot: all identical"
 
 
+def test_a_record_file_named_gz_is_written_compressed_and_replays(capsys, tmp_path) -> None:
+    # Two matches (practice, one shot, M for the menu, practice again, one shot, quit).
+    rec, second = tmp_path / "x.json.gz", tmp_path / "x-2.json.gz"
+    one = "enter space-hold 1.0 wait 20"
+    rc = cli.main(["play", "--headless", "--keys", keys(tmp_path, f"5 {one} q m 5 {one} q y"),
+                   "--record", str(rec)])
+    assert rc == 0
+    assert capsys.readouterr().err.splitlines() == [
+        f"termpool: record saved to {rec} (1 shot)", f"termpool: record saved to {second} (1 shot)"]
+    for p in rec, second:
+        assert p.read_bytes()[:2] == files.GZIP_MAGIC
+        assert replays(p, capsys) == "1 shot: all identical"
+
+
 def test_a_crash_in_the_game_still_saves_the_record(capsys, tmp_path, monkeypatch) -> None:
     rec = tmp_path / "x.json"
     tick = App.tick

@@ -37,6 +37,11 @@ def kept() -> list[Path]:
     return files.kept_records(files.records_dir())
 
 
+def shots(rec: Path) -> int:
+    """The number of shot records in a kept match (read as the game reads it, gzip or not)."""
+    return len(json.loads(files.read_text(rec, files.MAX_REPLAY_BYTES))["shots"])
+
+
 def replays(path: Path, capsys) -> str:
     """The last line of `termpool replay` on the file (which must replay identically)."""
     capsys.readouterr()
@@ -49,10 +54,11 @@ def test_a_match_played_without_record_is_kept_and_replays(capsys, tmp_path) -> 
     err = capsys.readouterr().err
     (rec,) = kept()
     assert rc == 0 and rec.parent == files.data_dir() / "records"
-    assert rec.name.endswith("-practice.json")
+    assert rec.name.endswith("-practice.json.gz")
     assert err == f"termpool: record saved to {rec} (1 shot)\n"
     assert replays(rec, capsys) == "1 shot: all identical"
-    assert len(json.loads(rec.read_text())["shots"]) == 1
+    assert shots(rec) == 1
+    assert rec.read_bytes()[:2] == files.GZIP_MAGIC
 
 
 def test_a_match_from_the_menu_is_kept(capsys, tmp_path) -> None:
@@ -88,9 +94,9 @@ def test_each_shot_is_on_disk_before_the_game_is_left(capsys, tmp_path) -> None:
                                                                                folder=folder))
     play_keys(app, parse_script(ONE_SHOT), 100, 32)
     (rec,) = files.kept_records(folder)
-    assert len(json.loads(rec.read_text())["shots"]) == 1  # not left yet: written at the shot
+    assert shots(rec) == 1  # not left yet: written at the shot
     play_keys(app, parse_script("space-hold 0.6 wait 20"), 100, 32)
-    assert len(json.loads(rec.read_text())["shots"]) == 2  # the same file, rewritten
+    assert shots(rec) == 2  # the same file, rewritten
     assert files.kept_records(folder) == [rec]
     assert replays(rec, capsys) == "2 shots: all identical"
 
@@ -120,15 +126,16 @@ def test_the_newest_are_kept_and_only_records_are_removed(capsys, tmp_path) -> N
     folder = files.records_dir()
     folder.mkdir(parents=True)
     now = time.time()
-    for k in range(files.KEEP_RECORDS + 3):  # older matches, the first the oldest
-        p = folder / f"20200101-{k:06d}-8ball.json"
+    for k in range(files.KEEP_RECORDS + 3):  # older matches, the first the oldest; the even
+        # ones plain JSON, as they were written before kept matches were compressed
+        p = folder / f"20200101-{k:06d}-8ball.json{'.gz' if k % 2 else ''}"
         p.write_text("{}")
         os.utime(p, (now - 1000 + k, now - 1000 + k))
     (folder / "notes.txt").write_text("mine")
     assert cli.main([*PLAY, "--keys", keys(tmp_path, ONE_SHOT + " q y")]) == 0
     left = kept()
     assert len(left) == files.KEEP_RECORDS
-    assert left[-1].name.endswith("-practice.json")  # this match, the newest
+    assert left[-1].name.endswith("-practice.json.gz")  # this match, the newest
     assert left[0].name == "20200101-000004-8ball.json"  # the four oldest went
     assert (folder / "notes.txt").read_text() == "mine"
 
@@ -200,7 +207,8 @@ def test_termpool_records_lists_them_newest_first(capsys, tmp_path) -> None:
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == f"2 matches kept in {files.records_dir()} (newest first):"
     assert lines[1].endswith(str(new)) and lines[2].endswith(str(old))
-    assert "practice" in lines[1] and lines[-1].startswith("watch one with: termpool replay")
+    assert lines[1].split()[2] == "practice"
+    assert lines[-1].startswith("watch one with: termpool replay")
     assert cli.main(["records", "--last", "1"]) == 0
     assert len(capsys.readouterr().out.splitlines()) == 3
 

@@ -1,16 +1,16 @@
 """Every match played is kept, each in a file of its own: by default in the data directory's
 `records/` (`files.records_dir`), or where `--record FILE` says.
 
-By default a match goes to `records/<date>-<time>-<mode>.json` (the time it was first
-written); the newest `files.KEEP_RECORDS` such files are kept and older ones removed. The
-setting `records` (`--no-record`) turns this off. With `--record FILE` the first match with a
-shot goes to FILE, the second to FILE-2 (`m.json` -> `m-2.json`), the third to FILE-3, and so
-on, and nothing goes to `records/`. A match is written after every shot, when it ends or is
-left (a new game, the menu) and once more on the way out if it changed, atomically each time,
-so a session killed later still has it. A --record file that was there before play is
-replaced only with --force (the first one is checked before play); a file this session wrote
-is its own to rewrite. A file that cannot be written sends its match to the data directory
-instead (`files.write_fallback`).
+By default a match goes to `records/<date>-<time>-<mode>.json.gz` (the time it was first
+written; gzip, as every FILE whose name ends in .gz); the newest `files.KEEP_RECORDS` such
+files are kept and older ones removed. The setting `records` (`--no-record`) turns this off.
+With `--record FILE` the first match with a shot goes to FILE, the second to FILE-2 (`m.json`
+-> `m-2.json`), the third to FILE-3, and so on, and nothing goes to `records/`. A match is
+written after every shot, when it ends or is left (a new game, the menu) and once more on the
+way out if it changed, atomically each time, so a session killed later still has it. A --record
+file that was there before play is replaced only with --force (the first one is checked before
+play); a file this session wrote is its own to rewrite. A file that cannot be written sends its
+match to the data directory instead (`files.write_fallback`).
 Nothing is printed while the game holds the terminal: the lines saying where each match went
 are kept for the end (`lines`). With FILE "-" the matches go to standard output at the end
 as JSON Lines: each match one JSON object on a line of its own, in the order played (one line
@@ -30,11 +30,14 @@ from termpool.ui.term import signals_held
 
 
 def slot_path(path: str, k: int) -> str:
-    """Where the k-th match (from 1) of a session goes: FILE, then FILE-2, FILE-3 ..."""
+    """Where the k-th match (from 1) of a session goes: FILE, then FILE-2, FILE-3 ...
+    (`m.json` -> `m-2.json`, `m.json.gz` -> `m-2.json.gz`)."""
     if k == 1:
         return path
     p = Path(path)
-    return str(p.with_name(f"{p.stem}-{k}{p.suffix}"))
+    gz = p.suffix == ".gz" and p.stem != Path(p.stem).stem
+    base = Path(p.stem) if gz else p
+    return str(p.with_name(f"{base.stem}-{k}{base.suffix}{'.gz' if gz else ''}"))
 
 
 @dataclass
@@ -96,7 +99,7 @@ class Records:
         mode = kept.match.mode
         n = 1
         while True:
-            name = f"{stamp}-{mode}.json" if n == 1 else f"{stamp}-{n}-{mode}.json"
+            name = f"{stamp}{'' if n == 1 else f'-{n}'}-{mode}{files.KEPT_SUFFIX}"
             target = os.path.join(self.folder, name)
             if target not in self._ours and not os.path.lexists(target):
                 return target
@@ -122,6 +125,7 @@ class Records:
         fresh = target not in self._ours
         try:
             text = files.to_json(kept.match.to_json(), indent=1) + "\n"
+            data = files.gzipped(text) if target.endswith(".gz") else text
         except ValueError as e:  # JSON has no NaN: no file could hold it
             kept.where, kept.why = None, f"cannot write the record: {e}"
             return
@@ -131,7 +135,7 @@ class Records:
             if why is None:
                 try:
                     existed = os.path.exists(target) and not ours
-                    files.write_atomic(target, text)
+                    files.write_atomic(target, data)
                     self._ours.add(target)
                     if existed:
                         self._replaced.add(target)
