@@ -401,6 +401,29 @@ def test_the_other_screen_follows_the_ball_in_hand_and_the_stick(lobby, tmp_path
     assert not all(np.array_equal(a, b) for a, b in zip(with_stick, without, strict=True))
 
 
+def test_the_other_screen_shows_the_aid_of_the_shot_being_aimed(lobby, tmp_path):
+    from termpool.ui import aid
+
+    ann, bob = online(lobby, tmp_path)
+    ann.key(Key("enter"), time.monotonic())  # the cue ball down where it is
+    assert ann.state.phase is Phase.AIM
+    ann.key(Key("5"), time.monotonic())  # power 50%
+    time.sleep(0.12)
+    ann.key(Key("left"), time.monotonic())
+    until([ann, bob], lambda: bob.state.part.stick and bob.state.part.power == 0.5
+          and bob.state.stroke.angle == ann.state.stroke.angle, "bob to see ann's power")
+    for app in ann, bob:
+        app.cells(100, 30)  # a screen drawn starts its aid (the driver draws after a move)
+    until([ann, bob], lambda: not (aid.running(bob.state) or aid.running(ann.state)),
+          "the aids")
+    mine, theirs = aid.prediction(ann.state), aid.prediction(bob.state)
+    assert theirs is not None and theirs.ball == mine.ball  # the same shot, foreseen alike
+    assert "ann's aid at 50% power · first ball: the" in screen(bob, 100, 30)
+    # The watcher's own setting still rules: with the aid off, none of it shows.
+    bob.state = replace(bob.state, opts=replace(bob.state.opts, aid="off"))
+    assert aid.prediction(bob.state) is None and "ann's aid" not in screen(bob, 100, 30)
+
+
 def test_aims_go_to_the_match_only_and_are_not_kept(lobby):
     (ann, bob, cy), ids = matched(lobby, "ann", "bob", "cy")
     cy.send(wire.WATCH, to=ids["ann"])

@@ -20,7 +20,7 @@ from termpool.rules.events import ShotSummary
 from termpool.rules.referee import judge
 from termpool.ui.predict import Prediction, Predictor
 from termpool.ui.shots import power_to_speed
-from termpool.ui.state import AidJob, Aiming, Phase, State, cue_index, trace
+from termpool.ui.state import AidJob, Aiming, Phase, State, Waiting, cue_index, trace
 
 AID_STEP = 8  # event times of the aid's prediction run per frame (about 3 ms on the project's
 # machine, benchmarks/aid.py): a long prediction fills in over a few frames
@@ -34,18 +34,25 @@ def level(s: State) -> str:
     return s.opts.aid
 
 
+def aim_power(s: State) -> float:
+    """The power (0..1) the player aiming would shoot with now: set, charging, or their
+    last."""
+    ch = s.controls.charge
+    return ch.preset_level if ch.preset_level is not None else (
+        round(ch.level(s.now), 2) if ch.active else s.last_power)
+
+
 def shot(s: State) -> Shot | None:
-    """The shot the aid predicts: the shooter's aim and spin at the power they would shoot
-    with now (set, charging, or their last), or the computer's plan as its stick turns; None
-    when no shot is being aimed."""
+    """The shot the aid predicts: the shooter's aim and spin at `aim_power`, the computer's
+    plan as its stick turns, or an online opponent's stick at the power their aid has;
+    None when no shot is being aimed."""
     st = s.stroke
     if s.phase is Phase.AIM:
-        ch = s.controls.charge
-        power = ch.preset_level if ch.preset_level is not None else (
-            round(ch.level(s.now), 2) if ch.active else s.last_power)
-        return Shot(power_to_speed(power), st.angle, st.side, st.top)
+        return Shot(power_to_speed(aim_power(s)), st.angle, st.side, st.top)
     if isinstance(s.part, Aiming):
         return Shot(s.part.plan.speed, st.angle, st.side, st.top)
+    if isinstance(s.part, Waiting) and s.part.stick and s.part.power is not None:
+        return Shot(power_to_speed(s.part.power), st.angle, st.side, st.top)
     return None
 
 

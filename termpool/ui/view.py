@@ -352,6 +352,9 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
                  "placing the cue ball" if m.ball_in_hand and not s.part.placed else "aiming")
         watching = "watching · " if len(s.remote) == 2 else ""
         out.append((f"{watching}{name} is {doing}, on their own screen…", "dim"))
+        power = s.part.power
+        if s.part.stick and power is not None and aid.level(s) != "off":
+            out.append((f"{name}'s aid at {round(100 * power)}% power{_first_ball(s)}", "dim"))
     return out
 
 
@@ -385,11 +388,17 @@ def power_line(s: State) -> str:
         line = f"aid at {round(100 * s.last_power)}% power ({whose})"
     else:
         line = "power: " + ch.label
+    return line + _first_ball(s)
+
+
+def _first_ball(s: State) -> str:
+    """The first ball the aid sees hit, and its pocket if it goes in ("" if none)."""
     pred = aid.prediction(s)
-    if pred is not None and pred.ball is not None:
-        line += f" · first ball: the {s.match.ids[pred.ball]}"
-        if pred.object is not None and pred.object.end == "pocket":
-            line += f", into the {voice(s).pocket(pred.object.pocket)} pocket"
+    if pred is None or pred.ball is None:
+        return ""
+    line = f" · first ball: the {s.match.ids[pred.ball]}"
+    if pred.object is not None and pred.object.end == "pocket":
+        line += f", into the {voice(s).pocket(pred.object.pocket)} pocket"
     return line
 
 

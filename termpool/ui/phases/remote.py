@@ -12,6 +12,7 @@ from termpool.game.record import ReplayError, check_shot_params
 from termpool.physics.cue import clamp_tip
 from termpool.rules import words
 from termpool.rules.codes import Choice
+from termpool.ui import aid
 from termpool.ui.link import digest
 from termpool.ui.phases.place import clamp
 from termpool.ui.phases.turn import finish_shot, shoot, start_turn, to_menu
@@ -51,7 +52,8 @@ def share(s: State, t: float) -> None:
         s.link.share_aim(("place", *map(float, part.cursor)), t)
     elif isinstance(part, Aim):
         st = s.stroke
-        s.link.share_aim(("stick", float(st.angle), float(st.side), float(st.top)), t)
+        s.link.share_aim(("stick", float(st.angle), float(st.side), float(st.top),
+                          float(aid.aim_power(s))), t)
 
 
 def shown_aim(s: State) -> State:
@@ -59,13 +61,14 @@ def shown_aim(s: State) -> State:
     aim, part = s.link.aim, s.part
     try:
         kind, values = aim["kind"], [float(v) for v in aim["values"]]
-        if kind == "stick" and len(values) == 3 and all(map(math.isfinite, values)):
-            angle, side, top = values
+        if kind == "stick" and len(values) in (3, 4) and all(map(math.isfinite, values)):
+            angle, side, top, *power = values  # the power their aid has (not sent before)
             side, top = clamp_tip(side, top)
-            if (part.stick and (angle, side, top) ==
-                    (s.stroke.angle, s.stroke.side, s.stroke.top)):
+            power = min(max(power[0], 0.0), 1.0) if power else None
+            if (part.stick and (angle, side, top, power) ==
+                    (s.stroke.angle, s.stroke.side, s.stroke.top, part.power)):
                 return s
-            return replace(s, part=replace(part, stick=True, cursor=None),
+            return replace(s, part=replace(part, stick=True, cursor=None, power=power),
                            stroke=replace(s.stroke, angle=angle % 360.0, side=side, top=top))
         if kind == "place" and len(values) == 2 and s.match.ball_in_hand and not part.placed:
             x, y = clamp(s, *values)
