@@ -222,7 +222,8 @@ def _headless(args: argparse.Namespace, opts, keymap, files: dict):
             return 130
         except Stop as e:
             return 128 + e.signum
-        sys.stdout.write(screen + "\n")
+        # With --record - standard output carries the matches: the screen goes to stderr.
+        (sys.stderr if args.record == "-" else sys.stdout).write(screen + "\n")
         return 0
 
     return app, play
