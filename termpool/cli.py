@@ -327,7 +327,7 @@ def _sim(args: argparse.Namespace) -> int:
 
 
 def _replay(args: argparse.Namespace) -> int:
-    from termpool.game.record import ReplayError, read_replay, replay
+    from termpool.game.record import ReplayError, read_replays, replay
 
     if args.watch:
         if args.json:
@@ -346,39 +346,62 @@ def _replay(args: argparse.Namespace) -> int:
     from termpool.rules import words
 
     try:
-        data = read_replay(args.file)
-        players = data.get("match", {}).get("players")  # checked by read_replay
-        # The verdicts in the players' names on screen, as the record says them in JSON.
-        v = words.voice(players) if players and not args.json else words.RECORD
-        shots = replay(data, v)
+        matches = read_replays(args.file)
+        # The verdicts in the players' names on screen, as the record says them in JSON
+        # (the names are checked by read_replays).
+        names = [m.get("match", {}).get("players") for m in matches]
+        checked = [replay(m, words.voice(p) if p and not args.json else words.RECORD)
+                   for m, p in zip(matches, names, strict=True)]
     except ReplayError as e:
         return _fail(str(e))
     from termpool.text import shown
 
-    bad = [s for s in shots if not s["ok"]]
+    bad = sum(not s["ok"] for shots in checked for s in shots)
     if args.json:
         from termpool.files import to_json
 
+        one = [{"identical": all(s["ok"] for s in shots), "shots": shots} for shots in checked]
         try:
-            text = to_json({"identical": not bad, "shots": shots}, indent=1)
+            text = to_json(one[0] if len(one) == 1 else
+                           {"identical": not bad, "matches": one}, indent=1)
         except ValueError as e:
             return _fail(f"replay: the result cannot be written: {e}")
         sys.stdout.write(text + "\n")
     else:
-        for s in shots:
-            who = (players[s["player"]] if players and s["player"] in (0, 1)
-                   else f"player {s['player']}")
-            head = f"shot {s['n']} (frame {s['frame']}, {who}): "
-            if s["ok"]:
-                sys.stdout.write(shown(f"{head}identical, {s['events']} events; {s['reason']}")
-                                 + "\n")
-            else:
-                sys.stdout.write(shown(f"{head}DIFFERS: {'; '.join(s['differences'])}") + "\n")
-        n = len(shots)
-        verdict = "all identical" if not bad else f"{len(bad)} differ"
-        sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")
+        for k, (shots, players) in enumerate(zip(checked, names, strict=True), 1):
+            if len(checked) > 1:
+                mode = matches[k - 1].get("match", {}).get("mode")
+                mode = words.MODE_NAMES.get(mode, "") if isinstance(mode, str) else ""
+                who = "" if not players or players[0] == players[1] else " v ".join(players)
+                said = " · ".join(x for x in (mode, who) if x)
+                sys.stdout.write(shown(f"match {k} of {len(checked)}"
+                                       + (f" ({said})" if said else "") + ":") + "\n")
+            _replay_lines(shots, players)
+        if len(checked) > 1:
+            n = sum(map(len, checked))
+            verdict = "all identical" if not bad else f"{bad} differ"
+            sys.stdout.write(f"{len(checked)} matches, {n} shots: {verdict}\n")
     sys.stdout.flush()
     return 1 if bad else 0
+
+
+def _replay_lines(shots: list[dict], players: list[str] | None) -> None:
+    """One match's shots as `termpool replay` says them, and its verdict."""
+    from termpool.text import shown
+
+    for s in shots:
+        who = (players[s["player"]] if players and s["player"] in (0, 1)
+               else f"player {s['player']}")
+        head = f"shot {s['n']} (frame {s['frame']}, {who}): "
+        if s["ok"]:
+            sys.stdout.write(shown(f"{head}identical, {s['events']} events; {s['reason']}")
+                             + "\n")
+        else:
+            sys.stdout.write(shown(f"{head}DIFFERS: {'; '.join(s['differences'])}") + "\n")
+    n = len(shots)
+    bad = sum(not s["ok"] for s in shots)
+    verdict = "all identical" if not bad else f"{bad} differ"
+    sys.stdout.write(f"{n} {'shot' if n == 1 else 'shots'}: {verdict}\n")
 
 
 # -------------------------------------------------------------------------------- rules

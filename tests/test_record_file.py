@@ -203,13 +203,15 @@ def test_a_file_size_limit_leaves_the_old_file_whole(tmp_path) -> None:
     assert [f.name for f in data.rglob("*") if f.is_file()] in ([], ["history.jsonl"])
 
 
-def test_record_to_stdout_follows_the_screen(capsys, tmp_path) -> None:
+def test_record_to_stdout_is_all_stdout_has_and_the_screen_goes_to_stderr(capsys,
+                                                                          tmp_path) -> None:
     rc = cli.main([*PLAY, "--keys", keys(tmp_path, "enter space-hold 1.0 wait 1"), "--record",
                    "-"])
     out, err = capsys.readouterr()
-    assert rc == 0 and err == ""
-    saved = json.loads(out[out.index("\n{") + 1:])
+    assert rc == 0
+    saved = json.loads(out)  # a pipe gets the match and nothing else
     assert len(saved["shots"]) == 1
+    assert "You to shoot" in err  # the final screen, as it is shown without --record -
 
 
 def test_leaving_from_the_menu_says_there_is_nothing_to_save(capsys, tmp_path) -> None:
@@ -430,9 +432,9 @@ def test_record_to_stdout_is_json_lines_a_replay_reads_line_by_line(capsys, tmp_
     two = "enter space-hold 1.0 wait 1 q m down*4 enter enter space-hold 0.5 wait 1"
     rc = cli.main([*PLAY, "--keys", keys(tmp_path, two), "--record", "-"])
     out, err = capsys.readouterr()
-    assert rc == 0 and err == ""
-    lines = [x for x in out.splitlines() if x.startswith("{")]
-    matches = [json.loads(x) for x in lines]  # each line one whole JSON object
+    assert rc == 0 and err.count("\n") == 32  # the final screen
+    lines = out.splitlines()
+    matches = [json.loads(x) for x in lines]  # each line one whole JSON object, nothing else
     assert len(matches) == 2 and all(len(m["shots"]) == 1 for m in matches)
     assert matches[0]["shots"][0]["shot"] != matches[1]["shots"][0]["shot"]
     for line in lines:  # `termpool replay -` reads a line of it from stdin
@@ -440,3 +442,27 @@ def test_record_to_stdout_is_json_lines_a_replay_reads_line_by_line(capsys, tmp_
                            capture_output=True, text=True, timeout=120)
         assert p.returncode == 0, p.stderr
         assert "all identical" in p.stdout
+    # ... and the whole stream replays, match by match
+    p = subprocess.run([sys.executable, "-m", "termpool", "replay", "-"], input=out,
+                       capture_output=True, text=True, timeout=120)
+    said = p.stdout.splitlines()
+    assert p.returncode == 0, p.stderr
+    assert said[0] == "match 1 of 2 (practice):" and "match 2 of 2 (practice):" in said
+    assert said[-1] == "2 matches, 2 shots: all identical"
+    p = subprocess.run([sys.executable, "-m", "termpool", "replay", "-", "--json"], input=out,
+                       capture_output=True, text=True, timeout=120)
+    assert [m["identical"] for m in json.loads(p.stdout)["matches"]] == [True, True]
+    # One that differs is found, in its match, and the status says so.
+    bad = json.loads(lines[1])
+    bad["shots"][0]["final"][0]["x"] += 1e-9
+    p = subprocess.run([sys.executable, "-m", "termpool", "replay", "-"],
+                       input=lines[0] + "\n" + json.dumps(bad) + "\n",
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 1 and p.stdout.splitlines()[-1] == "2 matches, 2 shots: 1 differ"
+    # Watching shows one match: a stream of two is refused in one line.
+    f = tmp_path / "two.jsonl"
+    f.write_text(out)
+    assert cli.main(["replay", str(f), "--watch", "--headless", "--keys",
+                     keys(tmp_path, "q")]) == 2
+    assert capsys.readouterr().err == (f"termpool: replay: {f}: holds 2 matches (JSON Lines); "
+                                       "give one, e.g. the second with `sed -n 2p`\n")

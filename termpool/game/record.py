@@ -264,13 +264,33 @@ def parse_replay(text: str, where: str = "replay") -> dict:
     return data
 
 
-def read_replay(path: str | os.PathLike) -> dict:
-    """Read and parse a replay file ("-": standard input); raises ReplayError with one line."""
+def read_replays(path: str | os.PathLike) -> list[dict]:
+    """Read and parse a replay file ("-": standard input): one match, or several as JSON
+    Lines (a match a line, as `play --record -` writes them). Raises ReplayError with one
+    line (naming the line of a JSON Lines file)."""
     try:
         text = read_text(path, MAX_REPLAY_BYTES, "replay")
     except FileError as e:
         raise ReplayError(str(e)) from None
-    return parse_replay(text, "stdin" if os.fspath(path) == "-" else os.fspath(path))
+    where = "stdin" if os.fspath(path) == "-" else os.fspath(path)
+    try:
+        return [parse_replay(text, where)]
+    except ReplayError:
+        lines = [(k, line) for k, line in enumerate(text.splitlines(), 1) if line.strip()]
+        first = lines[0][1].strip() if lines else ""
+        if not (len(lines) > 1 and first.startswith("{") and first.endswith("}")):
+            raise
+    return [parse_replay(line, f"{where} line {k}") for k, line in lines]
+
+
+def read_replay(path: str | os.PathLike) -> dict:
+    """`read_replays` for a file that must hold one match."""
+    matches = read_replays(path)
+    if len(matches) > 1:
+        where = "stdin" if os.fspath(path) == "-" else os.fspath(path)
+        raise ReplayError(f"{where}: holds {len(matches)} matches (JSON Lines); give one, "
+                          "e.g. the second with `sed -n 2p`")
+    return matches[0]
 
 
 def check_records(data: dict) -> list[tuple[Scene, float]]:

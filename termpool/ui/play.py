@@ -52,7 +52,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--keymap", metavar="FILE", help="key bindings (default "
                    "$XDG_CONFIG_HOME/termpool/keys.conf)")
     p.add_argument("--headless", action="store_true",
-                   help="no terminal: play --keys on a virtual screen, print the final screen")
+                   help="no terminal: play --keys on a virtual screen, print the final screen "
+                   "(to stderr with --record -)")
     p.add_argument("--size", help="headless screen size (default 100x32)")
     p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
                    "'right*5 wait 0.2 space-hold 1.5'")
@@ -222,7 +223,8 @@ def _headless(args: argparse.Namespace, opts, keymap, files: dict):
             return 130
         except Stop as e:
             return 128 + e.signum
-        sys.stdout.write(screen + "\n")
+        # With --record - standard output carries the matches: the screen goes to stderr.
+        (sys.stderr if args.record == "-" else sys.stdout).write(screen + "\n")
         return 0
 
     return app, play
