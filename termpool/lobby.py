@@ -3,6 +3,11 @@ two of them, whose moves it passes on as they come, to the other player and to a
 watching. The games play their matches themselves, each its own copy, from the same
 settings and the same moves; the lobby never simulates anything.
 
+A player whose connection drops (without leaving the match) is away: the match waits for
+them for RESUME_WAIT_S, the others are told (AWAY), and the next game of that name to connect
+is put back in it, given its moves so far to catch up (START), while the others are told it
+is back (BACK). The other player may go on with their turn meanwhile; their moves wait too.
+
 Messages are termpool.wire's, one JSON object a line.
 """
 
@@ -16,6 +21,7 @@ from termpool import wire
 
 MAX_MOVES = 10_000  # a match's moves kept for those who come to watch it (a long match has
 # a few hundred)
+RESUME_WAIT_S = 300.0  # how long a match waits for a player whose connection dropped
 
 
 @dataclass
@@ -38,16 +44,20 @@ class Table:
     """A match between two seats: how it began and its moves so far, and who watches it."""
 
     game: dict
-    players: tuple[int, int]
+    players: list[int]  # the seats of its two players, in the match's order
     names: list[str]
     moves: list = field(default_factory=list)
     watchers: set[int] = field(default_factory=set)
+    away: set[int] = field(default_factory=set)  # sides (0, 1) whose connection dropped
+    timer: asyncio.TimerHandle | None = None  # when it stops waiting for them
 
 
 class Lobby:
     def __init__(self) -> None:
         self.tokens: dict[str, str] = {}  # a session's token -> its player's name
         self.seats: dict[int, Seat] = {}
+        self.waiting: list[Table] = []  # matches with a player away
+        self.resume_wait = RESUME_WAIT_S
         self._next = 1
 
     def admit(self, name: str) -> str:
@@ -99,6 +109,7 @@ class Lobby:
             seat = Seat(self._next, name, writer)
             self._next += 1
             self.seats[seat.id] = seat
+            self._resume(seat)
             self._players()
             while True:
                 line = await reader.readline()
@@ -132,7 +143,7 @@ class Lobby:
         elif kind == wire.MOVE and seat.where == "playing":
             self._move(seat, msg.get("move"))
         elif kind == wire.AIM and seat.where == "playing":
-            self._pass_on(seat, wire.AIM, aim=msg.get("aim"))
+            self._pass_on(seat.table, seat, wire.AIM, aim=msg.get("aim"))
         elif kind == wire.LEAVE:
             self._part(seat)
             self._players()
@@ -169,7 +180,7 @@ class Lobby:
             return
         self._withdraw(seat)
         # The challenger is the first player.
-        table = Table(game, (other.id, seat.id), [other.name, seat.name])
+        table = Table(game, [other.id, seat.id], [other.name, seat.name])
         for n, s in enumerate((other, seat)):
             s.table, s.where = table, "playing"
             self._send(s, wire.START, game=game, names=table.names, seat=n, moves=[])
@@ -197,11 +208,10 @@ class Lobby:
             self._send(seat, wire.REFUSED, why=wire.BAD)
             return
         table.moves.append(move)
-        self._pass_on(seat, wire.MOVE, move=move)
+        self._pass_on(table, seat, wire.MOVE, move=move)
 
-    def _pass_on(self, seat: Seat, kind: str, /, **fields) -> None:
-        """To the other player of `seat`'s match and to its watchers."""
-        table = seat.table
+    def _pass_on(self, table: Table, seat: Seat, kind: str, /, **fields) -> None:
+        """To the other player of `seat`'s match `table` and to its watchers."""
         for k in (*table.players, *sorted(table.watchers)):
             if k != seat.id and k in self.seats:
                 self._send(self.seats[k], kind, **fields)
@@ -226,15 +236,70 @@ class Lobby:
         if was == "watching":
             table.watchers.discard(seat.id)
             return
+        self._end(table, seat.name, seat)
+
+    def _end(self, table: Table, name: str, seat: Seat | None = None) -> None:
+        """`table` is over, `name` having left it: everyone still at it is told and is back
+        in the menu; it waits for no one any more."""
+        if table in self.waiting:
+            self.waiting.remove(table)
+        if table.timer is not None:
+            table.timer.cancel()
+            table.timer = None
         for k in (*table.players, *sorted(table.watchers)):
             other = self.seats.get(k)
-            if other is None or other is seat:
+            if other is None or other is seat or other.table is not table:
                 continue
             other.table, other.where = None, "menu"
-            self._send(other, wire.LEFT, name=seat.name)
+            self._send(other, wire.LEFT, name=name)
+
+    def _away(self, seat: Seat) -> None:
+        """`seat`'s connection dropped while it played: its match waits for it (unless the
+        other player is away too: then it is over)."""
+        table, seat.table = seat.table, None
+        side = table.players.index(seat.id)
+        table.away.add(side)
+        if len(table.away) == 2:
+            self._end(table, seat.name, seat)
+            return
+        if table not in self.waiting:
+            self.waiting.append(table)
+        if table.timer is not None:
+            table.timer.cancel()
+        table.timer = asyncio.get_running_loop().call_later(self.resume_wait, self._expire,
+                                                            table)
+        self._pass_on(table, seat, wire.AWAY, name=seat.name)
+
+    def _expire(self, table: Table) -> None:
+        """No one came back in time: the match is over."""
+        table.timer = None
+        if table in self.waiting:
+            self._end(table, " and ".join(table.names[k] for k in sorted(table.away)))
+            self._players()
+
+    def _resume(self, seat: Seat) -> None:
+        """A game that has just come: back in the match that waits for its player, if any."""
+        for table in self.waiting:
+            side = next((k for k in sorted(table.away) if table.names[k] == seat.name), None)
+            if side is None:
+                continue
+            table.away.discard(side)
+            if not table.away:
+                self.waiting.remove(table)
+                table.timer.cancel()
+                table.timer = None
+            table.players[side] = seat.id
+            seat.table, seat.where = table, "playing"
+            self._send(seat, wire.START, game=table.game, names=table.names, seat=side,
+                       moves=table.moves)
+            self._pass_on(table, seat, wire.BACK, name=seat.name)
+            return
 
     def gone(self, seat: Seat) -> None:
         self._withdraw(seat)
-        self._part(seat)
+        if seat.table is not None and seat.where == "playing":
+            self._away(seat)
+        else:
+            self._part(seat)
         self.seats.pop(seat.id, None)
         self._players()

@@ -8,7 +8,8 @@ ball in hand as the player moves it, for the other screens to show), LEAVE.
 Server to game: PLAYERS (players: id, name, where, with, challenge), CHALLENGED (by, name, game),
 DECLINED (name), WITHDRAWN (by, name: a challenge to this game is off), START (game, names,
 seat: 0 or 1, or None to watch; moves: the match's moves so far), MOVE (move), AIM (aim),
-LEFT (name), REFUSED (why: a code, below).
+LEFT (name), AWAY (name: a player's connection dropped; the match waits for them), BACK
+(name: ... and they are back), REFUSED (why: a code, below).
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ HELLO, WHERE, CHALLENGE, ANSWER, WATCH, MOVE, AIM, LEAVE = "hello", "where", "ch
     "answer", "watch", "move", "aim", "leave"
 PLAYERS, CHALLENGED, DECLINED, WITHDRAWN, START, LEFT, REFUSED = "players", "challenged", \
     "declined", "withdrawn", "start", "left", "refused"
+AWAY, BACK = "away", "back"
 
 # Why a challenge or a message was refused.
 BUSY = "busy"  # the player challenged is not in the lobby, or has a challenge open

@@ -153,6 +153,7 @@ def test_a_torn_last_line_is_one_corrupt_line_and_the_next_lines_stay_whole(tmp_
     json.dumps(line(level="expert")), json.dumps(line(result="drawn")),
     json.dumps(line(player="a\x1b[2Jb")), json.dumps(line(player="")),
     json.dumps(line(potting_shots=11)), json.dumps(line(side=2)), "\xff\xfe",
+    json.dumps(line(online=True, match=7)), json.dumps(line(online=True, match="")),
 ])
 def test_corrupt_lines_are_skipped_with_one_warning(tmp_path, bad) -> None:
     path = tmp_path / "history.jsonl"
@@ -246,6 +247,20 @@ def test_the_summary_counts_player_1_once_a_match_per_opponent() -> None:
     assert list(s["per_opponent"]) == ["easy", "hard", "player", "practice"]
     assert s["per_opponent"]["hard"]["pot_rate"] == 0.1
     assert len(s["last"]) == 4 and all(x["side"] == 0 for x in s["last"])
+
+
+def test_an_online_match_played_on_after_a_drop_counts_once_by_its_last_line() -> None:
+    def online(match: str, **kw) -> dict:
+        return line(level=None, opponent="Bob", online=True, match=match, **kw)
+
+    lines = [online("1a", result="unfinished", won=0, lost=0, shots=4, potting_shots=1,
+                    pots=1),
+             online("2b", result="lost", won=0, lost=1),  # another match, between them
+             online("1a", result="won", won=1, lost=0, shots=9, potting_shots=3, pots=3)]
+    s = h.summary(lines)
+    assert (s["all"]["matches"], s["all"]["won"], s["all"]["unfinished"]) == (2, 1, 0)
+    assert s["all"]["shots"] == 10 + 9
+    assert s["last"] == [lines[1], lines[2]]
 
 
 def test_the_summary_lists_the_last_twenty_oldest_first() -> None:

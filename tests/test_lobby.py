@@ -220,11 +220,62 @@ def test_who_may_be_challenged(lobby):
     assert bob.next(wire.REFUSED)["why"] == wire.BAD
 
 
-def test_a_player_who_drops_is_gone_from_the_match_and_the_list(lobby):
+def test_a_player_who_drops_is_away_and_the_match_ends_if_they_do_not_come_back(lobby):
+    lobby.resume_wait = 0.3
     (ann, bob), _ = matched(lobby, "ann", "bob")
     bob.close()
-    assert ann.next(wire.LEFT)["name"] == "bob"
+    assert ann.next(wire.AWAY)["name"] == "bob"
     ann.players(lambda ps: [p["name"] for p in ps] == ["ann"])
+    t0 = time.monotonic()
+    assert ann.next(wire.LEFT)["name"] == "bob"  # the wait is over
+    assert time.monotonic() - t0 > 0.2
+    assert lobby.waiting == []
+    late = Raw(lobby, "bob")  # too late: no match to be back in (not "playing")
+    assert where(late.next(wire.PLAYERS)["players"], "bob") == "menu"
+    assert where(ann.players(lambda ps: len(ps) == 2)["players"], "ann") == "menu"
+
+
+def test_a_player_who_comes_back_is_put_back_in_the_match_with_its_moves(lobby):
+    (ann, bob, cy), ids = in_lobby_raw(lobby, "ann", "bob", "cy")
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    bob.next(wire.START)
+    cy.send(wire.WATCH, to=ids["ann"])
+    cy.next(wire.START)
+    first, second = {"kind": "place", "x": 0.5, "y": 0.6, "at": "a"}, \
+        {"kind": "shot", "n": 2, "at": "b"}
+    ann.send(wire.MOVE, move=first)
+    assert bob.next(wire.MOVE)["move"] == first
+    bob.close()
+    assert ann.next(wire.AWAY)["name"] == "bob" and cy.next(wire.AWAY)["name"] == "bob"
+    ann.send(wire.MOVE, move=second)  # ann's turn goes on; the move waits for bob too
+    assert cy.next(wire.MOVE)["move"] == second
+    back = Raw(lobby, "bob")
+    start = back.next(wire.START)
+    assert (start["seat"], start["names"], start["game"]) == (1, ["ann", "bob"], GAME)
+    assert start["moves"] == [first, second]
+    assert ann.next(wire.BACK)["name"] == "bob" and cy.next(wire.BACK)["name"] == "bob"
+    assert lobby.waiting == []
+    ann.players(lambda ps: where(ps, "bob") == "playing" and where(ps, "ann") == "playing")
+    back.send(wire.MOVE, move={"kind": "shot", "n": 3})
+    assert ann.next(wire.MOVE)["move"] == {"kind": "shot", "n": 3}
+
+
+def test_leaving_a_match_that_waits_ends_it_and_a_player_away_on_both_sides_too(lobby):
+    (ann, bob), _ = matched(lobby, "ann", "bob")
+    bob.close()
+    ann.next(wire.AWAY)
+    ann.send(wire.LEAVE)
+    ann.players(lambda ps: where(ps, "ann") == "menu")
+    assert lobby.waiting == []
+    # Both dropped: nobody is left to wait, so the match is over.
+    (cy, dee), _ = matched(lobby, "cy", "dee")
+    cy.close()
+    dee.close()
+    Raw(lobby, "ann").players(lambda ps: "cy" not in [p["name"] for p in ps]
+                              and "dee" not in [p["name"] for p in ps])
+    assert lobby.waiting == []
 
 
 def test_a_game_without_a_good_token_or_with_garbage_is_refused(lobby):
@@ -338,6 +389,60 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     assert "someone online" in "\n".join(stats_lines(got))
     assert [json.loads(x)["player"] for x in
             (tmp_path / "ann.jsonl").read_text().splitlines()] == ["ann"]
+
+
+def play_a_shot(apps, power: float = 2.0, angle: float = 100.0) -> None:
+    """Whoever is to shoot shoots (the cue ball put down first if in hand); every screen
+    until the balls stop."""
+    n = len(apps[0].state.match.history)
+    mover = next(a for a in apps if a.state.phase in (Phase.AIM, Phase.PLACE))
+    if mover.state.phase is Phase.PLACE:
+        mover.key(Key("enter"), time.monotonic())
+    mover.state = shoot(mover.state, power, angle, 0.0, 0.0)
+    until(apps, lambda: all(len(a.state.match.history) == n + 1
+                            and a.state.phase is not Phase.RUN for a in apps), "the shot")
+
+
+def test_a_player_whose_connection_drops_is_back_in_the_match_when_they_return(lobby,
+                                                                             tmp_path):
+    from termpool.game.history import Recorder, read_history, summary
+    from termpool.ui.phases.turn import log_match
+
+    ann, bob = online(lobby, tmp_path)
+    break_online(ann, bob)
+    play_a_shot([ann, bob])
+    # Bob's connection drops: his game is gone (as a SIGHUP ends it: the match kept, his
+    # history's line "unfinished"); ann is told, and the match waits.
+    log_match(bob.state)
+    bob.state.link.close()
+    until([ann], lambda: ann.state.link.away == "bob", "ann told")
+    assert "bob's connection dropped: the match waits for them" in screen(ann, 100, 30)
+    if ann.state.phase in (Phase.AIM, Phase.PLACE):  # ann's turn: she may play on
+        play_a_shot([ann])
+    # Bob comes back (a new session, at its menu): he is in the match at once, its moves
+    # made, and plays his side again.
+    back = App(Options(colors="mono", player1="bob"), link=Link(lobby.path, lobby.admit("bob")),
+               history=Recorder(tmp_path / "bob.jsonl"))
+    until([ann, back], lambda: back.state.match is not None and back.state.link.resume is None
+          and back.state.phase is not Phase.RUN, "bob back in his match")
+    a, b = ann.state.match, back.state.match
+    assert len(b.history) == len(a.history) >= 2 and digest(a) == digest(b)
+    assert back.state.remote == (0,) and ann.state.remote == (1,)
+    assert "back in your match against ann" in screen(back, 100, 30)
+    until([ann], lambda: ann.state.link.away is None, "ann told he is back")
+    assert "bob is back" in screen(ann, 100, 30)
+    assert (back.state.phase is Phase.REMOTE) == (a.shooter == 0)
+    play_a_shot([ann, back], 3.0, 250.0)  # the match goes on, whoever is to shoot
+    assert digest(ann.state.match) == digest(back.state.match)
+    # Ann leaves; bob's history has both his lines, and counts the match once.
+    ann.key(Key("q"), time.monotonic())
+    ann.key(Key("m"), time.monotonic())
+    until([back], lambda: back.state.phase is Phase.MENU, "bob told")
+    lines = read_history(tmp_path / "bob.jsonl")[0]
+    assert len(lines) == 2 and lines[0]["match"] == lines[1]["match"]
+    assert lines[1]["shots"] >= lines[0]["shots"]
+    got = summary(lines)
+    assert got["all"]["matches"] == 1 and got["last"] == [lines[1]]
 
 
 def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):

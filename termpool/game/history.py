@@ -13,7 +13,9 @@ practice); `cpu`: this line's player is the computer; `level`: the computer's le
 played, else null; `opponent`: null in practice; `race`: frames to win; `won`, `lost`: frames;
 `result`: "won", "lost", "unfinished" (left before the end) or "practice"; `online`: present
 and true on the line of a match played against someone on another screen (`termpool serve`),
-where the file holds only this player's line, whichever side they were.
+where the file holds only this player's line, whichever side they were; `match`: such a
+match's id (its seed, in hex), so that a match left by a dropped connection ("unfinished")
+and played on when the player came back counts once, as its last line says.
 
 Every figure comes from the match's shot records (the engine's final ball states and the
 referee's outcomes), never from its words:
@@ -120,7 +122,8 @@ def match_lines(match, cpu: tuple[bool, bool], level: str | None,
             "race": match.frames, "won": 0 if practice else match.scores[p],
             "lost": 0 if practice else match.scores[1 - p], "result": result, **figures,
             "pot_rate": round(figures["potting_shots"] / shots, 4) if shots else 0.0,
-            **({"online": True} if online and not practice else {}),
+            **({"online": True, "match": f"{match.seed:x}"} if online and not practice
+               else {}),
         })
     return lines
 
@@ -209,6 +212,8 @@ def check_line(d: Any) -> dict:
     }
     if "online" in d and d["online"] is not True:
         raise ValueError("online: not a valid value")
+    if "match" in d and not (isinstance(d["match"], str) and 0 < len(d["match"]) <= 32):
+        raise ValueError("match: not a valid value")
     for key, ok in checks.items():
         if key not in d:
             raise ValueError(f"missing '{key}'")
@@ -293,10 +298,13 @@ def summary(lines: list[dict]) -> dict[str, Any]:
     """What the Stats screen and `termpool stats` show: player 1's lines (you, against the
     computer and in practice; the first player of a two-player game) and the lines of matches
     played online (the file's only line of such a match, either side), so that each match
-    counts once; the other player's lines are in the file, for the record. In all, per
+    counts once (a match played on after a dropped connection: its last line); the other
+    player's lines are in the file, for the record. In all, per
     opponent (GROUPS: only those played), and the last LAST matches, oldest first."""
     mine = [line for line in lines
             if not line["cpu"] and (line["side"] == 0 or line.get("online"))]
+    last = {line["match"]: k for k, line in enumerate(mine) if "match" in line}
+    mine = [line for k, line in enumerate(mine) if last.get(line.get("match"), k) == k]
     per = {g: totals([ln for ln in mine if group_of(ln) == g]) for g in GROUPS}
     return {"all": totals(mine), "per_opponent": {g: t for g, t in per.items() if t["matches"]},
             "last": mine[-LAST:]}

@@ -49,6 +49,10 @@ class Link:
         self.start: dict | None = None  # a match to start: game, names, seat
         self.moves: deque = deque()  # the other player's moves, in order
         self.left: str | None = None  # the other player has left the match
+        self.away: str | None = None  # ... or their connection dropped, and it waits for them
+        self.said: deque = deque()  # (AWAY or BACK, name): news of the match to say
+        self.resume: int | None = None  # this player's side in a match they are back in,
+        # until its moves so far are made (made as a watcher's are)
         self.backlog = 0  # moves made before this screen joined the match (to watch)
         self.aim: dict | None = None  # the other player's stick or ball in hand, the latest
         self._aim_out: tuple | None = None  # this player's, as last sent, and when
@@ -122,7 +126,7 @@ class Link:
             self.moves = deque(m for m in past if isinstance(m, dict)) \
                 if isinstance(past, list) else deque()
             self.backlog = len(self.moves)  # made at once: they are over already
-            self.left = None
+            self.left = self.away = None
         elif kind == wire.MOVE and isinstance(msg.get("move"), dict):
             self.moves.append(msg["move"])
             self.aim = None  # what the move ends: its stick, its ball in hand
@@ -130,6 +134,10 @@ class Link:
             self.aim = msg["aim"]
         elif kind == wire.LEFT:
             self.left = str(msg.get("name", ""))
+        elif kind in (wire.AWAY, wire.BACK):
+            name = str(msg.get("name", ""))
+            self.away = name if kind == wire.AWAY else None
+            self.said.append((kind, name))
 
     def share_aim(self, aim: tuple, t: float) -> None:
         """Send this player's stick (angle, side, top) or ball in hand (x, y) when it has

@@ -351,10 +351,18 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         doing = ("answering" if m.option is not None else
                  "placing the cue ball" if m.ball_in_hand and not s.part.placed else "aiming")
         watching = "watching · " if len(s.remote) == 2 else ""
-        out.append((f"{watching}{name} is {doing}, on their own screen…", "dim"))
-        power = s.part.power
-        if s.part.stick and power is not None and aid.level(s) != "off":
-            out.append((f"{name}'s aid at {round(100 * power)}% power{_first_ball(s)}", "dim"))
+        link = s.link
+        if link is not None and link.resume is not None:
+            out.append(("back in the match: making its moves so far…", "dim"))
+        elif link is not None and link.away == m.players[m.shooter]:
+            out.append((f"{name}'s connection dropped: waiting for them to come back…",
+                        "dim"))
+        else:
+            out.append((f"{watching}{name} is {doing}, on their own screen…", "dim"))
+            power = s.part.power
+            if s.part.stick and power is not None and aid.level(s) != "off":
+                out.append((f"{name}'s aid at {round(100 * power)}% power{_first_ball(s)}",
+                            "dim"))
     return out
 
 

@@ -85,6 +85,8 @@ def tick(s: State, t: float) -> State:
             remote.share(s, t)
     if s.box is not None:  # paused or asking: a shot waits
         return shot.pause(s) if isinstance(s.part, Run) else s
+    if s.phase is Phase.MENU and s.link is not None and not s.link.closed:
+        return lobby.menu_tick(s, t)
     step = TICKS.get(s.phase)
     return s if step is None else step(s, t)
 
@@ -97,7 +99,8 @@ def wake_in(s: State, t: float) -> float | None:
         return None
     if s.phase in (Phase.RUN, Phase.CPU) or aid.running(s):
         return 0.0
-    if s.phase is Phase.LOBBY:
+    if s.phase is Phase.LOBBY or s.phase is Phase.MENU and s.link is not None \
+            and not s.link.closed:  # the menu: a match to be back in may come
         return lobby.LOBBY_POLL_S
     if s.phase is Phase.REMOTE:
         return remote.REMOTE_POLL_S

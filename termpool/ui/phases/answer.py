@@ -8,7 +8,7 @@ from dataclasses import replace
 from termpool.rules import words
 from termpool.rules.codes import Option
 from termpool.ui.phases.lobby import open_lobby
-from termpool.ui.phases.turn import new_match, own_move, start_turn, tell, to_menu
+from termpool.ui.phases.turn import new_match, own_move, quit_game, start_turn, tell, to_menu
 from termpool.ui.state import Phase, State
 from termpool.ui.watch import Watch
 
@@ -36,7 +36,7 @@ def key(s: State, key) -> State | None:
     if key.name == "w":  # watch the match just played, then come back here
         return replace(s, watch=Watch(m.to_json(), s.depth))
     if key.name == "q" or s.keymap.action(key) == "quit":
-        return replace(s, done=True)  # the box says "q: quit": no second question on top
+        return quit_game(s)  # the box says "q: quit": no second question on top
     return None
 
 

@@ -78,6 +78,21 @@ def key(s: State, key, action: str | None, t: float) -> State | None:
     return None
 
 
+def menu_tick(s: State, t: float) -> State:
+    """The menu under a server: a match this player is back in (their connection had
+    dropped) starts at once, its moves so far made first (ui.phases.remote)."""
+    link = s.link
+    link.poll()
+    if link.start is None:
+        return s
+    seat = link.start.get("seat")
+    s = start_online(s, link.start)
+    if s.match is None or seat not in (0, 1) or link.resume is not None:
+        return s  # ... with moves to make: said when they are made
+    other = shown(s.match.players[1 - seat])[:16]
+    return replace(s, message=((f"back in your match against {other}", "turn"),))
+
+
 def tick(s: State, t: float) -> State:
     link = s.link
     if link.poll():
@@ -116,7 +131,10 @@ def start_online(s: State, start: dict) -> State:
                        eight_break=game["eight_break"], theme=game["theme"])
         if seat not in (0, 1, None) or not (isinstance(names, list) and len(names) == 2):
             raise ValueError("names")
-        remote = (0, 1) if seat is None else (1 - seat,)  # None: watching
+        # None: watching. A player back in their match (its moves so far to make) makes
+        # them as a watcher does, and then plays their side (remote.tick).
+        s.link.resume = seat if seat is not None and s.link.backlog else None
+        remote = (0, 1) if seat is None or s.link.resume is not None else (1 - seat,)
         return begin_match(s, opts, tuple(str(n) for n in names), int(game["seed"]),
                            (False, False), remote=remote)
     except (KeyError, TypeError, ValueError, OverflowError) as e:

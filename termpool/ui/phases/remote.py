@@ -8,15 +8,17 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from termpool import wire
 from termpool.game.record import ReplayError, check_shot_params
 from termpool.physics.cue import clamp_tip
 from termpool.rules import words
 from termpool.rules.codes import Choice
+from termpool.text import shown
 from termpool.ui import aid
 from termpool.ui.link import digest
 from termpool.ui.phases.place import clamp
 from termpool.ui.phases.turn import finish_shot, shoot, start_turn, to_menu
-from termpool.ui.state import Aim, Place, Run, State, Waiting
+from termpool.ui.state import Aim, Place, Run, State, Waiting, shooter_is_remote
 
 REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
 OUT_OF_STEP = "the two screens' matches differ; the match has ended (it is kept)"
@@ -34,6 +36,12 @@ def check(s: State) -> State:
     player has left or the server has gone."""
     link = s.link
     link.poll()
+    while link.said:
+        kind, name = link.said.popleft()
+        if s.match is not None and s.match.winner is None:  # an end on show stays as it is
+            line = (f"{name}'s connection dropped: the match waits for them (Q leaves it)",
+                    "foul") if kind == wire.AWAY else (f"{name} is back", "turn")
+            s = replace(s, message=(line,))
     if link.left is not None:
         name, link.left = link.left, None
         if s.match is not None and s.match.winner is not None:  # over: its end stays on show
@@ -88,6 +96,21 @@ def tick(s: State, t: float) -> State:
     move = s.link.moves.popleft()
     behind = s.link.backlog > 0  # a move made before this screen came to watch
     s.link.backlog = max(0, s.link.backlog - 1)
+    if behind and not s.link.backlog and s.link.resume is not None:
+        # A player back in their match: with its last move so far, they play their side
+        # again (from that move's turn on).
+        seat, s.link.resume = s.link.resume, None
+        s = _make(replace(s, remote=(1 - seat,)), move, behind)
+        if s.match is None:  # it ended
+            return s
+        back = f"back in your match against {shown(s.match.players[1 - seat])[:16]}"
+        return replace(s, message=((back, "turn"), *s.message))
+    return _make(s, move, behind)
+
+
+def _make(s: State, move, behind: bool) -> State:
+    """The other player's `move` made on this screen's match (`behind`: one made before
+    this screen came, played out at once)."""
     m = s.match
     if not isinstance(move, dict) or move.get("at") != digest(m):
         return ended(s, OUT_OF_STEP)
@@ -95,6 +118,8 @@ def tick(s: State, t: float) -> State:
     try:
         if kind == "place":
             m.place_cue(float(move["x"]), float(move["y"]))  # ValueError: not there, not finite
+            if not shooter_is_remote(s):  # one's own, before the connection dropped
+                return start_turn(s)
             return replace(s, part=Waiting(placed=True))  # their shot comes next
         if kind == "choose":
             choice = Choice(move["choice"])

@@ -224,6 +224,14 @@ def record(s: State) -> tuple[State, Match | None]:
     return s, s.played[-1] if s.played else m
 
 
+def quit_game(s: State) -> State:
+    """The player quits termpool: an online match is left for the other player first (a
+    connection that merely drops leaves the match waiting for them to come back)."""
+    if s.remote:
+        s.link.send(LEAVE)
+    return replace(s, done=True)
+
+
 def to_menu(s: State) -> State:
     """Leave the match (or the lobby) for the menu: the match is saved and added to the
     history first; an online match is left for the other player too, and the lobby's
