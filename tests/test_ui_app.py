@@ -14,6 +14,8 @@ import pytest
 
 from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.params import BALL_RADIUS
+from termpool.physics.table import POCKET_NAMES
+from termpool.rules import words
 from termpool.ui import aid
 from termpool.ui.app import App, Options
 from termpool.ui.controls import PowerCharge
@@ -802,22 +804,29 @@ def eight_on_the_8(app: App):
     return app
 
 
-def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to():
+def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to_until_one_is_picked():
     app = app_for(mode="8ball", opponent="human")
     app.key(Key("enter"), 0.0)
     eight_on_the_8(app)
     assert aid.called(app.state) == ("8", "foot_left")
     assert "calling the 8 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
+    app.key(Key("left"), 0.5)  # unpicked, the call follows the aim
+    app.key(Key("left", kind="release"), 0.51)
+    assert aid.called(app.state) == ("8", POCKET_NAMES[aid.aimed_pocket(app.state)])
+    app.key(Key("right"), 0.6)
+    app.key(Key("right", kind="release"), 0.61)
     app.key(Key("c"), 1.0)  # the player picks another pocket
-    assert aid.called(app.state)[1] != "foot_left"
-    app.key(Key("left"), 2.0)
-    app.key(Key("left", kind="release"), 2.01)
-    app.key(Key("right"), 2.1)
-    app.key(Key("right", kind="release"), 2.11)
-    assert aid.called(app.state) == ("8", "foot_left")  # a new aim: the call follows it again
+    picked = aid.called(app.state)
+    assert picked[1] != "foot_left"
+    for t in (2.0, 2.2, 2.4):  # ... and it stays called however the aim moves
+        app.key(Key("left"), t)
+        app.key(Key("left", kind="release"), t + 0.01)
+        assert aid.called(app.state) == picked
+    text = screen_text(app.cells(120, 40)[0])
+    assert f"calling the 8 in the {words.voice(('A', 'B')).pocket(picked[1])} pocket" in text
     app.key(Key("space"), 3.0)
     app.key(Key("space", kind="release"), 3.3)
-    assert app.state.part.shot.shot.called == ("8", "foot_left")
+    assert app.state.part.shot.shot.called == picked
 
 
 def test_holding_space_to_place_the_ball_does_not_also_shoot():

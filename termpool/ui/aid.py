@@ -130,8 +130,8 @@ def aimed_pocket(s: State) -> int:
 
 def called(s: State) -> tuple[str, str]:
     """The call for this shot (the 8, which is the only ball ever called): the pocket the
-    aim sends it to, unless the player picked one with C. Reads the aid as it stands (an
-    update refreshes it first)."""
+    aim sends it to, unless the player picked one with C (which stays called for the shot,
+    however the aim moves). Reads the aid as it stands (an update refreshes it first)."""
     k = s.stroke.called_k if s.stroke.call_picked else aimed_pocket(s)
     return "8", POCKET_NAMES[k % len(POCKET_NAMES)]
 

@@ -57,8 +57,9 @@ def key(s: State, key, action: str | None, t: float) -> State:
     m, st = s.match, s.stroke
     if action in AIM_KEYS:
         angle = (st.angle + s.controls.aim.step(key, t)) % 360.0
-        # A new aim: the 8's call follows it again.
-        return replace(s, stroke=replace(st, angle=angle, call_picked=False))
+        # A pocket picked with C stays called as the aim moves (the aid warns of an 8
+        # heading elsewhere); until then the call follows the aim.
+        return replace(s, stroke=replace(st, angle=angle))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
         # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue limit
@@ -142,4 +143,4 @@ def point(s: State, x: float, y: float) -> State:
     if math.hypot(x - cx, y - cy) < 1e-9:
         return s
     angle = math.degrees(math.atan2(y - cy, x - cx)) % 360.0
-    return replace(s, stroke=replace(s.stroke, angle=angle, call_picked=False))
+    return replace(s, stroke=replace(s.stroke, angle=angle))
