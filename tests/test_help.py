@@ -347,3 +347,13 @@ def test_no_key_or_paragraph_is_split_across_pages_where_it_fits_one(cols, rows)
                       .split("\n\n")]
         for entry in keys + paragraphs:
             assert len(entry) > height or _within(entry, pages), entry
+
+
+def test_a_page_after_the_keys_says_what_the_aim_aids_lines_are() -> None:
+    from termpool.ui.state import help_of
+
+    app = App(Options(mode="8ball", colors="mono"))
+    pages = help_of(app.state, 100, 40)
+    (aid,) = [lines for title, lines in pages if title.startswith("the aim aid")]
+    text = " ".join(" ".join(line.split()) for line in aid)
+    assert "Pink" in text and "the cue ball after the hit" in text and "ring (o)" in text

@@ -47,6 +47,20 @@ def keymap_rows(keymap) -> list[tuple[str, str]]:
     return rows
 
 
+# What the aim aid draws (its colours, and in mono its marks): a page after the keys.
+AID_LEGEND = [
+    ("Dots (. in mono)", "the cue ball's path to the first ball it meets, through up to three "
+     "cushions; a ring (o) is the cue ball where they touch."),
+    ("Pink (- / | \\)", "that ball's path, on to its first cushion, ball or pocket: throw, "
+     "a rattle in the jaws and a pocket missed all show."),
+    ("Green dots (:)", "the cue ball after the hit, to its next contact or rest, curving "
+     "with follow or draw."),
+    ("Below the table", "the power the aid shows the shot at, the first ball it sees hit and, "
+     "when it sees a pot, the pocket; a red line when the referee would call it a foul."),
+    ("G", "every path, then the ghost ball only, then off."),
+]
+
+
 def _wrapped(rows: Sequence[tuple[str, str]], width: int) -> list[list[str]]:
     """Each (keys, what they do) as lines at most `width` wide: what a key does wrapped
     under itself, never cut."""
@@ -146,12 +160,17 @@ def paginate_entries(entries: list[list[str]], height: int,
 
 def help_pages(keys: Sequence[tuple[str, str]], mode: str | None, cols: int, rows: int,
                **how) -> list[tuple[str, list[str]]]:
-    """The help box's pages for a cols x rows screen: the keys, then the rules of `mode` (of
+    """The help box's pages for a cols x rows screen: the keys, what the aim aid draws, then
+    the rules of `mode` (of
     every mode when None), each page with a footer that says how to turn pages and close the
     box. `how` goes to `rules_page` (three_foul, eight_break, theme)."""
     width = max(20, cols - BOX_EDGE)
     height = max(3, rows - BOX_ROWS)
     pages = [("keys", p) for p in paginate_entries(key_entries(keys, cols, height), height)]
+    aid = [line for i, (head, text) in enumerate(AID_LEGEND)
+           for line in ([""] if i else []) + textwrap.wrap(f"{head}: {text}", width,
+                                                           break_on_hyphens=False)]
+    pages += [("the aim aid", p) for p in paginate(aid, height)]
     for m in [mode] if mode is not None else list(MODE_NAMES):
         title = f"{MODE_NAMES[m]} rules"
         pages += [(title, p) for p in paginate(rules_lines(m, width, **how), height)]
