@@ -89,12 +89,13 @@ class Lobby:
             return " v ".join(table.names)
         return table.names[1] if table.names[0] == seat.name else table.names[0]
 
-    def _challenge_of(self, seat: Seat) -> str | None:
-        """The challenge a player in the lobby is in: "to bob" or "from ann"."""
+    def _challenge_of(self, seat: Seat) -> dict | None:
+        """The challenge a player in the lobby is in: {"to": id} or {"from": id} (the other
+        player's seat), for each screen to say in its own words."""
         if seat.challenge in self.seats:
-            return f"to {self.seats[seat.challenge].name}"
+            return {"to": seat.challenge}
         by = next((s for s in self.seats.values() if s.challenge == seat.id), None)
-        return None if by is None else f"from {by.name}"
+        return None if by is None else {"from": by.id}
 
     async def connection(self, reader: asyncio.StreamReader,
                          writer: asyncio.StreamWriter) -> None:
@@ -157,6 +158,8 @@ class Lobby:
             self._send(seat, wire.REFUSED, why=wire.BAD)
         elif other is None:
             self._send(seat, wire.REFUSED, why=wire.GONE)
+        elif other.name == seat.name:  # one player on two screens
+            self._send(seat, wire.REFUSED, why=wire.SELF)
         elif (other is seat or other.where != "lobby" or seat.challenge is not None
               or other.challenge is not None  # waiting for their own answer
               or any(s.challenge in (other.id, seat.id)  # one of them has one to answer

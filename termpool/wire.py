@@ -5,7 +5,8 @@ bit for bit, so a shot sent is the shot struck on both sides.
 Game to server: HELLO (token), WHERE (in the lobby or not), CHALLENGE (to, game), ANSWER (to,
 yes), WATCH (to: a player whose match to watch), MOVE (move), AIM (aim: the stick or the
 ball in hand as the player moves it, for the other screens to show), LEAVE.
-Server to game: PLAYERS (players: id, name, where, with, challenge), CHALLENGED (by, name, game),
+Server to game: PLAYERS (players: id, name, where, with, challenge: {"to": id} or {"from":
+id}), CHALLENGED (by, name, game),
 DECLINED (name), WITHDRAWN (by, name: a challenge to this game is off), START (game, names,
 seat: 0 or 1, or None to watch; moves: the match's moves so far), MOVE (move), AIM (aim),
 LEFT (name), AWAY (name: a player's connection dropped; the match waits for them), BACK
@@ -30,6 +31,7 @@ AWAY, BACK = "away", "back"
 BUSY = "busy"  # the player challenged is not in the lobby, or has a challenge open
 GONE = "gone"  # the player challenged has left
 BAD = "bad"  # a message the server cannot read
+SELF = "self"  # the player challenged is the challenger, on another screen
 
 MAX_LINE = 64 * 1024  # a longer line is not a message: the connection is closed
 

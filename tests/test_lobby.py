@@ -203,6 +203,17 @@ def test_a_withdrawn_challenge_leaves_the_screen(lobby):
     assert "ann withdrew the challenge" in text and "challenges you" not in text
 
 
+def test_one_player_on_two_screens_cannot_challenge_themselves(lobby):
+    (ann, _bob), _ = in_lobby_raw(lobby, "ann", "bob")
+    other = Raw(lobby, "ann")
+    other.send(wire.WHERE, lobby=True)
+    seen = ann.players(lambda ps: [p["name"] for p in ps].count("ann") == 2
+                       and all(p["where"] == "lobby" for p in ps))
+    me = next(p["id"] for p in seen["players"] if p["name"] == "ann" and p["id"] != seen["you"])
+    ann.send(wire.CHALLENGE, to=me, game=GAME)
+    assert ann.next(wire.REFUSED)["why"] == wire.SELF
+
+
 def test_who_may_be_challenged(lobby):
     ann, bob = Raw(lobby, "ann"), Raw(lobby, "bob")
     ann.send(wire.WHERE, lobby=True)
@@ -211,7 +222,7 @@ def test_who_may_be_challenged(lobby):
     ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)  # bob is in the menu
     assert ann.next(wire.REFUSED)["why"] == wire.BUSY
     ann.send(wire.CHALLENGE, to=ids["ann"], game=GAME)  # oneself
-    assert ann.next(wire.REFUSED)["why"] == wire.BUSY
+    assert ann.next(wire.REFUSED)["why"] == wire.SELF
     ann.send(wire.CHALLENGE, to=999, game=GAME)
     assert ann.next(wire.REFUSED)["why"] == wire.GONE
     ann.send(wire.CHALLENGE, to=ids["bob"], game={"mode": "8ball"})  # not a whole game
@@ -702,5 +713,10 @@ def test_the_lobby_shows_who_is_in_a_challenge(lobby):
     ann.key(Key("enter"), time.monotonic())  # bob, first by name
     until([ann, bob, cy], lambda: "a challenge from ann" in screen(cy), "cy's list")
     assert "ann  in the lobby, a challenge to bob" in screen(cy)
+    # Each of the two sees themselves as "you"; bob, answering, sees no game of his own.
+    until([ann, bob], lambda: "bob  in the lobby, a challenge from you" in screen(ann)
+          and "ann  in the lobby, a challenge to you" in screen(bob), "the two lists")
+    assert "ann challenges you to 8-ball" in screen(bob) and "game: ◀" not in screen(bob)
+    assert "game: ◀" in screen(ann)
     bob.key(Key("n"), time.monotonic())
     until([ann, bob, cy], lambda: "a challenge" not in screen(cy), "the challenge gone")

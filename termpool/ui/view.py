@@ -461,9 +461,14 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
             return f"playing {with_} (Enter: watch)" if with_ else "playing (Enter: watch)"
         if w == "watching":
             return f"watching {with_}" if with_ else "watching"
-        if w == "lobby" and p.get("challenge"):  # "to bob" or "from ann"
-            return f"in the lobby, a challenge {shown(str(p['challenge']))[:24]}"
+        c = p.get("challenge")
+        if w == "lobby" and isinstance(c, dict) and c:  # {"to": id} or {"from": id}
+            way, who = next(iter(c.items()))
+            name = "you" if who == link.you else shown(str(names.get(who, "someone")))[:16]
+            return f"in the lobby, a challenge {'to' if way == 'to' else 'from'} {name}"
         return {"lobby": "in the lobby", "menu": "in the menu"}.get(w, "")
+
+    names = {p.get("id"): p.get("name", "") for p in link.players}
 
     for n, p in enumerate(others):
         mark = "▶ " if n == k else "  "
@@ -472,7 +477,9 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
     if not others:
         lines.append(("  nobody else yet: ask a friend to connect", DIM_TEXT_C.rgb))
     game = MODE_NAMES[LOBBY_GAMES[part.game]]
-    lines += [("", None), (f"game: ◀ {game} ▶", TEXT_C.rgb), ("", None)]
+    lines.append(("", None))
+    if link.challenged is None:  # the game of one's own challenges (not while answering one)
+        lines += [(f"game: ◀ {game} ▶", TEXT_C.rgb), ("", None)]
     if link.challenged is not None:
         c = link.challenged
         what = MODE_NAMES.get((c.get("game") or {}).get("mode"), "a game")

@@ -14,7 +14,8 @@ from termpool.ui.state import LOBBY_GAMES, Lobby, Menu, State, lobby_choice
 
 LOBBY_POLL_S = 0.1  # how often the lobby looks for news while it is on screen
 REFUSALS = {wire.BUSY: "busy: not in the lobby, or in a challenge already",
-            wire.GONE: "that player has left", wire.BAD: "the server could not read that"}
+            wire.GONE: "that player has left", wire.BAD: "the server could not read that",
+            wire.SELF: "that is you, on another screen"}
 
 
 def open_lobby(s: State) -> State:
