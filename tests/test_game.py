@@ -717,3 +717,18 @@ def test_a_record_from_before_the_re_rack_rule_loads_and_replays() -> None:
     m = Match.from_json(data)
     assert m.eight_break == "rerack" and m.state.is_break and m.state.eight_break == "rerack"
     assert m.last_outcome.respot == ("8",) and not m.last_outcome.rerack
+
+
+def test_a_player_who_concedes_gives_the_other_the_match_and_an_end_stays_as_it_was() -> None:
+    m = Match("9ball", frames=3, seed=1)
+    run = m.begin(Shot(6.0, 0.0))
+    with pytest.raises(ValueError, match="a shot is still running"):
+        m.concede(0)  # a shot first ends
+    run.finish()
+    scores = list(m.scores)
+    m.concede(1)
+    assert (m.winner, m.conceded, m.scores) == (0, 1, scores)  # the frames as they stood
+    m.concede(0)  # over: nothing changes
+    assert (m.winner, m.conceded) == (0, 1)
+    with pytest.raises(ValueError, match="player must be 0 or 1"):
+        Match("8ball").concede(2)

@@ -154,6 +154,7 @@ def test_a_torn_last_line_is_one_corrupt_line_and_the_next_lines_stay_whole(tmp_
     json.dumps(line(player="a\x1b[2Jb")), json.dumps(line(player="")),
     json.dumps(line(potting_shots=11)), json.dumps(line(side=2)), "\xff\xfe",
     json.dumps(line(online=True, match=7)), json.dumps(line(online=True, match="")),
+    json.dumps(line(forfeit=False)),
 ])
 def test_corrupt_lines_are_skipped_with_one_warning(tmp_path, bad) -> None:
     path = tmp_path / "history.jsonl"

@@ -383,14 +383,19 @@ def test_an_online_match_is_the_same_on_both_screens(lobby, tmp_path):
     mover, watcher = (ann, bob) if a.shooter == 0 else (bob, ann)
     assert watcher.state.phase is Phase.REMOTE
     assert mover.state.phase in (Phase.AIM, Phase.PLACE, Phase.OPTION)
-    # Ann leaves: bob is told, is back in the menu, and keeps only his own line.
+    # Ann leaves (the quit box says what it costs): bob is told, wins the match by her
+    # leaving, is back in the menu, and keeps only his own line.
     ann.key(Key("q"), time.monotonic())
+    assert "leaving gives bob the match" in screen(ann, 100, 30)
     ann.key(Key("m"), time.monotonic())
     until([bob], lambda: bob.state.phase is Phase.MENU, "bob told")
     text = screen(bob, 100, 30)
-    assert "ann has left the match" in text
+    assert "ann has left the match: you win it" in text
     lines = [json.loads(x) for x in (tmp_path / "bob.jsonl").read_text().splitlines()]
     assert [x["player"] for x in lines] == ["bob"] and lines[0]["opponent"] == "ann"
+    assert (lines[0]["result"], lines[0]["forfeit"]) == ("won", True)
+    (hers,) = [json.loads(x) for x in (tmp_path / "ann.jsonl").read_text().splitlines()]
+    assert (hers["result"], hers["forfeit"]) == ("lost", True)
     # Bob was the second player, yet his Stats count the match, as one against someone
     # online.
     from termpool.game.history import read_history, summary
@@ -454,6 +459,19 @@ def test_a_player_whose_connection_drops_is_back_in_the_match_when_they_return(l
     assert lines[1]["shots"] >= lines[0]["shots"]
     got = summary(lines)
     assert got["all"]["matches"] == 1 and got["last"] == [lines[1]]
+
+
+def test_leaving_while_the_other_player_is_away_gives_them_nothing(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    break_online(ann, bob)
+    bob.state.link.close()
+    until([ann], lambda: ann.state.link.away == "bob", "ann told")
+    ann.key(Key("q"), time.monotonic())
+    assert "Quit termpool?" in screen(ann, 100, 30)
+    assert "leaving gives" not in screen(ann, 100, 30)
+    ann.key(Key("m"), time.monotonic())
+    (hers,) = [json.loads(x) for x in (tmp_path / "ann.jsonl").read_text().splitlines()]
+    assert hers["result"] == "unfinished" and "forfeit" not in hers
 
 
 def test_a_screen_that_comes_to_watch_catches_up_and_follows(lobby, tmp_path):

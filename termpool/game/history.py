@@ -15,7 +15,8 @@ played, else null; `opponent`: null in practice; `race`: frames to win; `won`, `
 and true on the line of a match played against someone on another screen (`termpool serve`),
 where the file holds only this player's line, whichever side they were; `match`: such a
 match's id (its seed, in hex), so that a match left by a dropped connection ("unfinished")
-and played on when the player came back counts once, as its last line says.
+and played on when the player came back counts once, as its last line says; `forfeit`:
+present and true when the match was won or lost by a player leaving it before its end.
 
 Every figure comes from the match's shot records (the engine's final ball states and the
 referee's outcomes), never from its words:
@@ -124,6 +125,7 @@ def match_lines(match, cpu: tuple[bool, bool], level: str | None,
             "pot_rate": round(figures["potting_shots"] / shots, 4) if shots else 0.0,
             **({"online": True, "match": f"{match.seed:x}"} if online and not practice
                else {}),
+            **({"forfeit": True} if match.conceded is not None else {}),
         })
     return lines
 
@@ -214,6 +216,8 @@ def check_line(d: Any) -> dict:
         raise ValueError("online: not a valid value")
     if "match" in d and not (isinstance(d["match"], str) and 0 < len(d["match"]) <= 32):
         raise ValueError("match: not a valid value")
+    if "forfeit" in d and d["forfeit"] is not True:
+        raise ValueError("forfeit: not a valid value")
     for key, ok in checks.items():
         if key not in d:
             raise ValueError(f"missing '{key}'")

@@ -52,6 +52,7 @@ class Match:
         self.frame = -1  # new_frame makes it 0
         self.winner: int | None = None
         self.frame_winner: int | None = None
+        self.conceded: int | None = None  # the player who left, giving the other the match
         self.history: list[dict] = []
         self.choices: list[dict] = []
         self.last_outcome: Outcome | None = None
@@ -299,6 +300,15 @@ class Match:
                 "ball_in_hand": self.ball_in_hand, "option": self.option,
                 "last_outcome": self.last_outcome, "history": len(self.history),
                 "choices": len(self.choices)}
+
+    def concede(self, player: int) -> None:
+        """`player` leaves a match before its end (online: they quit it): the other wins it,
+        the frames as they stand. Nothing changes once the match is over."""
+        if player not in (0, 1):
+            raise ValueError("concede: player must be 0 or 1")
+        self._check_idle("concede")
+        if self.winner is None:
+            self.winner, self.conceded = 1 - player, player
 
     def take_back(self) -> None:
         """Practice: undo the last shot (the layout, state and record before it)."""

@@ -355,6 +355,14 @@ def shooter_is_cpu(s: State) -> bool:
     return s.cpu[s.match.shooter]
 
 
+def concedes(s: State) -> bool:
+    """Whether leaving now gives the match to the other player: an online match not over,
+    whose other player is there (one whose connection dropped is not given it)."""
+    m = s.match
+    return (len(s.remote) == 1 and m is not None and m.winner is None
+            and s.link is not None and s.link.away is None)
+
+
 def shooter_is_remote(s: State) -> bool:
     return s.match.shooter in s.remote
 

@@ -53,6 +53,7 @@ from termpool.ui.state import (
     State,
     Stats,
     Waiting,
+    concedes,
     cue_index,
     help_of,
     lobby_choice,
@@ -93,7 +94,11 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
     elif isinstance(box, Settings | Stats):
         draw_box(out, box_lines(s, box, cols, rows), TITLES[type(box)], wrap=False)
     elif isinstance(box, Quit):  # drawn even over "make the window bigger": Q must show
-        draw_box(out, ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"], "quit")
+        lines = ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"]
+        if concedes(s):
+            other = shown(s.match.players[s.remote[0]])[:16]
+            lines[1:1] = ["", f"leaving gives {other} the match"]
+        draw_box(out, lines, "quit")
     return out, Seen(cols, rows, lay, table)
 
 

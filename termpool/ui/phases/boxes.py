@@ -10,7 +10,13 @@ from termpool.game.history import history_path, read_history, summary
 from termpool.text import shown
 from termpool.ui.help import page_key
 from termpool.ui.output import resolve_depth
-from termpool.ui.phases.turn import apply_pending, quit_game, set_input_mode, to_menu
+from termpool.ui.phases.turn import (
+    apply_pending,
+    concede_online,
+    quit_game,
+    set_input_mode,
+    to_menu,
+)
 from termpool.ui.screens import (
     SIDE_STEP,
     STATS_COLS,
@@ -41,7 +47,7 @@ def key(s: State, key, action: str | None, seen: Seen | None) -> State:
         if key.name in ("y", "q") or action == "quit":
             return quit_game(s)
         if key.name == "m" and not (key.ctrl or key.alt):
-            return to_menu(s)
+            return to_menu(concede_online(s))
         if key.name == "n" or action in ("cancel", "confirm"):
             return replace(s, box=None)
         return s

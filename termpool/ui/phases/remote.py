@@ -17,7 +17,7 @@ from termpool.text import shown
 from termpool.ui import aid
 from termpool.ui.link import digest
 from termpool.ui.phases.place import clamp
-from termpool.ui.phases.turn import finish_shot, shoot, start_turn, to_menu
+from termpool.ui.phases.turn import finish_shot, record, shoot, start_turn, to_menu
 from termpool.ui.state import Aim, Place, Run, State, Waiting, shooter_is_remote
 
 REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
@@ -46,8 +46,13 @@ def check(s: State) -> State:
         name, link.left = link.left, None
         if s.match is not None and s.match.winner is not None:  # over: its end stays on show
             return replace(s, message=(*s.message, (f"{name} has left", "dim")))
-        kept = "" if len(s.remote) == 2 else "; it is kept in your history"
-        return ended(s, f"{name} has left the match{kept}")
+        if len(s.remote) == 2:  # watching
+            return ended(s, f"{name} has left the match")
+        if isinstance(s.part, Run):  # their leaving came as a shot rolls here
+            s, _ = record(s)
+        if s.match.winner is None:
+            s.match.concede(s.remote[0])
+        return ended(s, f"{name} has left the match: you win it (it is kept in your history)")
     if link.closed:
         return ended(s, "the server has gone; the match is kept in your history")
     return s

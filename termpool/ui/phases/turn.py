@@ -28,6 +28,7 @@ from termpool.ui.state import (
     Stroke,
     Thinking,
     Waiting,
+    concedes,
     cue_index,
     nearest_angle,
     shooter_is_cpu,
@@ -224,10 +225,23 @@ def record(s: State) -> tuple[State, Match | None]:
     return s, s.played[-1] if s.played else m
 
 
+def concede_online(s: State) -> State:
+    """This screen's player leaves an online match before its end (Q): the other player wins
+    it (a shot still rolling is played out first). A connection that merely drops concedes
+    nothing: the match waits for them to come back."""
+    m = s.match
+    if not concedes(s):
+        return s
+    if isinstance(s.part, Run):
+        s, _ = record(s)
+    m.concede(1 - s.remote[0])
+    return s
+
+
 def quit_game(s: State) -> State:
-    """The player quits termpool: an online match is left for the other player first (a
-    connection that merely drops leaves the match waiting for them to come back)."""
+    """The player quits termpool: an online match is conceded and left first."""
     if s.remote:
+        s = concede_online(s)
         s.link.send(LEAVE)
     return replace(s, done=True)
 
