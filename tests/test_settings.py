@@ -454,3 +454,14 @@ def test_the_settings_box_keeps_its_width_as_the_selection_moves(cols, rows) -> 
         widths.add((top.index("┌"), top.index("┐")))
         app.key(Key("down"), float(k))
     assert len(widths) == 1, widths
+
+
+def test_the_files_warnings_are_on_the_games_first_screen_too() -> None:
+    # Said on stderr before the game takes the screen, and on its first screen (the menu
+    # here, where a "wait" draws it), so that a player in the game sees them.
+    write_conf("tabel = 7ft\nframes = lots\n")
+    p = play("--size", "100x32", keys="wait 0.1")
+    assert p.returncode == 0, p.stderr
+    assert "warning: settings.conf line 1: unknown setting 'tabel'" in p.stderr
+    assert ("settings: 2 warnings (all said after play), the first: settings.conf line 1: "
+            "unknown setting 'tabel'") in p.stdout

@@ -374,7 +374,7 @@ def test_keys_conf_overrides_defaults_and_takes_keys_from_them():
 
 
 @pytest.mark.parametrize("text,line,words", [
-    ("shoot = space\nshot = x\n", 2, "unknown action 'shot'"),
+    ("shoot = space\nshot = x\n", 2, "unknown action 'shot' \\(known: aim_ccw, aim_cw,"),
     ("\n\nshoot = spce\n", 3, "unknown key name 'spce'"),
     ("shoot space\n", 1, "expected 'action = key, key'"),
     ("= space\n", 1, "expected 'action = key, key'"),

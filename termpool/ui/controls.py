@@ -169,7 +169,8 @@ def parse_keymap(text: str, name: str = "keys.conf") -> KeyMap:
         if not eq or not action:
             raise ValueError(f"{where}: expected 'action = key, key', got '{line}'")
         if action not in ACTIONS:
-            raise ValueError(f"{where}: unknown action '{action}'")
+            raise ValueError(f"{where}: unknown action '{action}' (known: "
+                             f"{', '.join(ACTIONS)})")
         if action in seen:
             raise ValueError(f"{where}: {action} is already set on line {seen[action]}")
         seen[action] = n

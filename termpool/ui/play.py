@@ -49,8 +49,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "swinging meter (--power meter)")
     p.add_argument("--no-mouse", action="store_true",
                    help="leave the mouse to the terminal (by default a click or drag aims)")
-    p.add_argument("--keymap", metavar="FILE", help="key bindings (default "
-                   "$XDG_CONFIG_HOME/termpool/keys.conf)")
+    p.add_argument("--keymap", metavar="FILE", help="key bindings, a line 'action = key, key' "
+                   "each, e.g. 'shoot = space, enter' (default "
+                   "$XDG_CONFIG_HOME/termpool/keys.conf; the actions: docs/play.md)")
     p.add_argument("--headless", action="store_true",
                    help="no terminal: play --keys on a virtual screen, print the final screen "
                    "(to stderr with --record -)")
@@ -80,7 +81,7 @@ def _settings(args: argparse.Namespace):
     from termpool.ui.settings import from_flags, load_settings
 
     store = load_settings()
-    for warning in store.warnings:
+    for warning in store.warnings:  # said again on the game's first screen (warn_on_screen)
         say(f"warning: {warning}")
     values = from_flags(store.saved, args)
     if args.no_aid:
@@ -169,6 +170,19 @@ def _leave(app, args: argparse.Namespace) -> int:
     return status
 
 
+def warn_on_screen(app, warnings: list[str]) -> None:
+    """The settings file's warnings, said before the game took the screen, shown on its
+    first screen too (how many, and the first)."""
+    from dataclasses import replace
+
+    if warnings:
+        n = len(warnings)
+        head = "settings: " + (f"{n} warnings (all said after play), the first: " if n > 1
+                               else "")
+        line = (head + warnings[0], "foul")
+        app.state = replace(app.state, message=(*app.state.message, line))
+
+
 def _terminal(args: argparse.Namespace, opts, keymap, files: dict):
     from termpool.ui import term
     from termpool.ui.app import App
@@ -179,6 +193,7 @@ def _terminal(args: argparse.Namespace, opts, keymap, files: dict):
     # Under `termpool serve`, the lobby: playing someone online.
     link = Link.open(lobby_address())
     app = App(opts, keymap, "repeat" if mode == "auto" else mode, **files, link=link)
+    warn_on_screen(app, files["prefs"].warnings)
 
     def play() -> int:
         return term.run(app, app.depth, kitty=args.input in ("auto", "kitty"),
@@ -214,6 +229,7 @@ def _headless(args: argparse.Namespace, opts, keymap, files: dict):
     if mode != "release":  # without the kitty protocol a terminal never reports releases
         events = legacy_events(events)
     app = App(opts, keymap, mode, **files)
+    warn_on_screen(app, files["prefs"].warnings)
 
     def play() -> int:
         try:
