@@ -446,6 +446,26 @@ def _stats(args: argparse.Namespace) -> int:
 # ------------------------------------------------------------------------------ records
 
 
+def _outline(path) -> str:
+    """Who played a kept match and how it stands ("ann v bob · ann won 2-1", "You · 12
+    shots"), or why that cannot be said."""
+    from termpool.game.record import ReplayError, read_replay
+
+    try:
+        data = read_replay(path)
+        match, current = data["match"], data.get("current") or {}
+        names, shots = match["players"], len(data["shots"])
+        if match.get("mode") == "practice":
+            return f"{names[0]} · {shots} {'shot' if shots == 1 else 'shots'}"
+        a, b = current.get("scores") or (0, 0)
+        winner = current.get("winner")
+        how = (f"{names[winner]} won {max(a, b)}-{min(a, b)}" if winner in (0, 1)
+               else f"unfinished {a}-{b}")
+        return f"{names[0]} v {names[1]} · {how}"
+    except (ReplayError, KeyError, TypeError, ValueError, IndexError):
+        return "(cannot be read)"
+
+
 def _records(args: argparse.Namespace) -> int:
     from termpool.files import kept_records, records_dir
     from termpool.text import shown
@@ -467,7 +487,7 @@ def _records(args: argparse.Namespace) -> int:
             size = f"{p.stat().st_size / 1024:.0f} KiB"
         except OSError:
             size = "?"
-        lines.append(f"  {when}  {rest[-1]:<8} {size:>8}  {shown(p)}")
+        lines.append(f"  {when}  {rest[-1]:<8} {shown(_outline(p)):<34} {size:>8}  {shown(p)}")
     lines.append("watch one with: termpool replay FILE --watch")
     sys.stdout.write("\n".join(lines) + "\n")
     sys.stdout.flush()

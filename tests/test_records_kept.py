@@ -207,7 +207,7 @@ def test_termpool_records_lists_them_newest_first(capsys, tmp_path) -> None:
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == f"2 matches kept in {files.records_dir()} (newest first):"
     assert lines[1].endswith(str(new)) and lines[2].endswith(str(old))
-    assert lines[1].split()[2] == "practice"
+    assert lines[1].split()[2] == "practice" and " You · 1 shot " in lines[1]
     assert lines[-1].startswith("watch one with: termpool replay")
     assert cli.main(["records", "--last", "1"]) == 0
     assert len(capsys.readouterr().out.splitlines()) == 3
@@ -246,3 +246,21 @@ def test_a_later_write_that_fails_leaves_the_earlier_record_and_says_so(
     assert lines == [f"cannot update the record '{rec}' (No space left on device); it was "
                      f"saved to {rec} (1 shot)"]
     assert replays(rec, capsys) == "1 shot: all identical"
+
+
+def test_termpool_records_says_who_played_and_how_it_stands(capsys, tmp_path) -> None:
+    from termpool.ui.phases.turn import log_match
+
+    folder = files.records_dir()
+    app = App(Options(mode="8ball", opponent="human", player1="Ann", player2="Bob",
+                      colors="mono", seed=3), records=Records(None, folder=folder))
+    play_keys(app, parse_script("enter space-hold 1.0 wait 20"), 100, 32)
+    app.state.match.concede(1)  # Bob gives it up: Ann has won
+    log_match(app.state)
+    bad = folder / "20200101-000000-9ball.json.gz"
+    bad.write_bytes(b"not gzip")
+    os.utime(bad, (0, 0))  # the older
+    assert cli.main(["records"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "Ann v Bob · Ann won 0-0" in lines[1]
+    assert "(cannot be read)" in lines[2]

@@ -43,7 +43,8 @@ def slot_path(path: str, k: int) -> str:
 @dataclass
 class _Kept:
     match: object
-    shots: int = 0  # as last written
+    shots: int = 0  # as last written ...
+    winner: int | None = None  # ... (a match given up changes no shot, only its winner)
     where: str | None = None  # the file it is in (None: lost)
     why: str | None = None  # why it is not in its own file
     target: str | None = None  # its own file in the records folder (chosen when first kept)
@@ -76,7 +77,8 @@ class Records:
         if kept is None:
             kept = _Kept(match)
             self._kept.append(kept)
-        elif kept.shots == len(match.history) and kept.where is not None:
+        elif (kept.shots, kept.winner) == (len(match.history), match.winner) \
+                and kept.where is not None:
             return
         if self.path != "-":
             self._write(self._kept.index(kept) + 1, kept, len(match.history))
@@ -140,6 +142,7 @@ class Records:
                     if existed:
                         self._replaced.add(target)
                     kept.where, kept.why, kept.shots = target, None, shots
+                    kept.winner = kept.match.winner
                     if self.folder is not None and fresh:
                         self._prune()
                     return
@@ -156,7 +159,7 @@ class Records:
                 else:
                     kept.where = str(files.write_fallback(text, "record"))
                     self._ours.add(kept.where)
-                kept.shots = shots
+                kept.shots, kept.winner = shots, kept.match.winner
             except OSError as e:
                 kept.where = None
                 kept.why += f" nor to the data directory ({e.strerror or e})"
