@@ -33,7 +33,8 @@ from termpool.ui.state import Pause, Run, shooter_is_cpu
 ROOT = Path(__file__).resolve().parent.parent
 
 # A value other than the default for every setting (names with what a name may hold).
-CHANGED = {"level": "hard", "table": "7ft", "frames": 5, "theme": "classic", "colors": "16",
+CHANGED = {"level": "hard", "table": "7ft", "frames": 5, "theme": "classic",
+           "three_foul": True, "eight_break": "rerack", "colors": "16",
            "aid": "ghost", "power": "digits", "bell": True, "fast": "computer", "records": False,
            "player1": "Zoë #1", "player2": "Bob = B"}
 
@@ -57,6 +58,7 @@ def write_conf(text: str) -> Path:
 def test_the_table_offers_what_the_game_has() -> None:
     from termpool import ai
     from termpool.physics.table import PRESETS
+    from termpool.rules.common import EIGHT_BREAKS
     from termpool.rules.words import THEMES
     from termpool.ui.output import DEPTHS
     from termpool.ui.predict import LEVELS as AID_LEVELS
@@ -66,6 +68,7 @@ def test_the_table_offers_what_the_game_has() -> None:
     assert set(BY_KEY["theme"].values) == set(THEMES)
     assert BY_KEY["colors"].values == ("auto", *DEPTHS)
     assert set(BY_KEY["aid"].values) == set(AID_LEVELS)
+    assert BY_KEY["eight_break"].values == EIGHT_BREAKS
     assert set(CHANGED) == set(BY_KEY)  # the tests below cover every setting
 
 
@@ -321,7 +324,7 @@ def test_from_pause_match_settings_wait_for_the_next_game() -> None:
     text = screen_text(app.cells(100, 32)[0])
     assert "* next game" in text and "from the next game" in text
     assert app.state.opts.level == "normal" and app.state.pending == {"level": "hard"}
-    keys(app, *["down"] * 5, "right")  # the aim aid: at once
+    keys(app, *["down"] * KEYS.index("aid"), "right")  # the aim aid: at once
     assert app.state.opts.aid == "ghost"
     keys(app, "esc")
     assert isinstance(app.state.box, Pause)  # back to the pause box

@@ -378,8 +378,9 @@ def _nine(three_foul: bool | None) -> list[tuple[str, str]]:
     rule = (f"{n} fouls in a row by the same player lose the frame; a legal shot starts the "
             f"count again, and the panel warns a player who is on {count_word(FOUL_LIMIT - 1)}.")
     three = {True: f"on in this game: {rule}",
-             False: f"off in this game (--three-foul turns it on). With it, {rule}",
-             None: f"with --three-foul, {rule}"}[three_foul]
+             False: f"off in this game (the setting Three-foul rule, or --three-foul, turns "
+                    f"it on). With it, {rule}",
+             None: f"with the Three-foul rule (a setting, or --three-foul), {rule}"}[three_foul]
     return [
         ("Goal", "the balls are numbered 1 to 9; whoever pockets the 9 on a legal shot wins, "
                  "on the break too."),

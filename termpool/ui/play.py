@@ -36,11 +36,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=whole_number(0, MAX_SEED), default=None,
                    help=f"racks and the computer's choices (0 to {MAX_SEED}); without it "
                         "every game deals a new rack (its seed is in the --record)")
-    p.add_argument("--three-foul", action="store_true",
-                   help="9-ball: three fouls in a row lose the frame")
-    p.add_argument("--eight-break", choices=("respot", "rerack"), default="respot",
-                   help="8-ball: the 8 pocketed on the break is re-spotted (default) or the "
-                        "balls are re-racked for the same breaker")
     add_flags(p)  # the settings: each flag overrides the settings file for this run
     p.add_argument("--no-aid", action="store_true", help="start with the aim aid off (--aid off)")
     p.add_argument("--input", choices=INPUTS, default="auto",
@@ -94,8 +89,7 @@ def _settings(args: argparse.Namespace):
 def _options(args: argparse.Namespace, values: dict):
     from termpool.ui.state import Options
 
-    return Options(mode=args.mode, opponent=args.opponent, seed=args.seed,
-                   three_foul=args.three_foul, eight_break=args.eight_break, **values)
+    return Options(mode=args.mode, opponent=args.opponent, seed=args.seed, **values)
 
 
 def _keymap(path: str | None):

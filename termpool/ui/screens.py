@@ -15,6 +15,7 @@ from termpool.ui.settings import SETTINGS
 from termpool.ui.state import Settings, State, Stats
 
 GROUPS = (("The game", ("level", "table", "frames", "theme", "colors")),
+          ("Rules", ("three_foul", "eight_break")),
           ("Playing", ("aid", "power", "bell", "fast", "records")),
           ("Names", ("player1", "player2")))
 USUAL_NAME = {"player1": "You / Player 1", "player2": "Player 2"}

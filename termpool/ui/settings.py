@@ -84,7 +84,7 @@ class Setting:
 
     @property
     def flag(self) -> str:
-        return f"--{self.key}"
+        return f"--{self.key.replace('_', '-')}"
 
 
 def check_name(text: str) -> str:
@@ -113,6 +113,11 @@ SETTINGS: tuple[Setting, ...] = (
             "yellows", "standard", values=("standard", "classic"), later=True),
     Setting("colors", "Colour depth", "colour depth (auto: from the terminal; NO_COLOR "
             "gives mono)", "auto", values=("auto", "truecolor", "256", "16", "mono")),
+    Setting("three_foul", "Three-foul rule", "9-ball: three fouls in a row lose the "
+            "frame", False, kind="switch", later=True),
+    Setting("eight_break", "8 on the break", "8-ball: the 8 pocketed on the break is "
+            "re-spotted, or the balls are re-racked for the same breaker", "respot",
+            values=("respot", "rerack"), later=True),
     Setting("aid", "Aim aid", "the aim aid: every predicted path, the ghost ball only, or "
             "none (G cycles them)", "full", values=("full", "ghost", "off")),
     Setting("power", "Power", "how Space gives power: hold it (released to strike), a "
