@@ -159,18 +159,20 @@ def paginate_entries(entries: list[list[str]], height: int,
 
 
 def help_pages(keys: Sequence[tuple[str, str]], mode: str | None, cols: int, rows: int,
-               **how) -> list[tuple[str, list[str]]]:
+               aid: bool = True, **how) -> list[tuple[str, list[str]]]:
     """The help box's pages for a cols x rows screen: the keys, what the aim aid draws, then
     the rules of `mode` (of
     every mode when None), each page with a footer that says how to turn pages and close the
-    box. `how` goes to `rules_page` (three_foul, eight_break, theme)."""
+    box. `aid`: with the page on what the aim aid draws. `how` goes to `rules_page`
+    (three_foul, eight_break, theme)."""
     width = max(20, cols - BOX_EDGE)
     height = max(3, rows - BOX_ROWS)
     pages = [("keys", p) for p in paginate_entries(key_entries(keys, cols, height), height)]
-    aid = [line for i, (head, text) in enumerate(AID_LEGEND)
-           for line in ([""] if i else []) + textwrap.wrap(f"{head}: {text}", width,
-                                                           break_on_hyphens=False)]
-    pages += [("the aim aid", p) for p in paginate(aid, height)]
+    if aid:  # a player's help (a watched match shows no aid)
+        legend = [line for i, (head, text) in enumerate(AID_LEGEND)
+                  for line in ([""] if i else []) + textwrap.wrap(f"{head}: {text}", width,
+                                                                  break_on_hyphens=False)]
+        pages += [("the aim aid", p) for p in paginate(legend, height)]
     for m in [mode] if mode is not None else list(MODE_NAMES):
         title = f"{MODE_NAMES[m]} rules"
         pages += [(title, p) for p in paginate(rules_lines(m, width, **how), height)]

@@ -465,7 +465,7 @@ class Watch:
             how["three_foul"] = bool(self.scenes[self.i][0].game.get("three_foul"))
         elif mode == "8ball" and self.eight_break in ("respot", "rerack"):
             how["eight_break"] = self.eight_break
-        return help_pages(WATCH_KEYS, mode, cols, rows, **how)
+        return help_pages(WATCH_KEYS, mode, cols, rows, aid=False, **how)
 
 
 # ------------------------------------------------------------------------------- the command
