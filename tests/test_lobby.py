@@ -558,6 +558,17 @@ def test_the_other_screen_shows_the_aid_of_the_shot_being_aimed(lobby, tmp_path)
     assert aid.prediction(bob.state) is None and "ann's aid" not in screen(bob, 100, 30)
 
 
+def test_the_other_screen_is_told_when_the_player_to_move_pauses(lobby, tmp_path):
+    ann, bob = online(lobby, tmp_path)
+    ann.key(Key("enter"), time.monotonic())  # the cue ball down: ann aims
+    ann.key(Key("p"), time.monotonic())
+    until([ann, bob], lambda: "ann has paused the game" in screen(bob, 100, 30), "bob told")
+    ann.key(Key("space"), time.monotonic())  # on again, and aiming
+    time.sleep(0.12)
+    ann.key(Key("left"), time.monotonic())
+    until([ann, bob], lambda: "ann is aiming" in screen(bob, 100, 30), "bob sees her aim")
+
+
 def test_aims_go_to_the_match_only_and_are_not_kept(lobby):
     (ann, bob, cy), ids = matched(lobby, "ann", "bob", "cy")
     cy.send(wire.WATCH, to=ids["ann"])

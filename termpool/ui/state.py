@@ -198,6 +198,7 @@ class Waiting:
     cursor: tuple[float, float] | None = None  # their ball in hand, as they move it
     stick: bool = False  # their stick is on show (its angle and tip in `stroke`)
     power: float | None = None  # the power their aid has (0..1), as it last came
+    paused: bool = False  # they have paused their game (P)
 
 
 Part = (Menu | Aim | Place | Run | Thinking | Answering | Aiming | Option | Over | Lobby

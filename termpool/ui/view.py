@@ -362,6 +362,8 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         elif link is not None and link.away == m.players[m.shooter]:
             out.append((f"{name}'s connection dropped: waiting for them to come back…",
                         "dim"))
+        elif s.part.paused:
+            out.append((f"{watching}{name} has paused the game…", "dim"))
         else:
             out.append((f"{watching}{name} is {doing}, on their own screen…", "dim"))
             power = s.part.power

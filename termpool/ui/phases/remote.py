@@ -18,7 +18,7 @@ from termpool.ui import aid
 from termpool.ui.link import digest
 from termpool.ui.phases.place import clamp
 from termpool.ui.phases.turn import finish_shot, record, shoot, start_turn, to_menu
-from termpool.ui.state import Aim, Place, Run, State, Waiting, shooter_is_remote
+from termpool.ui.state import Aim, Pause, Place, Run, State, Waiting, shooter_is_remote
 
 REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
 OUT_OF_STEP = "the two screens' matches differ; the match has ended (it is kept)"
@@ -59,9 +59,12 @@ def check(s: State) -> State:
 
 
 def share(s: State, t: float) -> None:
-    """This screen's player aiming or placing: the other screens are shown it (ui.link)."""
+    """This screen's player aiming or placing, or paused: the other screens are shown it
+    (ui.link)."""
     part = s.part
-    if isinstance(part, Place):
+    if isinstance(s.box, Pause):
+        s.link.share_aim(("pause",), t)
+    elif isinstance(part, Place):
         s.link.share_aim(("place", *map(float, part.cursor)), t)
     elif isinstance(part, Aim):
         st = s.stroke
@@ -74,6 +77,8 @@ def shown_aim(s: State) -> State:
     aim, part = s.link.aim, s.part
     try:
         kind, values = aim["kind"], [float(v) for v in aim["values"]]
+        if kind == "pause" and not values:
+            return s if part.paused else replace(s, part=replace(part, paused=True))
         if kind == "stick" and len(values) in (3, 4) and all(map(math.isfinite, values)):
             angle, side, top, *power = values  # the power their aid has (not sent before)
             side, top = clamp_tip(side, top)
@@ -81,12 +86,13 @@ def shown_aim(s: State) -> State:
             if (part.stick and (angle, side, top, power) ==
                     (s.stroke.angle, s.stroke.side, s.stroke.top, part.power)):
                 return s
-            return replace(s, part=replace(part, stick=True, cursor=None, power=power),
+            return replace(s, part=replace(part, stick=True, cursor=None, power=power,
+                                           paused=False),
                            stroke=replace(s.stroke, angle=angle % 360.0, side=side, top=top))
         if kind == "place" and len(values) == 2 and s.match.ball_in_hand and not part.placed:
             x, y = clamp(s, *values)
-            return s if part.cursor == (x, y) else replace(s, part=replace(
-                part, cursor=(x, y), stick=False))
+            return s if part.cursor == (x, y) and not part.paused else replace(s, part=replace(
+                part, cursor=(x, y), stick=False, paused=False))
     except (KeyError, TypeError, ValueError):
         pass
     return s  # a sign of life that cannot be shown is not worth ending a match over
