@@ -122,25 +122,39 @@ KEPT_TONES = ("plain", "good", "foul")  # verdicts and warnings: the status line
 
 def fit_status(status: Sequence[tuple[str, str]], room: int,
                width: int) -> list[tuple[str, str]]:
-    """The status lines (text, tone) for `room` rows `width` wide. Where they do not all fit
-    wrapped whole, each keeps its first row (cut with "…"), and the rows to spare go to
-    them in order; where even a row each is too many, lines go from the last, the first
-    (what to do now) and the verdicts and warnings ("plain", "good", "foul") last: whose
-    turn it is and the verdict stay in view."""
+    """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
+    all fit whole, rows go in turn to: the first line (what to do now), the verdicts and
+    warnings ("plain", "good", "foul") a row each, then each of them whole in order, the
+    other lines a row each, then whole. A line given fewer rows than it needs is
+    cut at a word with "…"; one given none is left out. So what a rule said reads whole,
+    the power and the aid's notes giving way first."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
     if sum(len(w) for w in wrapped) <= room:
         return [line for w in wrapped for line in w]
-    keep = list(range(len(wrapped)))
-    while len(keep) > max(room, 0):
-        lesser = [k for k in keep[1:] if status[k][1] not in KEPT_TONES]
-        keep.remove(lesser[-1] if lesser else keep[-1])
-    spare = room - len(keep)
-    out = []
-    for k in keep:
-        n = min(len(wrapped[k]), 1 + spare)
-        spare -= n - 1
-        out += _cut(wrapped[k], n, width)
-    return out
+    rows = [0] * len(wrapped)
+    left = max(room, 0)
+    kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
+    rest = [k for k in range(len(status)) if k not in kept]
+    whole = [len(w) for w in wrapped]
+    order = [(0, 1)] * bool(status) + [(k, 1) for k in kept] \
+        + [(k, whole[k]) for k in kept] \
+        + [(k, 1) for k in rest] + [(k, whole[k]) for k in rest]
+    for k, want in order:
+        more = min(max(want - rows[k], 0), left)
+        rows[k] += more
+        left -= more
+    return [line for k, w in enumerate(wrapped) for line in _cut(w, rows[k], width)]
+
+
+def status_rows_needed(status: Sequence[tuple[str, str]], width: int) -> int:
+    """The rows a bottom panel's status takes before the keys' line does: the first line and
+    a row for each verdict or warning; where two or more of them compete (a warning of the
+    shot aimed and the last verdict), the first of them whole too."""
+    kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
+    rows = min(len(status), 1) + len(kept) - (0 in kept)
+    if len(kept) > 1:
+        rows += len(_wrap(status[kept[0]][0], width)) - 1
+    return rows
 
 
 def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
@@ -269,10 +283,10 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
             _put_line(cells, r, c0, player_line(p, info, mono, w))
             r += 1
     room = r0 + nrows - 1 - r
-    # What to do now, a verdict and a warning are never lost for the keys' line: where they
-    # do not get a row each, that row is theirs too (H still opens the help).
-    must = 1 + sum(tone in KEPT_TONES for _, tone in info.status[1:])
-    hint = must <= room
+    # What to do now and a row for each verdict and warning (the first whole, where several
+    # compete) are never lost for the keys' line: where they do not fit, that row is theirs
+    # too (H still opens the help).
+    hint = status_rows_needed(info.status, w) <= room
     for s, tone in fit_status(info.status, room if hint else room + 1, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1

@@ -1,0 +1,86 @@
+"""What the screen fits at 80x24, 60x20 and below: verdicts wrapped whole, every key of a
+phase on the key bar, the menu's tenth item by a key, the 'too small' words."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from termpool.ui.app import App, Options
+from termpool.ui.headless import screen_text
+from termpool.ui.keys import Key
+from termpool.ui.panel import fit_status
+from termpool.ui.state import Phase
+from termpool.ui.table_view import layout
+
+# Verdicts as the referee says them in 9-ball games, each two rows or more at 80 columns.
+LONG_FOUL = ("Foul: the cue ball hit the 4 first, not the lowest ball, the 3; the 3 and the 7 "
+             "pocketed on a foul stay down; Computer has ball in hand")
+LONG_BREAK = ("legal break: 10 object balls reached a cushion, nothing pocketed; the table is "
+              "open and it is Computer's turn")
+SCRATCH = ("Foul: scratch: the cue ball went into the right head pocket; the 2 stays down; "
+           "Computer has ball in hand")
+
+
+def app_for(mode: str = "9ball", colors: str = "mono", **kw) -> App:
+    app = App(Options(mode=mode, opponent="human" if mode == "practice" else "cpu",
+                      colors=colors, seed=3, **kw), input_mode="release")
+    app.key(Key("enter"), 0.0)  # ball in hand placed: aiming
+    assert app.state.phase is Phase.AIM
+    return app
+
+
+def panel_rows(app: App, cols: int, rows: int) -> list[str]:
+    lay = layout(cols, rows, app.state.match.table)
+    text = screen_text(app.cells(cols, rows)[0]).split("\n")
+    return [line.strip() for line in text[lay.panel_rect[1]:]]
+
+
+def joined(rows: list[str]) -> str:
+    return " ".join(" ".join(rows).split())
+
+
+# ------------------------------------------------------------------- verdicts wrapped whole
+
+def test_a_verdict_takes_the_power_line_s_row_to_wrap_whole() -> None:
+    status = [("You to shoot · the 3 is on", "turn"), ("power 50% · first ball: the 3", "dim"),
+              (LONG_FOUL, "foul")]
+    out = fit_status(status, 3, 77)
+    assert [t for t, _ in out][0] == status[0][0]
+    assert " ".join(t for t, _ in out[1:]) == LONG_FOUL  # whole, over two rows
+    assert all("…" not in t for t, _ in out)
+
+
+def test_a_warning_and_a_verdict_each_keep_a_row_before_either_wraps() -> None:
+    status = [("You to shoot", "turn"), (LONG_BREAK, "foul"), ("power 50%", "dim"),
+              (LONG_FOUL, "plain")]
+    out = [t for t, _ in fit_status(status, 4, 77)]
+    assert out[0] == "You to shoot"
+    assert " ".join(out[1:3]) == LONG_BREAK  # the first whole
+    assert LONG_FOUL.startswith(out[3].rstrip("…")) and out[3].endswith("…")
+
+
+@pytest.mark.parametrize(("cols", "rows", "verdict"),
+                         [(80, 24, LONG_FOUL), (80, 24, LONG_BREAK), (80, 24, SCRATCH),
+                          (60, 20, LONG_BREAK), (60, 20, SCRATCH)])
+@pytest.mark.parametrize("colors", ["mono", "truecolor"])
+def test_at_80x24_and_60x20_the_verdict_reads_whole(cols, rows, verdict, colors) -> None:
+    app = app_for(colors=colors)
+    app.state = replace(app.state, message=((verdict, "foul"),))
+    shown = panel_rows(app, cols, rows)
+    text = joined(shown)
+    assert verdict in text, "\n".join(shown)
+    assert "You to break" in text
+    assert shown[-1].endswith("Q quit")  # and the keys' line stays
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (60, 20)])
+def test_a_warning_of_the_shot_aimed_reads_whole_beside_the_last_verdict(cols, rows) -> None:
+    warning = ("As aimed: the cue ball hit the 9 first, not the lowest ball, the 4; third foul "
+               "in a row: Computer wins the frame")
+    app = app_for()
+    app.state = replace(app.state, message=((warning, "foul"), (LONG_BREAK, "plain")))
+    text = joined(panel_rows(app, cols, rows))
+    assert warning in text and "You to break" in text
+    assert "legal break: 10 object balls" in text  # the older verdict: its first row at least
