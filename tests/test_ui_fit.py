@@ -13,6 +13,7 @@ from termpool.ui.keys import Key
 from termpool.ui.panel import fit_status
 from termpool.ui.state import Phase
 from termpool.ui.table_view import layout
+from termpool.ui.view import hint_lines
 
 # Verdicts as the referee says them in 9-ball games, each two rows or more at 80 columns.
 LONG_FOUL = ("Foul: the cue ball hit the 4 first, not the lowest ball, the 3; the 3 and the 7 "
@@ -84,3 +85,36 @@ def test_a_warning_of_the_shot_aimed_reads_whole_beside_the_last_verdict(cols, r
     text = joined(panel_rows(app, cols, rows))
     assert warning in text and "You to break" in text
     assert "legal break: 10 object balls" in text  # the older verdict: its first row at least
+
+
+# --------------------------------------------------------------------------- the key bar
+
+@pytest.mark.parametrize("mode", ["practice", "9ball", "8ball"])
+def test_at_80_columns_every_key_of_the_aim_shows(mode) -> None:
+    app = app_for(mode)
+    bar = panel_rows(app, 80, 24)[-1]
+    for key in ("aim", "Space", "1-0", "spin", "G aid", "H help", "P pause", "Q quit"):
+        assert key in bar, bar
+    if mode == "practice":
+        assert "U undo" in bar and "R rack" in bar, bar
+
+
+@pytest.mark.parametrize("level", ["0", "4"])  # a power set by a digit: Esc goes back to hold
+def test_at_60_columns_practice_keeps_undo_and_rack(level) -> None:
+    app = app_for("practice")
+    app.key(Key(level), 0.1)
+    bar = panel_rows(app, 60, 20)[-1]
+    for key in ("aim", "Space", "U undo", "R rack", "H help", "Q quit"):
+        assert key in bar, bar
+    if level == "4":
+        assert "Esc hold" in bar, bar
+
+
+def test_the_key_bar_is_parts_whole_in_one_of_their_forms() -> None:
+    app = app_for("practice")
+    bar = panel_rows(app, 80, 24)[-1]
+    forms = {f for t, _ in hint_lines(app.state) for f in ((t,) if isinstance(t, str) else t)}
+    rest = bar
+    while rest:  # the bar is forms one space apart, in order, none cut
+        head = max((f for f in forms if rest.startswith(f)), key=len)
+        rest = rest[len(head):].lstrip(" ")

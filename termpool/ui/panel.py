@@ -296,9 +296,9 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
             pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
         if sum(len(t) for t, _, _ in pieces) <= w:
             _put_line(cells, r, c0, pieces)
-    if hint:
-        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb,
-                 BACKDROP_C.rgb)
+    if hint:  # the whole width where no widget takes the right end
+        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w if right < c0 + width else width),
+                 DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
 def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
@@ -332,13 +332,15 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
 
 def fit_hint(parts: Sequence[tuple], width: int) -> str:
     """The key help for a line of `width` cells: every part in its long form if they fit
-    (two spaces apart, else one), then in their short forms, then without the highest ranks,
-    one rank at a time. Parts are never cut; only the rank-0 parts' short forms, should even
-    they not fit, are cut at the end."""
+    (two spaces apart, else one), then in each shorter form in turn (a part gives one to
+    three: long, short, tight), then without the highest ranks, one rank at a time. Parts
+    are never cut; only the rank-0 parts' tightest forms, should even they not fit, are cut
+    at the end."""
     forms = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
     limits = [math.inf, *sorted({r for _, r in forms if r > 0}, reverse=True)]
+    depth = max((len(f) for f, _ in forms), default=1)
     for limit in limits:
-        for v in (0, 1):
+        for v in range(depth):
             keep = [f[min(v, len(f) - 1)] for f, r in forms if r < limit]
             for sep in ("  ", " "):
                 line = sep.join(keep)

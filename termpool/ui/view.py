@@ -428,11 +428,14 @@ def hint_lines(s: State) -> list[tuple]:
     if s.phase is Phase.AIM:
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         cancel = [(f"{k('cancel')} hold", 1)] if ch.preset_level is not None else []
-        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 3),
-                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 3)] \
+        # Practice's own keys rank with the help: a player who never sees U may never
+        # take a shot back.
+        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 1),
+                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 1)] \
             if s.match.state.mode == "practice" else []
-        return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
-                (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
+        aim, fine = (f"{k('aim_ccw')}{k('aim_cw')}", f"{k('aim_fine_ccw')}{k('aim_fine_cw')}")
+        return [((f"{aim} aim", f"{aim} aim", f"{aim}aim"), 0),
+                ((f"{fine} fine", f"{fine} fine", f"{fine}fine"), 5),
                 (power_hint(s), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
                 (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
                 quit_]
