@@ -118,3 +118,37 @@ def test_the_key_bar_is_parts_whole_in_one_of_their_forms() -> None:
     while rest:  # the bar is forms one space apart, in order, none cut
         head = max((f for f in forms if rest.startswith(f)), key=len)
         rest = rest[len(head):].lstrip(" ")
+
+
+# ------------------------------------------------------------------------- the cue stick
+
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (60, 20), (120, 40)])
+def test_the_stick_is_drawn_on_no_cell_a_ball_is_drawn_in(cols, rows) -> None:
+    # Balls strewn about (a rack's worth, some touching the cue ball's line), the stick at
+    # every angle and pull: every cell that shows part of a ball shows it as without the stick.
+    import numpy as np
+
+    import termpool.ui.overlay as ov
+    from termpool.ui.canvas import to_cells
+    from termpool.ui.table_view import TableView
+
+    m = app_for(colors="truecolor").state.match
+    lay = layout(cols, rows, m.table)
+    view = TableView(m.table, lay)
+    rng = np.random.default_rng(7)
+    for trial in range(60):
+        pos = m.pos.copy()
+        pos[:, 0] = rng.uniform(0.1, m.table.length - 0.1, len(pos))
+        pos[:, 1] = rng.uniform(0.1, m.table.width - 0.1, len(pos))
+        angle = float(rng.uniform(0.0, 360.0))
+        back = -np.array([np.cos(np.radians(angle)), np.sin(np.radians(angle))])
+        pos[1] = pos[0] + back * 4 * m.radius[0]  # a ball right behind the cue ball
+        bare = view.draw(m.ids, pos, None, m.radius).copy()
+        cv = bare.copy()
+        ov.draw_cue_stick(cv, lay, pos[0], m.radius[0], angle, float(rng.uniform(0.0, 1.0)))
+        assert (cv.rgb != bare.rgb).any()  # the stick is drawn ...
+        ball = ov._IS_BALL[bare.tag]
+        in_ball = ball[0::2] | ball[1::2]
+        for a, b in zip(to_cells(cv), to_cells(bare), strict=True):
+            same = a == b if a.ndim == 2 else (a == b).all(axis=-1)
+            assert same[in_ball].all(), trial  # ... on no cell of a ball
