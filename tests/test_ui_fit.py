@@ -152,3 +152,25 @@ def test_the_stick_is_drawn_on_no_cell_a_ball_is_drawn_in(cols, rows) -> None:
         for a, b in zip(to_cells(cv), to_cells(bare), strict=True):
             same = a == b if a.ndim == 2 else (a == b).all(axis=-1)
             assert same[in_ball].all(), trial  # ... on no cell of a ball
+
+# ------------------------------------------------------------------------------ the menu
+
+def test_0_picks_the_menu_s_tenth_item_and_the_menu_shows_it_as_0() -> None:
+    from termpool.ui.phases import menu
+    from termpool.ui.state import MENU, State
+
+    app = App(Options(colors="mono"), input_mode="release")
+    s = app.state
+    assert s.phase is Phase.MENU
+    ten = replace(s, link=object())  # under a server the menu has its tenth item
+    entries = [e for e in MENU]
+    assert len(entries) == 10 and entries[9][1] == "quit"
+    picked = menu.key(ten, Key("0"), None, 0.0)
+    assert isinstance(picked, State) and picked.done and picked.menu_index == 9
+    nine = menu.key(s, Key("0"), None, 0.0)  # nine items: 0 picks nothing
+    assert not nine.done and nine.menu_index == s.menu_index
+    text = screen_text(app.cells(80, 24)[0])
+    assert "9. Quit" in text
+    app.state = ten
+    text = screen_text(app.cells(80, 24)[0])
+    assert "0. Quit" in text and "10." not in text

@@ -500,7 +500,8 @@ def _menu_cells(s: State, cols: int, rows: int, mono: bool):
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
     for k, (label, _what) in enumerate(menu_entries(s)):
         sel = k == s.menu_index
-        lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
+        digit = (k + 1) % 10  # the key that picks it: 0 for the tenth
+        lines.append(((f"▶ {digit}. {label}" if sel else f"  {digit}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
     # What ended an online match (the other player left), said where the match was left.
