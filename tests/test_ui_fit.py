@@ -10,9 +10,9 @@ import pytest
 from termpool.ui.app import App, Options
 from termpool.ui.headless import screen_text
 from termpool.ui.keys import Key
-from termpool.ui.panel import fit_status
+from termpool.ui.panel import fit_status, too_small_lines
 from termpool.ui.state import Phase
-from termpool.ui.table_view import layout
+from termpool.ui.table_view import MIN_COLS, MIN_ROWS, layout
 from termpool.ui.view import hint_lines
 
 # Verdicts as the referee says them in 9-ball games, each two rows or more at 80 columns.
@@ -174,3 +174,21 @@ def test_0_picks_the_menu_s_tenth_item_and_the_menu_shows_it_as_0() -> None:
     app.state = ten
     text = screen_text(app.cells(80, 24)[0])
     assert "0. Quit" in text and "10." not in text
+
+
+# -------------------------------------------------------------------- too small a window
+
+@pytest.mark.parametrize(("cols", "rows"), [(c, r) for c in range(10, MIN_COLS)
+                                            for r in range(3, MIN_ROWS)])
+def test_the_too_small_words_fit_whole_down_to_10x3(cols, rows) -> None:
+    lines = too_small_lines(cols, rows)
+    assert len(lines) <= rows and all(len(s) <= cols for s in lines)
+    text = " ".join(lines)
+    assert f"{MIN_COLS}x{MIN_ROWS}" in text and f"{cols}x{rows}" in text
+
+
+def test_a_20x6_window_says_how_big_it_must_be_whole_on_screen() -> None:
+    app = App(Options(colors="mono", mode="9ball"), input_mode="release")
+    app.key(Key("enter"), 0.0)
+    text = screen_text(app.cells(20, 6)[0])
+    assert "40x12" in text and "20x6" in text and "small" in text

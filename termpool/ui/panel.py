@@ -491,4 +491,14 @@ def message_cells(cols: int, rows: int, lines: Sequence[str], mono: bool = False
 
 
 def too_small_lines(cols: int, rows: int) -> list[str]:
-    return ["make the window at least", f"{MIN_COLS}x{MIN_ROWS} (now {cols}x{rows})"]
+    """What a window too small for the game says, in the longest words that fit it (whole
+    down to 10x2)."""
+    need, now = f"{MIN_COLS}x{MIN_ROWS}", f"{cols}x{rows}"
+    forms = [["make the window at least", f"{need} (now {now})"],
+             ["window too small:", f"need {need}, now {now}"],
+             ["too small:", f"need {need}", f"now {now}"],
+             [f"need {need}", f"now {now}"]]
+    for lines in forms:
+        if len(lines) <= rows and max(len(s) for s in lines) <= cols:
+            return lines
+    return [s[:cols] for s in forms[-1][:max(rows, 1)]]
