@@ -87,6 +87,29 @@ def test_a_warning_of_the_shot_aimed_reads_whole_beside_the_last_verdict(cols, r
     assert "legal break: 10 object balls" in text  # the older verdict: its first row at least
 
 
+@pytest.mark.parametrize("first", ["F: fast forward", "Computer is aiming at the 2"])
+def test_a_dim_first_line_gives_way_to_a_verdict_three_rows_long(first) -> None:
+    # At 60x20 while the balls run or the computer aims: the key bar says F and "any key",
+    # the players' row whose turn it is; the verdict reads whole.
+    verdict = ("Foul: the cue ball hit the 4 first, not the lowest ball, the 1; the 8 pocketed "
+               "on a foul; Computer has ball in hand")
+    status = [(first, "dim"), (verdict, "foul"), ("Computer: 1 in the left foot corner", "dim")]
+    out = [t for t, _ in fit_status(status, 3, 57)]
+    assert " ".join(out) == verdict
+
+
+def test_news_before_the_verdict_keeps_its_row_while_the_verdict_wraps() -> None:
+    # A player back in an online match: what to do, the news, then the last verdict.
+    status = [("bob to shoot · ball in hand anywhere", "turn"),
+              ("back in your match against ann", "turn"), (SCRATCH, "foul"),
+              ("power 50%", "dim")]
+    out = [t for t, _ in fit_status(status, 3, 77)]
+    assert out[:2] == [status[0][0], status[1][0]]
+    assert SCRATCH.startswith(out[2].rstrip("…"))
+    out = [t for t, _ in fit_status(status, 4, 77)]
+    assert " ".join(out[2:]) == SCRATCH
+
+
 # --------------------------------------------------------------------------- the key bar
 
 @pytest.mark.parametrize("mode", ["practice", "9ball", "8ball"])

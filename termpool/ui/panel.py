@@ -123,11 +123,13 @@ KEPT_TONES = ("plain", "good", "foul")  # verdicts and warnings: the status line
 def fit_status(status: Sequence[tuple[str, str]], room: int,
                width: int) -> list[tuple[str, str]]:
     """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
-    all fit whole, rows go in turn to: the first line (what to do now), the verdicts and
-    warnings ("plain", "good", "foul") a row each, then each of them whole in order, the
-    other lines a row each, then whole. A line given fewer rows than it needs is
-    cut at a word with "…"; one given none is left out. So what a rule said reads whole,
-    the power and the aid's notes giving way first."""
+    all fit whole, rows go in turn to: the lines before the first verdict or warning that
+    are not dim notes (what to do now, news), the verdicts and warnings ("plain", "good",
+    "foul") a row each, then each of them whole in order, the other lines a row each (dim
+    notes such as "F: fast forward" or "Computer is aiming", which the key bar and the
+    players' row say too), then whole. A line given fewer rows than it needs is cut at a
+    word with "…"; one given none is left out. So what a rule said reads whole, the power
+    and the aid's notes giving way first."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
     if sum(len(w) for w in wrapped) <= room:
         return [line for w in wrapped for line in w]
@@ -136,7 +138,7 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
     kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
     rest = [k for k in range(len(status)) if k not in kept]
     whole = [len(w) for w in wrapped]
-    order = [(0, 1)] * bool(status) + [(k, 1) for k in kept] \
+    order = [(k, 1) for k in _leading(status, kept)] + [(k, 1) for k in kept] \
         + [(k, whole[k]) for k in kept] \
         + [(k, 1) for k in rest] + [(k, whole[k]) for k in rest]
     for k, want in order:
@@ -146,12 +148,19 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
     return [line for k, w in enumerate(wrapped) for line in _cut(w, rows[k], width)]
 
 
+def _leading(status: Sequence[tuple[str, str]], kept: list[int]) -> list[int]:
+    """The lines before the first verdict or warning (the first line, if none) that are not
+    dim."""
+    end = kept[0] if kept else min(len(status), 1)
+    return [k for k in range(end) if status[k][1] != "dim"]
+
+
 def status_rows_needed(status: Sequence[tuple[str, str]], width: int) -> int:
-    """The rows a bottom panel's status takes before the keys' line does: the first line and
-    a row for each verdict or warning; where two or more of them compete (a warning of the
-    shot aimed and the last verdict), the first of them whole too."""
+    """The rows a bottom panel's status takes before the keys' line does: a row for each
+    leading line (`_leading`) and for each verdict or warning; where two or more of the latter
+    compete (a warning of the shot aimed and the last verdict), the first of them whole too."""
     kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
-    rows = min(len(status), 1) + len(kept) - (0 in kept)
+    rows = len(_leading(status, kept)) + len(kept)
     if len(kept) > 1:
         rows += len(_wrap(status[kept[0]][0], width)) - 1
     return rows
