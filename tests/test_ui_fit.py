@@ -110,6 +110,21 @@ def test_news_before_the_verdict_keeps_its_row_while_the_verdict_wraps() -> None
     assert " ".join(out[2:]) == SCRATCH
 
 
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (60, 20)])
+def test_the_computer_s_plan_gives_its_row_to_the_foul_it_led_to(cols, rows) -> None:
+    # Ball in hand after the computer's scratch: its plan, then the verdict, as the match
+    # says them; the verdict reads whole, the plan waits.
+    app = App(Options(mode="9ball", opponent="cpu", colors="mono", seed=3),
+              input_mode="release")
+    note = (("Computer: 5 in the right foot corner pocket", "turn"),)
+    verdict = "Foul: scratch: the cue ball went into the left foot corner pocket; you have " \
+        "ball in hand"
+    app.state = replace(app.state, shot_note=note, message=(*note, (verdict, "foul")))
+    assert app.state.phase is Phase.PLACE
+    text = joined(panel_rows(app, cols, rows))
+    assert verdict in text and "You to break" in text, text
+
+
 # --------------------------------------------------------------------------- the key bar
 
 @pytest.mark.parametrize("mode", ["practice", "9ball", "8ball"])

@@ -37,7 +37,7 @@ FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
 BOX_BG = (28, 32, 40)
 TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "turn": TURN_C, "foul": FOUL_C,
-         "good": GOOD_C}
+         "good": GOOD_C, "plan": TURN_C}  # "plan": the computer's plan, a note
 
 
 @dataclass
@@ -124,12 +124,12 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
                width: int) -> list[tuple[str, str]]:
     """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
     all fit whole, rows go in turn to: the lines before the first verdict or warning that
-    are not dim notes (what to do now, news), the verdicts and warnings ("plain", "good",
-    "foul") a row each, then each of them whole in order, the other lines a row each (dim
-    notes such as "F: fast forward" or "Computer is aiming", which the key bar and the
-    players' row say too), then whole. A line given fewer rows than it needs is cut at a
-    word with "…"; one given none is left out. So what a rule said reads whole, the power
-    and the aid's notes giving way first."""
+    are not notes (what to do now, news), the verdicts and warnings ("plain", "good",
+    "foul") a row each, then each of them whole in order, the other lines a row each (the
+    computer's plan, "plan", and dim notes such as "F: fast forward" or "Computer is
+    aiming", which the key bar and the players' row say too), then whole. A line given
+    fewer rows than it needs is cut at a word with "…"; one given none is left out. So what
+    a rule said reads whole, the power and the aid's notes giving way first."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
     if sum(len(w) for w in wrapped) <= room:
         return [line for w in wrapped for line in w]
@@ -150,9 +150,9 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
 
 def _leading(status: Sequence[tuple[str, str]], kept: list[int]) -> list[int]:
     """The lines before the first verdict or warning (the first line, if none) that are not
-    dim."""
+    notes ("dim", "plan")."""
     end = kept[0] if kept else min(len(status), 1)
-    return [k for k in range(end) if status[k][1] != "dim"]
+    return [k for k in range(end) if status[k][1] not in ("dim", "plan")]
 
 
 def status_rows_needed(status: Sequence[tuple[str, str]], width: int) -> int:

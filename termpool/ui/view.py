@@ -271,6 +271,10 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
     else:
         # What to do now first, the last verdicts next, then the power, the aid, the spin.
         status = now[:1] + message + now[1:]
+    # The computer's plan is a note: the verdict it led to wraps before it keeps a row.
+    notes = set(s.shot_note) | set(s.cpu_note)
+    status = [(text, "plan") if (text, tone) in notes and tone == "turn" else (text, tone)
+              for text, tone in status]
     title = MODE_NAMES[st.mode]
     if frames > 1:
         title += f" · race to {frames}"
