@@ -1319,7 +1319,7 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
     app = grouped(app_for(mode="8ball", opponent="human", input_mode=mode))
     hint = panel_text(app, *size)[-1].strip()
     parts = [t if isinstance(t, str) else t for t, _ in hint_lines(app.state)]
-    assert hint == fit_hint(hint_lines(app.state), size[0] - 3)  # the panel's text width
+    assert hint == fit_hint(hint_lines(app.state), size[0] - 2)  # the panel's text width
     assert hint.endswith("Q quit") and hint.startswith("←→ aim")
     assert {"release": "Space:hold", "repeat": "Space:hold",
             "classic": "Space:meter"}[mode] in hint.replace(": ", ":").replace(", let go", "")

@@ -37,7 +37,7 @@ FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
 BOX_BG = (28, 32, 40)
 TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "turn": TURN_C, "foul": FOUL_C,
-         "good": GOOD_C}
+         "good": GOOD_C, "plan": TURN_C}  # "plan": the computer's plan, a note
 
 
 @dataclass
@@ -122,25 +122,48 @@ KEPT_TONES = ("plain", "good", "foul")  # verdicts and warnings: the status line
 
 def fit_status(status: Sequence[tuple[str, str]], room: int,
                width: int) -> list[tuple[str, str]]:
-    """The status lines (text, tone) for `room` rows `width` wide. Where they do not all fit
-    wrapped whole, each keeps its first row (cut with "…"), and the rows to spare go to
-    them in order; where even a row each is too many, lines go from the last, the first
-    (what to do now) and the verdicts and warnings ("plain", "good", "foul") last: whose
-    turn it is and the verdict stay in view."""
+    """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
+    all fit whole, rows go in turn to: the lines before the first verdict or warning that
+    are not notes (what to do now, news), the verdicts and warnings ("plain", "good",
+    "foul") a row each, then each of them whole in order, the other lines a row each (the
+    computer's plan, "plan", and dim notes such as "F: fast forward" or "Computer is
+    aiming", which the key bar and the players' row say too), then whole. A line given
+    fewer rows than it needs is cut at a word with "…"; one given none is left out. So what
+    a rule said reads whole, the power and the aid's notes giving way first."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
     if sum(len(w) for w in wrapped) <= room:
         return [line for w in wrapped for line in w]
-    keep = list(range(len(wrapped)))
-    while len(keep) > max(room, 0):
-        lesser = [k for k in keep[1:] if status[k][1] not in KEPT_TONES]
-        keep.remove(lesser[-1] if lesser else keep[-1])
-    spare = room - len(keep)
-    out = []
-    for k in keep:
-        n = min(len(wrapped[k]), 1 + spare)
-        spare -= n - 1
-        out += _cut(wrapped[k], n, width)
-    return out
+    rows = [0] * len(wrapped)
+    left = max(room, 0)
+    kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
+    rest = [k for k in range(len(status)) if k not in kept]
+    whole = [len(w) for w in wrapped]
+    order = [(k, 1) for k in _leading(status, kept)] + [(k, 1) for k in kept] \
+        + [(k, whole[k]) for k in kept] \
+        + [(k, 1) for k in rest] + [(k, whole[k]) for k in rest]
+    for k, want in order:
+        more = min(max(want - rows[k], 0), left)
+        rows[k] += more
+        left -= more
+    return [line for k, w in enumerate(wrapped) for line in _cut(w, rows[k], width)]
+
+
+def _leading(status: Sequence[tuple[str, str]], kept: list[int]) -> list[int]:
+    """The lines before the first verdict or warning (the first line, if none) that are not
+    notes ("dim", "plan")."""
+    end = kept[0] if kept else min(len(status), 1)
+    return [k for k in range(end) if status[k][1] not in ("dim", "plan")]
+
+
+def status_rows_needed(status: Sequence[tuple[str, str]], width: int) -> int:
+    """The rows a bottom panel's status takes before the keys' line does: a row for each
+    leading line (`_leading`) and for each verdict or warning; where two or more of the latter
+    compete (a warning of the shot aimed and the last verdict), the first of them whole too."""
+    kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
+    rows = len(_leading(status, kept)) + len(kept)
+    if len(kept) > 1:
+        rows += len(_wrap(status[kept[0]][0], width)) - 1
+    return rows
 
 
 def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
@@ -269,10 +292,10 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
             _put_line(cells, r, c0, player_line(p, info, mono, w))
             r += 1
     room = r0 + nrows - 1 - r
-    # What to do now, a verdict and a warning are never lost for the keys' line: where they
-    # do not get a row each, that row is theirs too (H still opens the help).
-    must = 1 + sum(tone in KEPT_TONES for _, tone in info.status[1:])
-    hint = must <= room
+    # What to do now and a row for each verdict and warning (the first whole, where several
+    # compete) are never lost for the keys' line: where they do not fit, that row is theirs
+    # too (H still opens the help).
+    hint = status_rows_needed(info.status, w) <= room
     for s, tone in fit_status(info.status, room if hint else room + 1, w):
         put_text(cells, r, c0, s, _tone(tone), BACKDROP_C.rgb)
         r += 1
@@ -282,9 +305,9 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
             pieces += [(" ", TEXT_C.rgb, BACKDROP_C.rgb), t]
         if sum(len(t) for t, _, _ in pieces) <= w:
             _put_line(cells, r, c0, pieces)
-    if hint:
-        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w), DIM_TEXT_C.rgb,
-                 BACKDROP_C.rgb)
+    if hint:  # the whole width where no widget takes the right end
+        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w if right < c0 + width else width),
+                 DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
 def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
@@ -318,13 +341,15 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
 
 def fit_hint(parts: Sequence[tuple], width: int) -> str:
     """The key help for a line of `width` cells: every part in its long form if they fit
-    (two spaces apart, else one), then in their short forms, then without the highest ranks,
-    one rank at a time. Parts are never cut; only the rank-0 parts' short forms, should even
-    they not fit, are cut at the end."""
+    (two spaces apart, else one), then in each shorter form in turn (a part gives one to
+    three: long, short, tight), then without the highest ranks, one rank at a time. Parts
+    are never cut; only the rank-0 parts' tightest forms, should even they not fit, are cut
+    at the end."""
     forms = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
     limits = [math.inf, *sorted({r for _, r in forms if r > 0}, reverse=True)]
+    depth = max((len(f) for f, _ in forms), default=1)
     for limit in limits:
-        for v in (0, 1):
+        for v in range(depth):
             keep = [f[min(v, len(f) - 1)] for f, r in forms if r < limit]
             for sep in ("  ", " "):
                 line = sep.join(keep)
@@ -475,4 +500,14 @@ def message_cells(cols: int, rows: int, lines: Sequence[str], mono: bool = False
 
 
 def too_small_lines(cols: int, rows: int) -> list[str]:
-    return ["make the window at least", f"{MIN_COLS}x{MIN_ROWS} (now {cols}x{rows})"]
+    """What a window too small for the game says, in the longest words that fit it (whole
+    down to 10x2)."""
+    need, now = f"{MIN_COLS}x{MIN_ROWS}", f"{cols}x{rows}"
+    forms = [["make the window at least", f"{need} (now {now})"],
+             ["window too small:", f"need {need}, now {now}"],
+             ["too small:", f"need {need}", f"now {now}"],
+             [f"need {need}", f"now {now}"]]
+    for lines in forms:
+        if len(lines) <= rows and max(len(s) for s in lines) <= cols:
+            return lines
+    return [s[:cols] for s in forms[-1][:max(rows, 1)]]

@@ -276,6 +276,10 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
     else:
         # What to do now first, the last verdicts next, then the power, the aid, the spin.
         status = now[:1] + message + now[1:]
+    # The computer's plan is a note: the verdict it led to wraps before it keeps a row.
+    notes = set(s.shot_note) | set(s.cpu_note)
+    status = [(text, "plan") if (text, tone) in notes and tone == "turn" else (text, tone)
+              for text, tone in status]
     title = MODE_NAMES[st.mode]
     if frames > 1:
         title += f" · race to {frames}"
@@ -435,11 +439,14 @@ def hint_lines(s: State) -> list[tuple]:
     if s.phase is Phase.AIM:
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         cancel = [(f"{k('cancel')} hold", 1)] if ch.preset_level is not None else []
-        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 3),
-                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 3)] \
+        # Practice's own keys rank with the help: a player who never sees U may never
+        # take a shot back.
+        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 1),
+                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 1)] \
             if s.match.state.mode == "practice" else []
-        return [(f"{k('aim_ccw')}{k('aim_cw')} aim", 0),
-                (f"{k('aim_fine_ccw')}{k('aim_fine_cw')} fine", 5),
+        aim, fine = (f"{k('aim_ccw')}{k('aim_cw')}", f"{k('aim_fine_ccw')}{k('aim_fine_cw')}")
+        return [((f"{aim} aim", f"{aim} aim", f"{aim}aim"), 0),
+                ((f"{fine} fine", f"{fine} fine", f"{fine}fine"), 5),
                 (power_hint(s), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
                 (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
                 quit_]
@@ -511,7 +518,8 @@ def _menu_cells(s: State, cols: int, rows: int, mono: bool):
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
     for k, (label, _what) in enumerate(menu_entries(s)):
         sel = k == s.menu_index
-        lines.append(((f"▶ {k + 1}. {label}" if sel else f"  {k + 1}. {label}"),
+        digit = (k + 1) % 10  # the key that picks it: 0 for the tenth
+        lines.append(((f"▶ {digit}. {label}" if sel else f"  {digit}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
     # What ended an online match (the other player left), said where the match was left.

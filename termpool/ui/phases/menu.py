@@ -19,8 +19,8 @@ def key(s: State, key, action: str | None, t: float) -> State:
         return replace(s, menu_index=(s.menu_index - 1) % n)
     if key.name in ("down", "j") or action == "spin_down":
         return replace(s, menu_index=(s.menu_index + 1) % n)
-    if key.name.isdigit() and 1 <= int(key.name) <= n:
-        return pick(replace(s, menu_index=int(key.name) - 1))
+    if key.name.isdigit() and 1 <= (int(key.name) or 10) <= n:  # 0 is the tenth, as on a phone
+        return pick(replace(s, menu_index=(int(key.name) or 10) - 1))
     if action in ("confirm", "shoot"):
         return pick(s)
     return s
