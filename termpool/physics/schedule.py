@@ -37,6 +37,20 @@ def _argmin(row: list) -> int:
     return row.index(min(row))
 
 
+def _firsts(key: np.ndarray) -> np.ndarray:
+    """The places of the first occurrence of each value of `key`, in order: what
+    np.unique(key, return_index=True)[1] sorted gives, by the same stable sort, without its
+    checks."""
+    perm = key.argsort(kind="stable")
+    ordered = key.take(perm)
+    new = np.empty(key.size, dtype=bool)
+    new[0] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=new[1:])
+    first = perm[new]
+    first.sort()
+    return first
+
+
 class Due:
     """What a prediction is of, in the order of a table's row of times: N transitions, N
     horizon checks, N cushion contacts, then N x N ball pairs. (Plain ints, not an enum:
@@ -75,6 +89,7 @@ class Schedule:
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
+        self._place = np.zeros(B, dtype=np.intp)  # `_tables`' marks, zero between calls
         self.chunk = CHUNK
         self.one = B == 1
         # Flat views of the arrays the plain-float paths read and write (flat.py): the row
@@ -128,10 +143,9 @@ class Schedule:
         """`predict` on arrays."""
         balls = self.balls
         if b.size > 1:  # a ball renewed twice (an event's ball, and its cluster's): once
-            first = np.unique(b * self.N + i, return_index=True)[1]
+            first = _firsts(b * self.N + i)
             if first.size < b.size:
-                first.sort()
-                b, i = b[first], i[first]
+                b, i = b.take(first), i.take(first)
         t = self.tb[b]
         st = balls.state[b, i]
         moving = _MOVING[st]
@@ -169,7 +183,7 @@ class Schedule:
         # vx, vy, ax, ay; ball i of table tabs[u] in column u N + i): each candidate's
         # relative motion is then one take and one difference, and each component one
         # contiguous row. (Two-index lookups cost several times more than these takes.)
-        tabs, u = np.unique(b, return_inverse=True)
+        tabs, u = self._tables(b)
         tbt = self.tb.take(tabs)[:, None]
         Q = balls.planes(tabs, tbt)
         ui = u * N + i
@@ -252,6 +266,17 @@ class Schedule:
             f = allt.argmin(axis=1)
             self._times_1d[bm * self.width + 2 * N + im] = tm + allt[np.arange(mv.size), f]
             self._f_cush_1d[bm * N + im] = f
+
+    def _tables(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """np.unique(b, return_inverse=True) for table numbers b: the tables in order, and
+        each b's place among them (marks in an array of B, no sort)."""
+        place = self._place
+        place[b] = 1
+        tabs = np.flatnonzero(place)
+        place[tabs] = np.arange(tabs.size)
+        u = place.take(b)
+        place[tabs] = 0
+        return tabs, u
 
     def _overlap(self, lo, hi, radius, u, ui) -> np.ndarray:
         """(M, N) whether ball ui of the (table, ball) columns (ball i[r] of table u[r]) and
