@@ -27,6 +27,10 @@ CULL = True  # skip the pairs and points that boxes of paths show cannot be met 
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
+# Whether a ball of each state is a pair of a renewed ball that moves (the last five) or not
+# (the first five): it is live, and one of the two moves.
+_PAIRED = np.concatenate([_LIVE & _MOVING, _LIVE])
+_PAIRED_MOVING = np.int8(len(_LIVE))
 
 
 def _argmin(row: list) -> int:
@@ -75,7 +79,6 @@ class Schedule:
                  horizon: float) -> None:
         B, N = balls.B, balls.N
         self.N, self.balls, self.features, self.tb, self.horizon = N, balls, features, tb, horizon
-        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
         self.times = times
         self.t_trans = times[:, :N]
         assert np.shares_memory(balls.t_trans, times)  # the balls write their transitions here
@@ -193,10 +196,12 @@ class Schedule:
         # Pairs: every other ball on the table, where at least one of the two moves. Two
         # renewed balls meet as the first one's pair only: their times are the same bits
         # either way round (each difference the other's negated, each product the same).
+        # (A row's own ball is renewed as that row, so it is no pair of its own; renewed
+        # balls' rows, and -1 for others, compared as unsigned: -1 is above every row.)
         stk = balls.state.take(b, axis=0)
-        renewed = self._row.take(b, axis=0)
-        valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
-                 & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
+        renewed = self._row.take(b, axis=0).view(np.uint64)
+        valid = _PAIRED.take(stk + (_PAIRED_MOVING * moving)[:, None])
+        valid &= renewed > np.arange(first, first + M, dtype=np.uint64)[:, None]
         if CULL:
             # A pair's window ends with the shorter of its balls' own, at most a moving
             # ball's (`horizon`): a ball at rest's is cut at twice that.
