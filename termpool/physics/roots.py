@@ -24,6 +24,11 @@ A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but acceler
 # faster than this is pressed together: a contact now (a resting one, joined.py); slower is
 # rounding, and is caught by SINK if it lasts
 PIECES = 4  # straight pieces of the window in the cull
+try:  # the gufunc np.linalg.eigvals calls, without the checks around it (see `eigvals`)
+    from numpy.linalg import _umath_linalg
+    _EIGVALS = _umath_linalg.eigvals
+except (ImportError, AttributeError):  # pragma: no cover (another numpy): its public form
+    _EIGVALS = None
 _FRACTIONS = np.arange(PIECES, dtype=float)
 _PIECES_ONE = _FRACTIONS.tolist()
 
@@ -188,7 +193,7 @@ def solve_few(pairs: list) -> list:
             inv = -1.0 / C4
             top.append((C3 * inv, C2 * inv, C1 * inv, c0 * inv))
         comp[:, 0] = top
-        roots = iter(np.linalg.eigvals(comp).tolist())
+        roots = iter(eigvals(comp).tolist())
     out = []
     for c4, c3, c2, c1, c0, C4, C3, C2, C1, T, tg, quartic in coef:
         s = math.inf
@@ -244,7 +249,7 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
         top[:, 2] = C1[q] * inv
         top[:, 3] = c0[q] * inv
         comp[:, 1, 0] = comp[:, 2, 1] = comp[:, 3, 2] = 1.0
-        roots = np.linalg.eigvals(comp)
+        roots = eigvals(comp)
         re = roots.real
         slope = ((4 * C4[q, None] * re + 3 * C3[q, None]) * re + 2 * C2[q, None]) * re + C1[q, None]
         ok = (np.abs(roots.imag) <= 1e-6 * (1.0 + np.abs(re))) & (re >= -1e-9) & (re <= 1 + 1e-9)
@@ -277,6 +282,18 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
         t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
                                float(c0[k]), float(T[k]), float(tg[k]))
     return np.where(hit, t, np.inf)
+
+
+def eigvals(comp: np.ndarray) -> np.ndarray:
+    """np.linalg.eigvals of real (K, n, n) matrices, the same numbers (as complex), without
+    the checks and the error-state switch it wraps around LAPACK (some 20 us a call; callers
+    run under np.errstate(all="ignore") already). What would make it raise, a matrix that is
+    not finite or eigenvalues that do not converge (NaNs out), goes to it, so that it raises
+    as before."""
+    if _EIGVALS is None or not np.isfinite(comp).all():
+        return np.linalg.eigvals(comp)
+    w = _EIGVALS(comp, signature="d->D")
+    return np.linalg.eigvals(comp) if np.isnan(w).any() else w
 
 
 def _poly(c: tuple, t: float) -> float:
