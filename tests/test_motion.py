@@ -215,7 +215,7 @@ def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit
     reach = np.hypot(v[:, 0], v[:, 1]) * horizon + 0.5 * np.hypot(a[:, 0], a[:, 1]) * horizon ** 2
     reach += rc
     with np.errstate(all="ignore"):
-        many = eng.features.lines(p, v, a, rc, horizon)
+        many = eng.features.lines(np.concatenate([p.T, v.T, a.T]), rc, horizon)  # (planes)
         few = np.concatenate([eng.features.lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2],
                                                      rc[n:n + 2], horizon[n:n + 2],
                                                      reach[n:n + 2])

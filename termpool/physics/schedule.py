@@ -261,11 +261,11 @@ class Schedule:
             if nc:
                 tcirc.ravel()[at_c] = found[npair:]
             bm, im, tm = b.take(mv), i.take(mv), t.take(mv)
-            args = qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, T.take(mv), reach.take(mv)
             if mv.size <= FEW:
-                tline = feat.lines_few(*args)
+                tline = feat.lines_few(qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, T.take(mv),
+                                       reach.take(mv))
             else:  # (the segments the ball's box comes within reach of)
-                tline = feat.lines(*args, near=self._near_segments(lom, him, rcm)
+                tline = feat.lines(qm, rcm, T.take(mv), near=self._near_segments(lom, him, rcm)
                                    if CULL else None)
             allt = np.concatenate([tline, tcirc], axis=1)
             f = allt.argmin(axis=1)
