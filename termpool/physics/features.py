@@ -35,6 +35,9 @@ class Features:
         # Jaw tips, then holes: met as circles (a ball's centre at reach rc of a tip, within
         # a hole's radius of its centre).
         self.circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+        # Every feature's box (2, S + C), x then y: the segments', then the points themselves.
+        self.box_lo = np.concatenate([self.seg_lo, self.circles]).T.copy()
+        self.box_hi = np.concatenate([self.seg_hi, self.circles]).T.copy()
         # Plain-float forms for a few balls (lines_one, Schedule.predict_few).
         self.circle_list = self.circles.tolist()
         self.hole_c, self.hole_r = table.hole_c.tolist(), table.hole_r.tolist()
@@ -42,11 +45,13 @@ class Features:
                                self.seg_len.tolist(), table.seg_n.tolist(),
                                self.seg_off.tolist(), self.seg_start.tolist(), strict=True))
 
-    def lines(self, q, rc, horizon, near=None) -> np.ndarray:
+    def lines(self, q, rc, horizon, near=None, out=None) -> np.ndarray:
         """(M, S) first contact times of M balls, whose positions, velocities and
         accelerations are the planes q (6, M) (x, y, vx, vy, ax, ay), with the cushion
         segments; with `near` (M, S), only of the (ball, segment) pairs it marks (inf
-        elsewhere: the caller knows those cannot meet)."""
+        elsewhere: the caller knows those cannot meet). With `out`, a C-contiguous (M, W)
+        array whose first S columns are inf, the times are written there and it is
+        returned."""
         M, S = q.shape[1], self.nseg
         m, k = np.nonzero(np.ones((M, S), dtype=bool) if near is None else near)
         px, py, vx, vy, ax, ay = q.take(m, axis=1)
@@ -60,7 +65,8 @@ class Features:
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
         # Worked out only where a time was found (few of the pairs), as `lines_one` does.
         f = np.flatnonzero(tl < np.inf)  # (never a nan)
-        out = np.full((M, S), np.inf)
+        if out is None:
+            out = np.full((M, S), np.inf)
         if f.size:
             t = tl.take(f)
             tt = t * t
@@ -70,7 +76,7 @@ class Features:
             qy = (py + vy * t + 0.5 * ay * tt) - ey
             along = qx * dx + qy * dy
             on = np.flatnonzero((along >= 0) & (along <= length))
-            out.ravel()[(m * S + k).take(f.take(on))] = t.take(on)
+            out.ravel()[(m * out.shape[1] + k).take(f.take(on))] = t.take(on)
         return out
 
     def lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:

@@ -107,6 +107,7 @@ class Schedule:
         self._ones: dict[int, np.ndarray] = {}  # one_array's arrays
         self.flat_f_cush = flat(self.f_cush)
         self._f_cush_1d = self.f_cush.reshape(-1)  # a view
+        self._hole_gap = features.table.hole_r + GAP  # `_near_features`' reach of a hole
 
     def decode_one(self, code: int) -> tuple[int, int, int]:
         """`decode` of one event code, as ints (what: Due, ball i, ball j or -1)."""
@@ -227,15 +228,17 @@ class Schedule:
             edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
             near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
         mv = np.flatnonzero(moving & near)
-        nc = len(feat.circles)
-        qm, rcm = q.take(mv, axis=1), rc.take(mv)
-        if CULL and mv.size:  # the moving balls' boxes, for their cushions
-            lom, him = lo.take(ui.take(mv), axis=1), hi.take(ui.take(mv), axis=1)
+        nc, S = len(feat.circles), feat.nseg
+        qm, rcm, Tm = q.take(mv, axis=1), rc.take(mv), T.take(mv)
+        if CULL and mv.size:  # the features the moving balls' boxes come within reach of
+            um = ui.take(mv)
+            near_f = self._near_features(lo.take(um, axis=1), hi.take(um, axis=1), rcm)
         if mv.size and nc:
-            holes = np.broadcast_to(feat.table.hole_r, (mv.size, nc - feat.npt))
-            D = np.concatenate([np.repeat(rcm[:, None], feat.npt, axis=1), holes], axis=1)
-            if CULL:  # the points the ball's box comes within reach of
-                mr, cc = np.nonzero(self._near_points(lom, him, D))
+            D = np.empty((mv.size, nc))  # a tip is met at the nose reach, a hole at its radius
+            D[:, :feat.npt] = rcm[:, None]
+            D[:, feat.npt:] = feat.table.hole_r
+            if CULL:
+                mr, cc = np.nonzero(near_f[:, S:])
             else:
                 mr, cc = np.divmod(np.arange(mv.size * nc), nc)
             m = qm.take(mr, axis=1)
@@ -243,9 +246,8 @@ class Schedule:
             pair = rel
             rel = [np.concatenate([pair[n], feat.circles[:, n].take(cc) - m[n]]) for n in (0, 1)]
             rel += [np.concatenate([pair[n], -m[n]]) for n in range(2, 6)]
-            at_c = mr * nc + cc
-            dist.append(D.ravel().take(at_c))
-            horizon.append(T.take(mv).take(mr))
+            dist.append(D.ravel().take(mr * nc + cc))
+            horizon.append(Tm.take(mr))
         found = first_contact_xy(*rel, np.concatenate(dist), np.concatenate(horizon))
         npair = mi.size
         if npair:
@@ -257,19 +259,18 @@ class Schedule:
             self._times_1d[at + ii * N + kk] = tp
             self._times_1d[at + kk * N + ii] = tp
         if mv.size:
-            tcirc = np.full((mv.size, nc), np.inf)
+            # Each ball's segments, then its points (tips and holes), in one row.
+            allt = np.full((mv.size, S + nc), np.inf)
             if nc:
-                tcirc.ravel()[at_c] = found[npair:]
-            bm, im, tm = b.take(mv), i.take(mv), t.take(mv)
+                allt.ravel()[mr * (S + nc) + (S + cc)] = found[npair:]
             if mv.size <= FEW:
-                tline = feat.lines_few(qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, T.take(mv),
-                                       reach.take(mv))
+                allt[:, :S] = feat.lines_few(qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, Tm,
+                                             reach.take(mv))
             else:  # (the segments the ball's box comes within reach of)
-                tline = feat.lines(qm, rcm, T.take(mv), near=self._near_segments(lom, him, rcm)
-                                   if CULL else None)
-            allt = np.concatenate([tline, tcirc], axis=1)
+                feat.lines(qm, rcm, Tm, near=near_f[:, :S] if CULL else None, out=allt)
             f = allt.argmin(axis=1)
-            self._times_1d[bm * self.width + 2 * N + im] = tm + allt[np.arange(mv.size), f]
+            bm, im = b.take(mv), i.take(mv)
+            self._times_1d[bm * self.width + 2 * N + im] = t.take(mv) + allt[np.arange(mv.size), f]
             self._f_cush_1d[bm * N + im] = f
 
     def _tables(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -299,25 +300,20 @@ class Schedule:
                  | (hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]))
         return ~(apart[0] | apart[1])
 
-    def _near_segments(self, lo, hi, rc) -> np.ndarray:
-        """(M, S) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within
-        their nose reach rc (M,) (and GAP) of each cushion segment's box: a contact is a
-        centre that far from a point of the segment, within the window, so it is in both."""
+    def _near_features(self, lo, hi, rc) -> np.ndarray:
+        """(M, S + C) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within
+        reach of each cushion segment and each point (jaw tips, hole centres), in the
+        features' order: a segment's box or a tip within the ball's nose reach rc (M,), a
+        hole's centre within its radius (and GAP). A contact is a centre that far from a
+        point of the feature, within the window, so it is in both boxes; as in `_overlap`,
+        a feature further than that from the box is never met."""
         feat = self.features
-        lo_s, hi_s = feat.seg_lo, feat.seg_hi
-        Dg = (rc + GAP)[:, None]
-        apart = ((lo_s[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - hi_s[:, 0] > Dg)
-                 | (lo_s[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - hi_s[:, 1] > Dg))
-        return ~apart
-
-    def _near_points(self, lo, hi, D) -> np.ndarray:
-        """(M, C) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within D
-        (M, C) (and GAP) of the features' points (jaw tips, hole centres); as in
-        `_overlap`, a point further than that from the box is never met."""
-        c = self.features.circles
-        Dg = D + GAP
-        apart = ((c[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - c[:, 0] > Dg)
-                 | (c[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - c[:, 1] > Dg))
+        Dg = np.empty((rc.size, feat.nseg + len(feat.circles)))
+        Dg[:, :feat.first_hole] = (rc + GAP)[:, None]
+        Dg[:, feat.first_hole:] = self._hole_gap
+        lo_f, hi_f = feat.box_lo, feat.box_hi
+        apart = ((lo_f[0] - hi[0][:, None] > Dg) | (lo[0][:, None] - hi_f[0] > Dg)
+                 | (lo_f[1] - hi[1][:, None] > Dg) | (lo[1][:, None] - hi_f[1] > Dg))
         return ~apart
 
     def predict_few(self, b, i) -> None:
