@@ -192,7 +192,7 @@ def _moved(p0, v0, acc, d) -> tuple:
 def at_planes(rows: np.ndarray, t) -> np.ndarray:
     """`at_many` without spin as six planes: (6, ...) x, y, vx, vy, ax, ay at times t of
     balls whose packed motions are `rows` (..., Col.N); each plane contiguous."""
-    planes = np.moveaxis(rows, -1, 0)
+    planes = rows.transpose((-1,) + tuple(range(rows.ndim - 1)))  # (np.moveaxis, cheaper)
     d = (t - planes[Col.T0])[None]
     out = np.empty((6,) + d.shape[1:])
     out[2:] = planes[Col.VX:Col.AY + 1]  # velocities and accelerations at t0, contiguous
