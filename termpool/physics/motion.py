@@ -231,8 +231,16 @@ def at(row: list, t: float) -> tuple[list, list, list]:
 def swept(p: np.ndarray, v: np.ndarray, a: np.ndarray, T: np.ndarray) -> tuple:
     """(lo, hi): the box, coordinate by coordinate, that the quadratic p + v s + a s^2 / 2
     sweeps over s in [0, T] (T >= 0): its ends and, where it turns inside the window, its
-    vertex. Exact up to rounding (a few ulps of the coordinates)."""
-    e = p + (v + 0.5 * a * T) * T
+    vertex. Exact up to rounding (a few ulps of the coordinates). (Worked in place: the
+    operations of p + (v + 0.5 a T) T and the rest, in their order.)"""
+    ha = 0.5 * a
+    e = ha * T
+    e += v
+    e *= T
+    e += p
     s = np.minimum(np.maximum(-v / a, 0.0), T)  # the vertex; nan where v = a = 0 (no vertex)
-    m = p + (v + 0.5 * a * s) * s
+    m = ha * s
+    m += v
+    m *= s
+    m += p
     return np.fmin(np.minimum(p, e), m), np.fmax(np.maximum(p, e), m)

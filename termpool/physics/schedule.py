@@ -296,8 +296,8 @@ class Schedule:
         lo, hi = lo - rg, hi + rg
         tables = (2, -1, self.N)
         # Apart along x or y: one's lo past the other's hi (nan: not apart).
-        apart = ((lo.reshape(tables).take(u, axis=1) > hi.take(ui, axis=1)[..., None])
-                 | (hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]))
+        apart = lo.reshape(tables).take(u, axis=1) > hi.take(ui, axis=1)[..., None]
+        apart |= hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]
         return ~(apart[0] | apart[1])
 
     def _near_features(self, lo, hi, rc) -> np.ndarray:
