@@ -35,6 +35,7 @@ class Features:
         # Jaw tips, then holes: met as circles (a ball's centre at reach rc of a tip, within
         # a hole's radius of its centre).
         self.circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+        self.circle_rows = self.circles.T.copy()  # (2, C): x, then y
         # Every feature's box (2, S + C), x then y: the segments', then the points themselves.
         self.box_lo = np.concatenate([self.seg_lo, self.circles]).T.copy()
         self.box_hi = np.concatenate([self.seg_hi, self.circles]).T.copy()

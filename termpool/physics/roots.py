@@ -45,24 +45,27 @@ def first_contact(
     friction is caught again after a bounded, sub-micrometre overlap instead of chattering.
     With `pressed`, a touching pair accelerating together meets at t = 0 as well.
     """
-    return first_contact_xy(p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1], dist,
-                            horizon, pressed)
+    return first_contact_rows(np.concatenate([p0.T, v.T, a.T]), dist, horizon, pressed)
 
 
-def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True) -> np.ndarray:
-    """`first_contact` of relative motions given as their six components, (K,) each."""
+def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
+                       pressed: bool = True) -> np.ndarray:
+    """`first_contact` of relative motions given as the rows of rel (6, K): x, y, vx, vy,
+    ax, ay (the candidates that pass a cull are one take of it)."""
+    px, py, vx, vy, ax, ay = rel
     pv = px * vx + py * vy
     r0 = np.sqrt(px * px + py * py)
     touching = r0 - dist < TOUCH
     # Closing, or sunk deeper than SINK (left so by another contact), or pressed together:
-    # resolve at once.
-    now = touching & ((pv < -V_MIN * r0) | (r0 < dist - SINK))
-    rest = np.flatnonzero(touching & ~now & (pv <= V_MIN * r0) & pressed)
-    if rest.size:
+    # resolve at once. (-(V_MIN r0) is -V_MIN r0, bit for bit.)
+    vr = V_MIN * r0
+    now = touching & ((pv < -vr) | (r0 < dist - SINK))
+    rest = np.flatnonzero(touching & ~now & (pv <= vr)) if pressed else ()
+    if len(rest):
         # The distance's second derivative, (v.v + p.a) / r - (p.v)^2 / r^3.
-        px_, py_, vx_, vy_ = px[rest], py[rest], vx[rest], vy[rest]
+        px_, py_, vx_, vy_, ax_, ay_ = rel.take(rest, axis=1)
         r_ = r0[rest]
-        acc = ((vx_ * vx_ + vy_ * vy_ + px_ * ax[rest] + py_ * ay[rest]) / r_
+        acc = ((vx_ * vx_ + vy_ * vy_ + px_ * ax_ + py_ * ay_) / r_
                - pv[rest] ** 2 / r_ ** 3)
         now[rest] = acc < -A_MIN
     target = np.where(touching, np.minimum(dist, r0) - SINK, dist)
@@ -81,7 +84,8 @@ def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True
     # Second cull, on what is left: the window in PIECES straight pieces, each widened by the
     # most the acceleration can bend the path within it; a pair none of whose pieces comes
     # close cannot meet.
-    px, py, vx, vy, ax, ay = px[idx], py[idx], vx[idx], vy[idx], ax[idx], ay[idx]
+    rel = rel.take(idx, axis=1)
+    px, py, vx, vy, ax, ay = rel
     hz, tg = horizon[idx], target[idx]
     vv = vx * vx + vy * vy
     aa = ax * ax + ay * ay
@@ -101,8 +105,8 @@ def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True
     if sel.size == 0:
         return out
     idx = idx[sel]
-    out[idx] = solve(px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel], hz[sel], tg[sel],
-                     pv[idx], r0[idx], vv[sel], aa[sel])
+    out[idx] = solve(*rel.take(sel, axis=1), hz[sel], tg[sel], pv[idx], r0[idx], vv[sel],
+                     aa[sel])
     return out
 
 

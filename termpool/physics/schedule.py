@@ -14,7 +14,7 @@ from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
 from termpool.physics.flat import flat
 from termpool.physics.motion import Col, swept
-from termpool.physics.roots import first_contact, first_contact_few, first_contact_xy
+from termpool.physics.roots import first_contact, first_contact_few, first_contact_rows
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
 
@@ -211,7 +211,8 @@ class Schedule:
             valid &= self._overlap(lo, hi, radius, u, ui)
         mi, kk = np.nonzero(valid)
         k = u.take(mi) * N + kk
-        rel = Q.take(k, axis=1) - q.take(mi, axis=1)
+        rel = Q.take(k, axis=1)
+        rel -= q.take(mi, axis=1)
         dist = [radius.take(k) + radius.take(ui).take(mi)]
         horizon = [np.minimum(end.take(mi), end_k.ravel().take(k)) - t.take(mi)]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
@@ -243,12 +244,12 @@ class Schedule:
                 mr, cc = np.divmod(np.arange(mv.size * nc), nc)
             m = qm.take(mr, axis=1)
             # After the pairs: the point relative to the ball, the ball's motion negated.
-            pair = rel
-            rel = [np.concatenate([pair[n], feat.circles[:, n].take(cc) - m[n]]) for n in (0, 1)]
-            rel += [np.concatenate([pair[n], -m[n]]) for n in range(2, 6)]
+            circ = np.negative(m)
+            np.subtract(feat.circle_rows.take(cc, axis=1), m[:2], out=circ[:2])
+            rel = np.concatenate([rel, circ], axis=1)
             dist.append(D.ravel().take(mr * nc + cc))
             horizon.append(Tm.take(mr))
-        found = first_contact_xy(*rel, np.concatenate(dist), np.concatenate(horizon))
+        found = first_contact_rows(rel, np.concatenate(dist), np.concatenate(horizon))
         npair = mi.size
         if npair:
             tp = t.take(mi) + found[:npair]
