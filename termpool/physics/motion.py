@@ -191,13 +191,19 @@ def _moved(p0, v0, acc, d) -> tuple:
 
 def at_planes(rows: np.ndarray, t) -> np.ndarray:
     """`at_many` without spin as six planes: (6, ...) x, y, vx, vy, ax, ay at times t of
-    balls whose packed motions are `rows` (..., Col.N); each plane contiguous."""
-    planes = rows.transpose((-1,) + tuple(range(rows.ndim - 1)))  # (np.moveaxis, cheaper)
-    d = (t - planes[Col.T0])[None]
-    out = np.empty((6,) + d.shape[1:])
-    out[2:] = planes[Col.VX:Col.AY + 1]  # velocities and accelerations at t0, contiguous
-    out[:2], out[2:4] = _moved(planes[Col.P], out[2:4], out[4:], d)
-    return out
+    balls whose packed motions are `rows` (..., Col.N); each plane contiguous. The columns
+    read (t0, position, velocity, acceleration) are copied into planes once, and `_moved`'s
+    arithmetic done there in place, operation for operation (the same bits)."""
+    planes = rows[..., :Col.AY + 1].transpose((-1,) + tuple(range(rows.ndim - 1))).copy()
+    d = t - planes[Col.T0]
+    a = planes[Col.ACC]
+    step = 0.5 * a  # p0 + (v0 + 0.5 a d) d
+    step *= d
+    step += planes[Col.V]
+    step *= d
+    planes[Col.P] += step
+    planes[Col.V] += a * d  # v0 + a d
+    return planes[Col.PX:]
 
 
 def at_many(rows: np.ndarray, t, spin: bool = True) -> tuple:
