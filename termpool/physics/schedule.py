@@ -145,18 +145,20 @@ class Schedule:
 
     def predict_many(self, b: np.ndarray, i: np.ndarray) -> None:
         """`predict` on arrays."""
-        balls = self.balls
+        N = self.N
+        key = b * N + i  # (one-index lookups: a two-index one costs several times more)
         if b.size > 1:  # a ball renewed twice (an event's ball, and its cluster's): once
-            first = _firsts(b * self.N + i)
+            first = _firsts(key)
             if first.size < b.size:
-                b, i = b.take(first), i.take(first)
-        t = self.tb[b]
-        st = balls.state[b, i]
-        moving = _MOVING[st]
+                b, i, key = b.take(first), i.take(first), key.take(first)
+        t = self.tb.take(b)
+        st = self.balls.state.reshape(-1).take(key)
+        moving = _MOVING.take(st)
         t_check = np.where(moving, t + self.horizon, np.inf)
-        self.t_check[b, i] = t_check
-        end = np.minimum(self.t_trans[b, i], t_check)
-        self.t_cush[b, i] = np.inf
+        at = b * self.width + i  # the ball's transition time in the flat rows of times
+        self._times_1d[at + N] = t_check
+        end = np.minimum(self._times_1d.take(at), t_check)
+        self._times_1d[at + 2 * N] = np.inf
         self.t_pair[b, i, :] = np.inf
         self.t_pair[b, :, i] = np.inf
         live = st != POCKETED
@@ -164,18 +166,19 @@ class Schedule:
             m = np.flatnonzero(live)
             if m.size == 0:
                 return
-            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+            b, i, t, end, moving, key = b[m], i[m], t[m], end[m], moving[m], key[m]
         # In chunks of rows, so that the temporaries (each row's candidates against every
         # ball of its table) stay bounded however many tables renew at once; every row's
         # predictions are its own, so chunks give the same times as one piece.
-        step = max(1, self.chunk // self.N)
-        self._row[b, i] = np.arange(b.size)
+        step = max(1, self.chunk // N)
+        row = self._row.reshape(-1)  # (a view)
+        row[key] = np.arange(b.size)
         try:
             for s in range(0, b.size, step):
                 self._predict_rows(b[s:s + step], i[s:s + step], t[s:s + step],
                                    end[s:s + step], moving[s:s + step], s)
         finally:
-            self._row[b, i] = -1
+            row[key] = -1
 
     def _predict_rows(self, b, i, t, end, moving, first: int) -> None:
         """`predict_many`'s contact predictions for live balls (b, i) at clocks t, whose
