@@ -90,17 +90,18 @@ def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
     vv = vx * vx + vy * vy
     aa = ax * ax + ay * ay
     h = hz / PIECES
-    s0 = h[:, None] * _FRACTIONS  # (K, PIECES) piece start times
-    qx = px[:, None] + (vx[:, None] + 0.5 * ax[:, None] * s0) * s0
-    qy = py[:, None] + (vy[:, None] + 0.5 * ay[:, None] * s0) * s0
-    wx = vx[:, None] + ax[:, None] * s0
-    wy = vy[:, None] + ay[:, None] * s0
+    # (PIECES, K), a piece a row: each operation then runs along the candidates, contiguous.
+    s0 = _FRACTIONS[:, None] * h  # piece start times
+    qx = px + (vx + 0.5 * ax * s0) * s0
+    qy = py + (vy + 0.5 * ay * s0) * s0
+    wx = vx + ax * s0
+    wy = vy + ay * s0
     ww = wx * wx + wy * wy
-    ts = np.minimum(np.maximum(-(qx * wx + qy * wy) / ww, 0.0), h[:, None])
+    ts = np.minimum(np.maximum(-(qx * wx + qy * wy) / ww, 0.0), h)
     ts = np.where(ww > 0, ts, 0.0)
     cx, cy = qx + wx * ts, qy + wy * ts
-    reach = (tg + 0.5 * np.sqrt(aa) * h * h)[:, None]
-    close = (cx * cx + cy * cy <= reach * reach).any(axis=1) & ((vv > 0) | (aa > 0))
+    reach = tg + 0.5 * np.sqrt(aa) * h * h
+    close = (cx * cx + cy * cy <= reach * reach).any(axis=0) & ((vv > 0) | (aa > 0))
     sel = np.flatnonzero(close)
     if sel.size == 0:
         return out
