@@ -108,6 +108,8 @@ class Schedule:
         self.flat_f_cush = flat(self.f_cush)
         self._f_cush_1d = self.f_cush.reshape(-1)  # a view
         self._hole_gap = features.table.hole_r + GAP  # `_near_features`' reach of a hole
+        tab = features.table  # the holes' x, y and radius as columns (H, 1)
+        self._holes = tab.hole_c[:, 0, None], tab.hole_c[:, 1, None], tab.hole_r[:, None]
 
     def decode_one(self, code: int) -> tuple[int, int, int]:
         """`decode` of one event code, as ints (what: Due, ball i, ball j or -1)."""
@@ -228,9 +230,9 @@ class Schedule:
         tab = feat.table
         x, y = q[0], q[1]
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        if len(tab.hole_r):
-            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
-            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
+        if len(tab.hole_r):  # (a hole a row, so that each operation runs along the balls)
+            hx, hy, hr = self._holes
+            near |= ((np.hypot(x - hx, y - hy) - hr) < reach).any(axis=0)
         mv = np.flatnonzero(moving & near)
         nc, S = len(feat.circles), feat.nseg
         qm, rcm, Tm = q.take(mv, axis=1), rc.take(mv), T.take(mv)
