@@ -107,7 +107,9 @@ class Schedule:
         self._ones: dict[int, np.ndarray] = {}  # one_array's arrays
         self.flat_f_cush = flat(self.f_cush)
         self._f_cush_1d = self.f_cush.reshape(-1)  # a view
-        self._hole_gap = features.table.hole_r + GAP  # `_near_features`' reach of a hole
+        # `_near_features`' reach of each hole and the features' boxes, as columns (F, 1).
+        self._hole_gap = (features.table.hole_r + GAP)[:, None]
+        self._boxes = features.box_lo[..., None], features.box_hi[..., None]
         tab = features.table  # the holes' x, y and radius as columns (H, 1)
         self._holes = tab.hole_c[:, 0, None], tab.hole_c[:, 1, None], tab.hole_r[:, None]
 
@@ -313,14 +315,16 @@ class Schedule:
         hole's centre within its radius (and GAP). A contact is a centre that far from a
         point of the feature, within the window, so it is in both boxes; as in `_overlap`,
         a feature further than that from the box is never met."""
+        # Worked a feature a row (S + C, M), so that each operation runs along the balls;
+        # returned as its transpose.
         feat = self.features
-        Dg = np.empty((rc.size, feat.nseg + len(feat.circles)))
-        Dg[:, :feat.first_hole] = (rc + GAP)[:, None]
-        Dg[:, feat.first_hole:] = self._hole_gap
-        lo_f, hi_f = feat.box_lo, feat.box_hi
-        apart = ((lo_f[0] - hi[0][:, None] > Dg) | (lo[0][:, None] - hi_f[0] > Dg)
-                 | (lo_f[1] - hi[1][:, None] > Dg) | (lo[1][:, None] - hi_f[1] > Dg))
-        return ~apart
+        Dg = np.empty((feat.nseg + len(feat.circles), rc.size))
+        Dg[:feat.first_hole] = rc + GAP
+        Dg[feat.first_hole:] = self._hole_gap
+        lo_f, hi_f = self._boxes
+        apart = ((lo_f[0] - hi[0] > Dg) | (lo[0] - hi_f[0] > Dg)
+                 | (lo_f[1] - hi[1] > Dg) | (lo[1] - hi_f[1] > Dg))
+        return (~apart).T
 
     def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
