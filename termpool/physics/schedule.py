@@ -234,7 +234,13 @@ class Schedule:
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
         if len(tab.hole_r):  # (a hole a row, so that each operation runs along the balls)
             hx, hy, hr = self._holes
-            near |= ((np.hypot(x - hx, y - hy) - hr) < reach).any(axis=0)
+            dx, dy = x - hx, y - hy
+            # hypot(dx, dy) >= max(|dx|, |dy|): a ball that far from every hole is near none,
+            # and hypot (slow) is worked out only for the others.
+            c = np.flatnonzero(((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
+                               & ~near)
+            if c.size:
+                near[c] = ((np.hypot(dx[:, c], dy[:, c]) - hr) < reach.take(c)).any(axis=0)
         mv = np.flatnonzero(moving & near)
         nc, S = len(feat.circles), feat.nseg
         qm, rcm, Tm = q.take(mv, axis=1), rc.take(mv), T.take(mv)
