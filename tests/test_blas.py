@@ -108,7 +108,8 @@ p = np.column_stack([rng.uniform(0.03, 2.51, M), rng.uniform(0.03, 1.24, M)])
 v, a = rng.normal(0.0, 2.0, (M, 2)), rng.normal(0.0, 1.0, (M, 2))
 rc, horizon = np.full(M, eng.rc[0, 0]), np.full(M, 2.0)
 with np.errstate(all="ignore"):
-    print(hashlib.sha256(eng.features.lines(p, v, a, rc, horizon).tobytes()).hexdigest())
+    q = np.concatenate([p.T, v.T, a.T])  # the balls as planes: x, y, vx, vy, ax, ay
+    print(hashlib.sha256(eng.features.lines(q, rc, horizon).tobytes()).hexdigest())
 """
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from termpool.physics import motion
+from termpool.physics import motion, roots
 from termpool.physics.ball_ball import MODELS as BALL_BALL
 from termpool.physics.balls import FEW
 from termpool.physics.cushion import MODELS
@@ -215,7 +215,7 @@ def test_cushion_lines_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit
     reach = np.hypot(v[:, 0], v[:, 1]) * horizon + 0.5 * np.hypot(a[:, 0], a[:, 1]) * horizon ** 2
     reach += rc
     with np.errstate(all="ignore"):
-        many = eng.features.lines(p, v, a, rc, horizon)
+        many = eng.features.lines(np.concatenate([p.T, v.T, a.T]), rc, horizon)  # (planes)
         few = np.concatenate([eng.features.lines_few(p[n:n + 2], v[n:n + 2], a[n:n + 2],
                                                      rc[n:n + 2], horizon[n:n + 2],
                                                      reach[n:n + 2])
@@ -367,3 +367,24 @@ def test_predictions_of_a_few_balls_in_floats_match_the_array_path_bit_for_bit(s
     assert np.array_equal(few.schedule.times, many.schedule.times)
     assert np.array_equal(few.f_cush, many.f_cush)
     assert pairs > 10 and cushions > 5
+
+
+def test_the_quartics_eigenvalues_are_numpys_bit_for_bit_and_refused_as_numpy_refuses():
+    """roots.eigvals skips np.linalg.eigvals' checks around LAPACK: the same numbers on
+    companion matrices of the quartics the root finder meets (random ones; double roots;
+    roots exactly 0 and 1; all roots complex), and a matrix numpy refuses is refused."""
+    rng = np.random.default_rng(26)
+    tops = [rng.normal(0.0, 10.0 ** rng.uniform(-3, 3, 4)) for _ in range(300)]
+    tops += [[-2.0, 1.0, 0.0, 0.0],  # s^2 (s - 1)^2: double roots at 0 and 1
+             [-4.0, 6.0, -4.0, 1.0],  # (s - 1)^4
+             [0.0, 2.0, 0.0, 1.0],  # (s^2 + 1)^2: no real root
+             [-1.0, 0.0, 0.0, 0.0]]  # s^3 (s - 1)
+    comp = np.zeros((len(tops), 4, 4))
+    comp[:, 0] = np.negative(tops)
+    comp[:, 1, 0] = comp[:, 2, 1] = comp[:, 3, 2] = 1.0
+    with np.errstate(all="ignore"):
+        assert roots.eigvals(comp).tobytes() == np.linalg.eigvals(comp).astype(complex).tobytes()
+        for bad in (np.inf, np.nan):
+            comp[7, 0, 2] = bad
+            with pytest.raises(np.linalg.LinAlgError):
+                roots.eigvals(comp)

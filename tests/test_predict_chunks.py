@@ -12,8 +12,9 @@ import pytest
 
 from termpool.physics import schedule
 from termpool.physics.engine import Engine
-from termpool.physics.params import BALL_RADIUS
+from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.state import POCKETED
+from termpool.physics.table import Table
 from termpool.scene import load_scene
 
 R = BALL_RADIUS
@@ -217,3 +218,21 @@ def test_one_table_alone_runs_as_it_does_in_a_batch_bit_for_bit(dt):
         for name in ("pos", "vel", "w", "state"):
             assert getattr(eng, name)[0].tobytes() == getattr(batch, name)[k].tobytes(), name
         assert eng.events[0] == batch.events[k]
+
+
+def test_a_renewals_balls_and_tables_are_numbered_as_np_unique_numbers_them():
+    """A renewal names a ball at most once, the first time it is named, and numbers its
+    tables in order, as np.unique would (a ball named twice: an event's, and its cluster's)."""
+    rng = np.random.default_rng(30)
+    eng = Engine(Table(), Physics(), np.zeros((40, 3, 2)) + [[0.5, 0.5], [1.0, 0.5], [1.5, 0.5]])
+    for size in (2, 3, 50, 400):
+        key = rng.integers(0, 120, size)  # repeats, in any order
+        key[rng.random(size) < 0.3] = key[0]
+        want = np.unique(key, return_index=True)[1]
+        want.sort()
+        assert schedule._firsts(key).tolist() == want.tolist()
+        b = key // 3
+        tabs, u = eng.schedule._tables(b)
+        want_tabs, want_u = np.unique(b, return_inverse=True)
+        assert tabs.tolist() == want_tabs.tolist() and u.tolist() == want_u.tolist()
+    assert not eng.schedule._place.any()  # (its marks cleared for the next renewal)

@@ -112,14 +112,14 @@ def _renew_all(eng: Engine, t: float) -> tuple:
     return eng.schedule.times.tobytes(), eng.f_cush.tobytes()
 
 
-def _counted(monkeypatch, name: str) -> list:
-    """(kept, all) of each later call of Schedule's cull `name`."""
+def _counted(monkeypatch, name: str, cols: slice = slice(None)) -> list:
+    """(kept, all) of each later call of Schedule's cull `name`, in its columns `cols`."""
     kept = []
     real = getattr(schedule.Schedule, name)
 
     def counted(self, *args):
         out = real(self, *args)
-        kept.append((int(out.sum()), out.size))
+        kept.append((int(out[..., cols].sum()), out[..., cols].size))
         return out
 
     monkeypatch.setattr(schedule.Schedule, name, counted)
@@ -136,8 +136,10 @@ def test_culled_renewals_are_the_renewals_without_the_cull_bit_for_bit(t, monkey
                for _ in range(2)]
     for eng in engines:
         eng.state[6, 3] = POCKETED
-    pairs, points = _counted(monkeypatch, "_overlap"), _counted(monkeypatch, "_near_points")
-    segments = _counted(monkeypatch, "_near_segments")
+    nseg = engines[0].features.nseg  # (the features' cull: the segments, then the points)
+    pairs = _counted(monkeypatch, "_overlap")
+    segments = _counted(monkeypatch, "_near_features", slice(None, nseg))
+    points = _counted(monkeypatch, "_near_features", slice(nseg, None))
     culled = _renew_all(engines[0], t)
     monkeypatch.setattr(schedule, "CULL", False)
     whole = _renew_all(engines[1], t)

@@ -28,9 +28,17 @@ class Features:
         self.seg_start = (table.seg_a * self.seg_dir).sum(axis=1)
         self.seg_lo = np.minimum(table.seg_a, table.seg_b)  # each segment's box
         self.seg_hi = np.maximum(table.seg_a, table.seg_b)
+        # The segments' numbers `lines` reads, a row each (one gather a call): normal, direction,
+        # offset, start, length, start point.
+        self.seg_rows = np.concatenate([table.seg_n.T, self.seg_dir.T, self.seg_off[None],
+                                        self.seg_start[None], self.seg_len[None], table.seg_a.T])
         # Jaw tips, then holes: met as circles (a ball's centre at reach rc of a tip, within
         # a hole's radius of its centre).
         self.circles = np.concatenate([table.points.reshape(-1, 2), table.hole_c.reshape(-1, 2)])
+        self.circle_rows = self.circles.T.copy()  # (2, C): x, then y
+        # Every feature's box (2, S + C), x then y: the segments', then the points themselves.
+        self.box_lo = np.concatenate([self.seg_lo, self.circles]).T.copy()
+        self.box_hi = np.concatenate([self.seg_hi, self.circles]).T.copy()
         # Plain-float forms for a few balls (lines_one, Schedule.predict_few).
         self.circle_list = self.circles.tolist()
         self.hole_c, self.hole_r = table.hole_c.tolist(), table.hole_r.tolist()
@@ -38,36 +46,38 @@ class Features:
                                self.seg_len.tolist(), table.seg_n.tolist(),
                                self.seg_off.tolist(), self.seg_start.tolist(), strict=True))
 
-    def lines(self, p, v, a, rc, horizon, reach=None, near=None) -> np.ndarray:
-        """(M, S) first contact times of M balls with the cushion segments; with `near` (M,
-        S), only of the (ball, segment) pairs it marks (inf elsewhere: the caller knows
-        those cannot meet)."""
-        tab = self.table
-        M, S = len(p), self.nseg
+    def lines(self, q, rc, horizon, near=None, out=None) -> np.ndarray:
+        """(M, S) first contact times of M balls, whose positions, velocities and
+        accelerations are the planes q (6, M) (x, y, vx, vy, ax, ay), with the cushion
+        segments; with `near` (M, S), only of the (ball, segment) pairs it marks (inf
+        elsewhere: the caller knows those cannot meet). With `out`, a C-contiguous (M, W)
+        array whose first S columns are inf, the times are written there and it is
+        returned."""
+        M, S = q.shape[1], self.nseg
         m, k = np.nonzero(np.ones((M, S), dtype=bool) if near is None else near)
-        n, d = tab.seg_n[k], self.seg_dir[k]
-        pm = p[m]
+        px, py, vx, vy, ax, ay = q.take(m, axis=1)
+        nx, ny, dx, dy, off, start, length, _, _ = g = self.seg_rows.take(k, axis=1)
         # (each dot product the two products added in the order `dots` adds them)
-        s0 = (pm[:, 0] * n[:, 0] + pm[:, 1] * n[:, 1]) - self.seg_off[k]
-        along0 = (pm[:, 0] * d[:, 0] + pm[:, 1] * d[:, 1]) - self.seg_start[k]
-        beside = (along0 >= 0) & (along0 <= self.seg_len[k])
-        vm, am = v[m], a[m]
-        tl = first_line_contact(s0, vm[:, 0] * n[:, 0] + vm[:, 1] * n[:, 1],
-                                am[:, 0] * n[:, 0] + am[:, 1] * n[:, 1], rc[m], horizon[m],
-                                beside)
+        s0 = (px * nx + py * ny) - off
+        along0 = (px * dx + py * dy) - start
+        beside = (along0 >= 0) & (along0 <= length)
+        tl = first_line_contact(s0, vx * nx + vy * ny, ax * nx + ay * ny, rc.take(m),
+                                horizon.take(m), beside)
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
         # Worked out only where a time was found (few of the pairs), as `lines_one` does.
-        f = np.flatnonzero(np.isfinite(tl))
-        out = np.full((M, S), np.inf)
+        f = np.flatnonzero(tl < np.inf)  # (never a nan)
+        if out is None:
+            out = np.full((M, S), np.inf)
         if f.size:
-            m, k, t = m[f], k[f], tl[f]
+            t = tl.take(f)
             tt = t * t
-            ends, dirs = tab.seg_a[k], self.seg_dir[k]
-            qx = (p[m, 0] + v[m, 0] * t + 0.5 * a[m, 0] * tt) - ends[:, 0]
-            qy = (p[m, 1] + v[m, 1] * t + 0.5 * a[m, 1] * tt) - ends[:, 1]
-            along = qx * dirs[:, 0] + qy * dirs[:, 1]
-            on = (along >= 0) & (along <= self.seg_len[k])
-            out[m[on], k[on]] = t[on]
+            px, py, vx, vy, ax, ay = q.take(m.take(f), axis=1)
+            _, _, dx, dy, _, _, length, ex, ey = g.take(f, axis=1)
+            qx = (px + vx * t + 0.5 * ax * tt) - ex
+            qy = (py + vy * t + 0.5 * ay * tt) - ey
+            along = qx * dx + qy * dy
+            on = np.flatnonzero((along >= 0) & (along <= length))
+            out.ravel()[(m * out.shape[1] + k).take(f.take(on))] = t.take(on)
         return out
 
     def lines_few(self, p, v, a, rc, horizon, reach) -> np.ndarray:

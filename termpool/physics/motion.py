@@ -191,13 +191,19 @@ def _moved(p0, v0, acc, d) -> tuple:
 
 def at_planes(rows: np.ndarray, t) -> np.ndarray:
     """`at_many` without spin as six planes: (6, ...) x, y, vx, vy, ax, ay at times t of
-    balls whose packed motions are `rows` (..., Col.N); each plane contiguous."""
-    planes = np.moveaxis(rows, -1, 0)
-    d = (t - planes[Col.T0])[None]
-    out = np.empty((6,) + d.shape[1:])
-    out[2:] = planes[Col.VX:Col.AY + 1]  # velocities and accelerations at t0, contiguous
-    out[:2], out[2:4] = _moved(planes[Col.P], out[2:4], out[4:], d)
-    return out
+    balls whose packed motions are `rows` (..., Col.N); each plane contiguous. The columns
+    read (t0, position, velocity, acceleration) are copied into planes once, and `_moved`'s
+    arithmetic done there in place, operation for operation (the same bits)."""
+    planes = rows[..., :Col.AY + 1].transpose((-1,) + tuple(range(rows.ndim - 1))).copy()
+    d = t - planes[Col.T0]
+    a = planes[Col.ACC]
+    step = 0.5 * a  # p0 + (v0 + 0.5 a d) d
+    step *= d
+    step += planes[Col.V]
+    step *= d
+    planes[Col.P] += step
+    planes[Col.V] += a * d  # v0 + a d
+    return planes[Col.PX:]
 
 
 def at_many(rows: np.ndarray, t, spin: bool = True) -> tuple:
@@ -231,8 +237,16 @@ def at(row: list, t: float) -> tuple[list, list, list]:
 def swept(p: np.ndarray, v: np.ndarray, a: np.ndarray, T: np.ndarray) -> tuple:
     """(lo, hi): the box, coordinate by coordinate, that the quadratic p + v s + a s^2 / 2
     sweeps over s in [0, T] (T >= 0): its ends and, where it turns inside the window, its
-    vertex. Exact up to rounding (a few ulps of the coordinates)."""
-    e = p + (v + 0.5 * a * T) * T
+    vertex. Exact up to rounding (a few ulps of the coordinates). (Worked in place: the
+    operations of p + (v + 0.5 a T) T and the rest, in their order.)"""
+    ha = 0.5 * a
+    e = ha * T
+    e += v
+    e *= T
+    e += p
     s = np.minimum(np.maximum(-v / a, 0.0), T)  # the vertex; nan where v = a = 0 (no vertex)
-    m = p + (v + 0.5 * a * s) * s
+    m = ha * s
+    m += v
+    m *= s
+    m += p
     return np.fmin(np.minimum(p, e), m), np.fmax(np.maximum(p, e), m)

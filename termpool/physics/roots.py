@@ -24,6 +24,11 @@ A_MIN = 1e-6  # m/s^2: a touching pair that neither closes nor parts but acceler
 # faster than this is pressed together: a contact now (a resting one, joined.py); slower is
 # rounding, and is caught by SINK if it lasts
 PIECES = 4  # straight pieces of the window in the cull
+try:  # the gufunc np.linalg.eigvals calls, without the checks around it (see `eigvals`)
+    from numpy.linalg import _umath_linalg
+    _EIGVALS = _umath_linalg.eigvals
+except (ImportError, AttributeError):  # pragma: no cover (another numpy): its public form
+    _EIGVALS = None
 _FRACTIONS = np.arange(PIECES, dtype=float)
 _PIECES_ONE = _FRACTIONS.tolist()
 
@@ -40,24 +45,27 @@ def first_contact(
     friction is caught again after a bounded, sub-micrometre overlap instead of chattering.
     With `pressed`, a touching pair accelerating together meets at t = 0 as well.
     """
-    return first_contact_xy(p0[:, 0], p0[:, 1], v[:, 0], v[:, 1], a[:, 0], a[:, 1], dist,
-                            horizon, pressed)
+    return first_contact_rows(np.concatenate([p0.T, v.T, a.T]), dist, horizon, pressed)
 
 
-def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True) -> np.ndarray:
-    """`first_contact` of relative motions given as their six components, (K,) each."""
+def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
+                       pressed: bool = True) -> np.ndarray:
+    """`first_contact` of relative motions given as the rows of rel (6, K): x, y, vx, vy,
+    ax, ay (the candidates that pass a cull are one take of it)."""
+    px, py, vx, vy, ax, ay = rel
     pv = px * vx + py * vy
     r0 = np.sqrt(px * px + py * py)
     touching = r0 - dist < TOUCH
     # Closing, or sunk deeper than SINK (left so by another contact), or pressed together:
-    # resolve at once.
-    now = touching & ((pv < -V_MIN * r0) | (r0 < dist - SINK))
-    rest = np.flatnonzero(touching & ~now & (pv <= V_MIN * r0) & pressed)
-    if rest.size:
+    # resolve at once. (-(V_MIN r0) is -V_MIN r0, bit for bit.)
+    vr = V_MIN * r0
+    now = touching & ((pv < -vr) | (r0 < dist - SINK))
+    rest = np.flatnonzero(touching & ~now & (pv <= vr)) if pressed else ()
+    if len(rest):
         # The distance's second derivative, (v.v + p.a) / r - (p.v)^2 / r^3.
-        px_, py_, vx_, vy_ = px[rest], py[rest], vx[rest], vy[rest]
+        px_, py_, vx_, vy_, ax_, ay_ = rel.take(rest, axis=1)
         r_ = r0[rest]
-        acc = ((vx_ * vx_ + vy_ * vy_ + px_ * ax[rest] + py_ * ay[rest]) / r_
+        acc = ((vx_ * vx_ + vy_ * vy_ + px_ * ax_ + py_ * ay_) / r_
                - pv[rest] ** 2 / r_ ** 3)
         now[rest] = acc < -A_MIN
     target = np.where(touching, np.minimum(dist, r0) - SINK, dist)
@@ -76,28 +84,30 @@ def first_contact_xy(px, py, vx, vy, ax, ay, dist, horizon, pressed: bool = True
     # Second cull, on what is left: the window in PIECES straight pieces, each widened by the
     # most the acceleration can bend the path within it; a pair none of whose pieces comes
     # close cannot meet.
-    px, py, vx, vy, ax, ay = px[idx], py[idx], vx[idx], vy[idx], ax[idx], ay[idx]
+    rel = rel.take(idx, axis=1)
+    px, py, vx, vy, ax, ay = rel
     hz, tg = horizon[idx], target[idx]
     vv = vx * vx + vy * vy
     aa = ax * ax + ay * ay
     h = hz / PIECES
-    s0 = h[:, None] * _FRACTIONS  # (K, PIECES) piece start times
-    qx = px[:, None] + (vx[:, None] + 0.5 * ax[:, None] * s0) * s0
-    qy = py[:, None] + (vy[:, None] + 0.5 * ay[:, None] * s0) * s0
-    wx = vx[:, None] + ax[:, None] * s0
-    wy = vy[:, None] + ay[:, None] * s0
+    # (PIECES, K), a piece a row: each operation then runs along the candidates, contiguous.
+    s0 = _FRACTIONS[:, None] * h  # piece start times
+    qx = px + (vx + 0.5 * ax * s0) * s0
+    qy = py + (vy + 0.5 * ay * s0) * s0
+    wx = vx + ax * s0
+    wy = vy + ay * s0
     ww = wx * wx + wy * wy
-    ts = np.minimum(np.maximum(-(qx * wx + qy * wy) / ww, 0.0), h[:, None])
+    ts = np.minimum(np.maximum(-(qx * wx + qy * wy) / ww, 0.0), h)
     ts = np.where(ww > 0, ts, 0.0)
     cx, cy = qx + wx * ts, qy + wy * ts
-    reach = (tg + 0.5 * np.sqrt(aa) * h * h)[:, None]
-    close = (cx * cx + cy * cy <= reach * reach).any(axis=1) & ((vv > 0) | (aa > 0))
+    reach = tg + 0.5 * np.sqrt(aa) * h * h
+    close = (cx * cx + cy * cy <= reach * reach).any(axis=0) & ((vv > 0) | (aa > 0))
     sel = np.flatnonzero(close)
     if sel.size == 0:
         return out
     idx = idx[sel]
-    out[idx] = solve(px[sel], py[sel], vx[sel], vy[sel], ax[sel], ay[sel], hz[sel], tg[sel],
-                     pv[idx], r0[idx], vv[sel], aa[sel])
+    out[idx] = solve(*rel.take(sel, axis=1), hz[sel], tg[sel], pv[idx], r0[idx], vv[sel],
+                     aa[sel])
     return out
 
 
@@ -188,7 +198,7 @@ def solve_few(pairs: list) -> list:
             inv = -1.0 / C4
             top.append((C3 * inv, C2 * inv, C1 * inv, c0 * inv))
         comp[:, 0] = top
-        roots = iter(np.linalg.eigvals(comp).tolist())
+        roots = iter(eigvals(comp).tolist())
     out = []
     for c4, c3, c2, c1, c0, C4, C3, C2, C1, T, tg, quartic in coef:
         s = math.inf
@@ -244,7 +254,7 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
         top[:, 2] = C1[q] * inv
         top[:, 3] = c0[q] * inv
         comp[:, 1, 0] = comp[:, 2, 1] = comp[:, 3, 2] = 1.0
-        roots = np.linalg.eigvals(comp)
+        roots = eigvals(comp)
         re = roots.real
         slope = ((4 * C4[q, None] * re + 3 * C3[q, None]) * re + 2 * C2[q, None]) * re + C1[q, None]
         ok = (np.abs(roots.imag) <= 1e-6 * (1.0 + np.abs(re))) & (re >= -1e-9) & (re <= 1 + 1e-9)
@@ -277,6 +287,18 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
         t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
                                float(c0[k]), float(T[k]), float(tg[k]))
     return np.where(hit, t, np.inf)
+
+
+def eigvals(comp: np.ndarray) -> np.ndarray:
+    """np.linalg.eigvals of real (K, n, n) matrices, the same numbers (as complex), without
+    the checks and the error-state switch it wraps around LAPACK (some 20 us a call; callers
+    run under np.errstate(all="ignore") already). What would make it raise, a matrix that is
+    not finite or eigenvalues that do not converge (NaNs out), goes to it, so that it raises
+    as before."""
+    if _EIGVALS is None or not np.isfinite(comp).all():
+        return np.linalg.eigvals(comp)
+    w = _EIGVALS(comp, signature="d->D")
+    return np.linalg.eigvals(comp) if np.isnan(w).any() else w
 
 
 def _poly(c: tuple, t: float) -> float:

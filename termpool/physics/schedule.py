@@ -14,7 +14,7 @@ from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
 from termpool.physics.flat import flat
 from termpool.physics.motion import Col, swept
-from termpool.physics.roots import first_contact, first_contact_few, first_contact_xy
+from termpool.physics.roots import first_contact, first_contact_few, first_contact_rows
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
 
@@ -27,6 +27,10 @@ CULL = True  # skip the pairs and points that boxes of paths show cannot be met 
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
+# Whether a ball of each state is a pair of a renewed ball that moves (the last five) or not
+# (the first five): it is live, and one of the two moves.
+_PAIRED = np.concatenate([_LIVE & _MOVING, _LIVE])
+_PAIRED_MOVING = np.int8(len(_LIVE))
 
 
 def _argmin(row: list) -> int:
@@ -35,6 +39,20 @@ def _argmin(row: list) -> int:
         if x != x:
             return k
     return row.index(min(row))
+
+
+def _firsts(key: np.ndarray) -> np.ndarray:
+    """The places of the first occurrence of each value of `key`, in order: what
+    np.unique(key, return_index=True)[1] sorted gives, by the same stable sort, without its
+    checks."""
+    perm = key.argsort(kind="stable")
+    ordered = key.take(perm)
+    new = np.empty(key.size, dtype=bool)
+    new[0] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=new[1:])
+    first = perm[new]
+    first.sort()
+    return first
 
 
 class Due:
@@ -61,7 +79,6 @@ class Schedule:
                  horizon: float) -> None:
         B, N = balls.B, balls.N
         self.N, self.balls, self.features, self.tb, self.horizon = N, balls, features, tb, horizon
-        self._balls = np.arange(N)[None]  # ball indices as a row, to broadcast against
         self.times = times
         self.t_trans = times[:, :N]
         assert np.shares_memory(balls.t_trans, times)  # the balls write their transitions here
@@ -75,6 +92,7 @@ class Schedule:
         self.t_next = np.full(B, np.inf)  # each table's next event time and its code
         self.c_next = np.zeros(B, dtype=np.int64)
         self._row = np.full((B, N), -1, dtype=np.int64)  # a ball's row in a renewal, or -1
+        self._place = np.zeros(B, dtype=np.intp)  # `_tables`' marks, zero between calls
         self.chunk = CHUNK
         self.one = B == 1
         # Flat views of the arrays the plain-float paths read and write (flat.py): the row
@@ -89,6 +107,11 @@ class Schedule:
         self._ones: dict[int, np.ndarray] = {}  # one_array's arrays
         self.flat_f_cush = flat(self.f_cush)
         self._f_cush_1d = self.f_cush.reshape(-1)  # a view
+        # `_near_features`' reach of each hole and the features' boxes, as columns (F, 1).
+        self._hole_gap = (features.table.hole_r + GAP)[:, None]
+        self._boxes = features.box_lo[..., None], features.box_hi[..., None]
+        tab = features.table  # the holes' x, y and radius as columns (H, 1)
+        self._holes = tab.hole_c[:, 0, None], tab.hole_c[:, 1, None], tab.hole_r[:, None]
 
     def decode_one(self, code: int) -> tuple[int, int, int]:
         """`decode` of one event code, as ints (what: Due, ball i, ball j or -1)."""
@@ -126,19 +149,20 @@ class Schedule:
 
     def predict_many(self, b: np.ndarray, i: np.ndarray) -> None:
         """`predict` on arrays."""
-        balls = self.balls
+        N = self.N
+        key = b * N + i  # (one-index lookups: a two-index one costs several times more)
         if b.size > 1:  # a ball renewed twice (an event's ball, and its cluster's): once
-            first = np.unique(b * self.N + i, return_index=True)[1]
+            first = _firsts(key)
             if first.size < b.size:
-                first.sort()
-                b, i = b[first], i[first]
-        t = self.tb[b]
-        st = balls.state[b, i]
-        moving = _MOVING[st]
+                b, i, key = b.take(first), i.take(first), key.take(first)
+        t = self.tb.take(b)
+        st = self.balls.state.reshape(-1).take(key)
+        moving = _MOVING.take(st)
         t_check = np.where(moving, t + self.horizon, np.inf)
-        self.t_check[b, i] = t_check
-        end = np.minimum(self.t_trans[b, i], t_check)
-        self.t_cush[b, i] = np.inf
+        at = b * self.width + i  # the ball's transition time in the flat rows of times
+        self._times_1d[at + N] = t_check
+        end = np.minimum(self._times_1d.take(at), t_check)
+        self._times_1d[at + 2 * N] = np.inf
         self.t_pair[b, i, :] = np.inf
         self.t_pair[b, :, i] = np.inf
         live = st != POCKETED
@@ -146,18 +170,19 @@ class Schedule:
             m = np.flatnonzero(live)
             if m.size == 0:
                 return
-            b, i, t, end, moving = b[m], i[m], t[m], end[m], moving[m]
+            b, i, t, end, moving, key = b[m], i[m], t[m], end[m], moving[m], key[m]
         # In chunks of rows, so that the temporaries (each row's candidates against every
         # ball of its table) stay bounded however many tables renew at once; every row's
         # predictions are its own, so chunks give the same times as one piece.
-        step = max(1, self.chunk // self.N)
-        self._row[b, i] = np.arange(b.size)
+        step = max(1, self.chunk // N)
+        row = self._row.reshape(-1)  # (a view)
+        row[key] = np.arange(b.size)
         try:
             for s in range(0, b.size, step):
                 self._predict_rows(b[s:s + step], i[s:s + step], t[s:s + step],
                                    end[s:s + step], moving[s:s + step], s)
         finally:
-            self._row[b, i] = -1
+            row[key] = -1
 
     def _predict_rows(self, b, i, t, end, moving, first: int) -> None:
         """`predict_many`'s contact predictions for live balls (b, i) at clocks t, whose
@@ -169,7 +194,7 @@ class Schedule:
         # vx, vy, ax, ay; ball i of table tabs[u] in column u N + i): each candidate's
         # relative motion is then one take and one difference, and each component one
         # contiguous row. (Two-index lookups cost several times more than these takes.)
-        tabs, u = np.unique(b, return_inverse=True)
+        tabs, u = self._tables(b)
         tbt = self.tb.take(tabs)[:, None]
         Q = balls.planes(tabs, tbt)
         ui = u * N + i
@@ -179,10 +204,12 @@ class Schedule:
         # Pairs: every other ball on the table, where at least one of the two moves. Two
         # renewed balls meet as the first one's pair only: their times are the same bits
         # either way round (each difference the other's negated, each product the same).
+        # (A row's own ball is renewed as that row, so it is no pair of its own; renewed
+        # balls' rows, and -1 for others, compared as unsigned: -1 is above every row.)
         stk = balls.state.take(b, axis=0)
-        renewed = self._row.take(b, axis=0)
-        valid = (_LIVE[stk] & (self._balls != i[:, None]) & (moving[:, None] | _MOVING[stk])
-                 & ((renewed < 0) | (renewed > np.arange(first, first + M)[:, None])))
+        renewed = self._row.take(b, axis=0).view(np.uint64)
+        valid = _PAIRED.take(stk + (_PAIRED_MOVING * moving)[:, None])
+        valid &= renewed > np.arange(first, first + M, dtype=np.uint64)[:, None]
         if CULL:
             # A pair's window ends with the shorter of its balls' own, at most a moving
             # ball's (`horizon`): a ball at rest's is cut at twice that.
@@ -191,7 +218,8 @@ class Schedule:
             valid &= self._overlap(lo, hi, radius, u, ui)
         mi, kk = np.nonzero(valid)
         k = u.take(mi) * N + kk
-        rel = Q.take(k, axis=1) - q.take(mi, axis=1)
+        rel = Q.take(k, axis=1)
+        rel -= q.take(mi, axis=1)
         dist = [radius.take(k) + radius.take(ui).take(mi)]
         horizon = [np.minimum(end.take(mi), end_k.ravel().take(k)) - t.take(mi)]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
@@ -204,30 +232,37 @@ class Schedule:
         tab = feat.table
         x, y = q[0], q[1]
         near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        if len(tab.hole_r):
-            edge = np.hypot(x[:, None] - tab.hole_c[:, 0], y[:, None] - tab.hole_c[:, 1])
-            near |= ((edge - tab.hole_r) < reach[:, None]).any(axis=1)
+        if len(tab.hole_r):  # (a hole a row, so that each operation runs along the balls)
+            hx, hy, hr = self._holes
+            dx, dy = x - hx, y - hy
+            # hypot(dx, dy) >= max(|dx|, |dy|): a ball that far from every hole is near none,
+            # and hypot (slow) is worked out only for the others.
+            c = np.flatnonzero(((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
+                               & ~near)
+            if c.size:
+                near[c] = ((np.hypot(dx[:, c], dy[:, c]) - hr) < reach.take(c)).any(axis=0)
         mv = np.flatnonzero(moving & near)
-        nc = len(feat.circles)
-        qm, rcm = q.take(mv, axis=1), rc.take(mv)
-        if CULL and mv.size:  # the moving balls' boxes, for their cushions
-            lom, him = lo.take(ui.take(mv), axis=1), hi.take(ui.take(mv), axis=1)
+        nc, S = len(feat.circles), feat.nseg
+        qm, rcm, Tm = q.take(mv, axis=1), rc.take(mv), T.take(mv)
+        if CULL and mv.size:  # the features the moving balls' boxes come within reach of
+            um = ui.take(mv)
+            near_f = self._near_features(lo.take(um, axis=1), hi.take(um, axis=1), rcm)
         if mv.size and nc:
-            holes = np.broadcast_to(feat.table.hole_r, (mv.size, nc - feat.npt))
-            D = np.concatenate([np.repeat(rcm[:, None], feat.npt, axis=1), holes], axis=1)
-            if CULL:  # the points the ball's box comes within reach of
-                mr, cc = np.nonzero(self._near_points(lom, him, D))
+            D = np.empty((mv.size, nc))  # a tip is met at the nose reach, a hole at its radius
+            D[:, :feat.npt] = rcm[:, None]
+            D[:, feat.npt:] = feat.table.hole_r
+            if CULL:
+                mr, cc = np.nonzero(near_f[:, S:])
             else:
                 mr, cc = np.divmod(np.arange(mv.size * nc), nc)
             m = qm.take(mr, axis=1)
             # After the pairs: the point relative to the ball, the ball's motion negated.
-            pair = rel
-            rel = [np.concatenate([pair[n], feat.circles[:, n].take(cc) - m[n]]) for n in (0, 1)]
-            rel += [np.concatenate([pair[n], -m[n]]) for n in range(2, 6)]
-            at_c = mr * nc + cc
-            dist.append(D.ravel().take(at_c))
-            horizon.append(T.take(mv).take(mr))
-        found = first_contact_xy(*rel, np.concatenate(dist), np.concatenate(horizon))
+            circ = np.negative(m)
+            np.subtract(feat.circle_rows.take(cc, axis=1), m[:2], out=circ[:2])
+            rel = np.concatenate([rel, circ], axis=1)
+            dist.append(D.ravel().take(mr * nc + cc))
+            horizon.append(Tm.take(mr))
+        found = first_contact_rows(rel, np.concatenate(dist), np.concatenate(horizon))
         npair = mi.size
         if npair:
             tp = t.take(mi) + found[:npair]
@@ -238,20 +273,30 @@ class Schedule:
             self._times_1d[at + ii * N + kk] = tp
             self._times_1d[at + kk * N + ii] = tp
         if mv.size:
-            tcirc = np.full((mv.size, nc), np.inf)
+            # Each ball's segments, then its points (tips and holes), in one row.
+            allt = np.full((mv.size, S + nc), np.inf)
             if nc:
-                tcirc.ravel()[at_c] = found[npair:]
-            bm, im, tm = b.take(mv), i.take(mv), t.take(mv)
-            args = qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, T.take(mv), reach.take(mv)
+                allt.ravel()[mr * (S + nc) + (S + cc)] = found[npair:]
             if mv.size <= FEW:
-                tline = feat.lines_few(*args)
+                allt[:, :S] = feat.lines_few(qm[0:2].T, qm[2:4].T, qm[4:6].T, rcm, Tm,
+                                             reach.take(mv))
             else:  # (the segments the ball's box comes within reach of)
-                tline = feat.lines(*args, near=self._near_segments(lom, him, rcm)
-                                   if CULL else None)
-            allt = np.concatenate([tline, tcirc], axis=1)
+                feat.lines(qm, rcm, Tm, near=near_f[:, :S] if CULL else None, out=allt)
             f = allt.argmin(axis=1)
-            self._times_1d[bm * self.width + 2 * N + im] = tm + allt[np.arange(mv.size), f]
+            bm, im = b.take(mv), i.take(mv)
+            self._times_1d[bm * self.width + 2 * N + im] = t.take(mv) + allt[np.arange(mv.size), f]
             self._f_cush_1d[bm * N + im] = f
+
+    def _tables(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """np.unique(b, return_inverse=True) for table numbers b: the tables in order, and
+        each b's place among them (marks in an array of B, no sort)."""
+        place = self._place
+        place[b] = 1
+        tabs = np.flatnonzero(place)
+        place[tabs] = np.arange(tabs.size)
+        u = place.take(b)
+        place[tabs] = 0
+        return tabs, u
 
     def _overlap(self, lo, hi, radius, u, ui) -> np.ndarray:
         """(M, N) whether ball ui of the (table, ball) columns (ball i[r] of table u[r]) and
@@ -265,30 +310,27 @@ class Schedule:
         lo, hi = lo - rg, hi + rg
         tables = (2, -1, self.N)
         # Apart along x or y: one's lo past the other's hi (nan: not apart).
-        apart = ((lo.reshape(tables).take(u, axis=1) > hi.take(ui, axis=1)[..., None])
-                 | (hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]))
+        apart = lo.reshape(tables).take(u, axis=1) > hi.take(ui, axis=1)[..., None]
+        apart |= hi.reshape(tables).take(u, axis=1) < lo.take(ui, axis=1)[..., None]
         return ~(apart[0] | apart[1])
 
-    def _near_segments(self, lo, hi, rc) -> np.ndarray:
-        """(M, S) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within
-        their nose reach rc (M,) (and GAP) of each cushion segment's box: a contact is a
-        centre that far from a point of the segment, within the window, so it is in both."""
+    def _near_features(self, lo, hi, rc) -> np.ndarray:
+        """(M, S + C) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within
+        reach of each cushion segment and each point (jaw tips, hole centres), in the
+        features' order: a segment's box or a tip within the ball's nose reach rc (M,), a
+        hole's centre within its radius (and GAP). A contact is a centre that far from a
+        point of the feature, within the window, so it is in both boxes; as in `_overlap`,
+        a feature further than that from the box is never met."""
+        # Worked a feature a row (S + C, M), so that each operation runs along the balls;
+        # returned as its transpose.
         feat = self.features
-        lo_s, hi_s = feat.seg_lo, feat.seg_hi
-        Dg = (rc + GAP)[:, None]
-        apart = ((lo_s[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - hi_s[:, 0] > Dg)
-                 | (lo_s[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - hi_s[:, 1] > Dg))
-        return ~apart
-
-    def _near_points(self, lo, hi, D) -> np.ndarray:
-        """(M, C) whether balls whose paths sweep boxes (lo, hi) (2, M) can come within D
-        (M, C) (and GAP) of the features' points (jaw tips, hole centres); as in
-        `_overlap`, a point further than that from the box is never met."""
-        c = self.features.circles
-        Dg = D + GAP
-        apart = ((c[:, 0] - hi[0][:, None] > Dg) | (lo[0][:, None] - c[:, 0] > Dg)
-                 | (c[:, 1] - hi[1][:, None] > Dg) | (lo[1][:, None] - c[:, 1] > Dg))
-        return ~apart
+        Dg = np.empty((feat.nseg + len(feat.circles), rc.size))
+        Dg[:feat.first_hole] = rc + GAP
+        Dg[feat.first_hole:] = self._hole_gap
+        lo_f, hi_f = self._boxes
+        apart = ((lo_f[0] - hi[0] > Dg) | (lo[0] - hi_f[0] > Dg)
+                 | (lo_f[1] - hi[1] > Dg) | (lo[1] - hi_f[1] > Dg))
+        return (~apart).T
 
     def predict_few(self, b, i) -> None:
         """`predict` for a few balls in plain floats: the same candidates in the same order,
