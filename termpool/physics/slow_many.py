@@ -200,25 +200,21 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
     others freely. Balls are numbered cluster * N + ball."""
     N = balls.N
     C = len(members)
-    held_by = [set() for _ in range(C)]
-    for q, x, y in zip(rq.tolist(), ga.tolist(), gc.tolist(), strict=True):
-        held_by[q].add(x)
-        if y >= 0:
-            held_by[q].add(y)
-    held = [sorted(h) for h in held_by]  # global numbers, by ball within each cluster
-    free = [k for k in gm.tolist() if k not in held_by[k // N]]
+    held = np.zeros(C * N + 1, dtype=bool)  # (the last: ball -1, a cushion's, never held)
+    held[ga] = True
+    held[gc] = True
+    held[-1] = False
+    free = gm[~held[gm]]
     groups.label[tarr[mq], gm % N] = -1
-    if free:
-        fb = np.array(free, dtype=np.int64)
-        bt, bi = tarr[fb // N], fb % N
-        balls.set(bt, bi, tb[bt], P[fb], V[fb], W[fb])
-    if any(held):
-        hb = np.array([k for h in held for k in h], dtype=np.int64)
-        where = {k: n for n, k in enumerate(hb.tolist())}
+    if free.size:
+        bt, bi = tarr[free // N], free % N
+        balls.set(bt, bi, tb[bt], P[free], V[free], W[free])
+    hb = np.flatnonzero(held)  # global numbers: cluster by cluster, ball by ball
+    if hb.size:
+        where = np.full(C * N + 1, -1)
+        where[hb] = np.arange(hb.size)
         hq = hb // N
-        J = Rows(np.array([where[x] for x in ga.tolist()], dtype=np.int64),
-                 np.array([where.get(y, -1) for y in gc.tolist()], dtype=np.int64), rn,
-                 hb.size)
+        J = Rows(where[ga], where[gc], rn, hb.size)
         bt, bi = tarr[hq], hb % N
         vj, acc, alpha, state, duration, wj = push_many(
             ph, V[hb], W[hb], balls.radius[bt, bi], balls.mass[bt, bi], balls.spin_rate[bt, bi],
@@ -229,5 +225,6 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
         balls.motion[bt, bi, :Col.RATE] = np.concatenate(
             [t[:, None], P[hb], vj, acc, wj, alpha], axis=1)
         # Each group labelled by its first ball (the tables are distinct).
-        groups.label[bt, bi] = np.array([h[0] % N if h else -1 for h in held])[hq]
+        first = np.flatnonzero(np.diff(hq, prepend=-1))
+        groups.label[bt, bi] = np.repeat(bi[first], np.diff(first, append=hb.size))
     groups.count[tarr] = (groups.label[tarr] >= 0).sum(axis=1)
