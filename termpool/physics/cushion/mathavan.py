@@ -80,9 +80,10 @@ class _Rows(NamedTuple):
     three5_2: np.ndarray
 
 
-def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> None:
+def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
     """One impulse step on the rows of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
-    `go`: the normal part takes dv off vy, then friction at the nose and on the slate.
+    `go` (None: every row): the normal part takes dv off vy, then friction at the nose and
+    on the slate. Returns (the rows after it, room for the next: st and new in some order).
     k: the slips' responses to friction and the constants (`_Rows`); mu_w, mu_s: the
     frictions, a row each; new: room for the next rows. The pairs (a1, a2), (b1, b2),
     (fi1, fi2), (fc1, fc2) are each worked as one array of two rows: the same operations,
@@ -114,7 +115,10 @@ def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> None:
     np.subtract(a, j * (x * e), out=new[1:3])
     np.subtract(b, j * (three5_2 * e), out=new[3:5])
     np.add(st[7:9], j * e, out=new[7:9])
+    if go is None:  # every row: the new rows are the next, st is room for the ones after
+        return new, st
     np.copyto(st, new, where=go)
+    return st, new
 
 
 def _step_one(dv, s, c, k, mu_w, mu_s, st) -> tuple:
@@ -194,16 +198,20 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     work = zero
     last = ~hit
     # Compression: until a step's normal impulse stops the ball moving into the cushion.
+    # (A step of every ball, the usual one, needs no mask.)
     for _ in range(MAX_STEPS):
         go = ~last & (st[0] > zero)
-        if not np.count_nonzero(go):
+        count = np.count_nonzero(go)
+        if not count:
             break
+        every = count == go.size
         vy = st[0]
         vn = vy - cdp
-        last = last | (go & (vn <= zero))
+        last = last | ((vn <= zero) if every else (go & (vn <= zero)))
         vn = np.maximum(vn, zero)
-        work = np.where(go, work + half * (vy * vy - vn * vn), work)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
+        more = work + half * (vy * vy - vn * vn)
+        work = more if every else np.where(go, more, work)
+        st, new = _step(vy - vn, s, c, k, mu_w, mu_s, st, None if every else go, new)
     vy = st[0]
     go = hit & (vy > 0.0)
     work = np.where(go, work + 0.5 * (vy * vy), work)
@@ -212,15 +220,18 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     rest = ee * ee * work
     for _ in range(MAX_STEPS):
         go = hit & (rest > zero)
-        if not np.count_nonzero(go):
+        count = np.count_nonzero(go)
+        if not count:
             break
+        every = count == go.size
         vy = st[0]
         vn = vy - cdp
         gain = half * (vn * vn - vy * vy)
         end = gain >= rest
         vn = np.where(end, -np.sqrt(vy * vy + two * rest), vn)
-        rest = np.where(go, np.where(end, zero, rest - gain), rest)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
+        less = np.where(end, zero, rest - gain)
+        rest = less if every else np.where(go, less, rest)
+        st, new = _step(vy - vn, s, c, k, mu_w, mu_s, st, None if every else go, new)
     vy = st[0]
     vy = np.minimum(np.where(hit & (rest > 0.0), -np.sqrt(vy * vy + 2.0 * rest), vy), 0.0)
     q = 2.5 / r  # R m / I: spin per unit of friction impulse per unit mass
