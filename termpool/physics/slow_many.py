@@ -76,22 +76,25 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     # Only members by the rails can touch a rail, jaw or tip (the rest of a rack pays nothing).
     pm, rcm = P[gm], balls.rc[tarr[mq], mb]
     by = np.flatnonzero(by_rails(features, pm, rcm))
-    seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
-    mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
-    capm = cap[mq_][:, None]
-    slow = dots(vm, tab.seg_n) >= -capm
-    x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
-    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
-                   (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
-        z.append(val)
-    slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
-    x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
-    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
-                   (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
-        z.append(val)
-    rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
-    order = np.argsort(rq_ * 3 + rk_, kind="stable")
-    rq_, ra_, rc0, rn_, rg_, rk_ = (z[order] for z in (rq_, ra_, rc0, rn_, rg_, rk_))
+    if by.size:
+        seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
+        mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
+        capm = cap[mq_][:, None]
+        slow = dots(vm, tab.seg_n) >= -capm
+        x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
+        for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)),
+                       (rn, tab.seg_n[f]), (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
+            z.append(val)
+        slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
+        x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
+        for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)),
+                       (rn, tip_dir[x, f]), (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
+            z.append(val)
+        rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
+        order = np.argsort(rq_ * 3 + rk_, kind="stable")
+        rq_, ra_, rc0, rn_, rg_, rk_ = (z[order] for z in (rq_, ra_, rc0, rn_, rg_, rk_))
+    else:  # no member by the rails: the pairs' rows alone, already in their order
+        rq_, ra_, rc0, rn_, rg_, rk_ = bq, a, c, rn[0], rg[0], rkind[0]
     ga = rq_ * N + ra_
     gc = np.where(rc0 >= 0, rq_ * N + rc0, -1)
     J = Rows(ga, gc, rn_, C * N)
