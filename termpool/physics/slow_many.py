@@ -12,6 +12,8 @@ same bits (tests/test_slow_many.py holds them to it).
 
 from __future__ import annotations
 
+from itertools import compress
+
 import numpy as np
 
 from termpool.physics.balls import Balls
@@ -156,8 +158,9 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     hits = moved.tolist()  # the members cluster by cluster
     s = 0
     for mem in members:
-        out.append((mem, [k for k, h in zip(mem, hits[s:s + len(mem)], strict=True) if h]))
-        s += len(mem)
+        e = s + len(mem)
+        out.append((mem, list(compress(mem, hits[s:e]))))
+        s = e
     return out
 
 
