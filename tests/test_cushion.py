@@ -384,3 +384,31 @@ def test_mathavan_on_arrays_gives_the_float_forms_bits_signed_zeros_included(ph)
         vo, wo = mathavan.bounce_one(list(nx), list(vx), list(wx), rx, mx, ph)
         assert np.array(vo).tobytes() == V[x].tobytes()
         assert np.array(wo).tobytes() == W[x].tobytes()
+
+
+@pytest.mark.parametrize("ph", [Physics(cushion="mathavan"),
+                                Physics(cushion="mathavan", e_cushion=1.0, mu_cushion=0.0)])
+def test_mathavan_on_arrays_steps_all_balls_at_once_as_the_float_form(ph, monkeypatch):
+    """Balls that all hit the cushion at the same speed (at different spins and speeds
+    along the rail): the array form steps every ball at once, without a mask, until the
+    first of them ends its phase; with one ball added that does not hit, every step is
+    masked. Each ball's rebound is the float form's to the bit either way."""
+    masks = []
+    real = mathavan._step
+    monkeypatch.setattr(mathavan, "_step", lambda *a: masks.append(a[7] is None) or real(*a))
+    rng = np.random.default_rng(4)
+    k = 40
+    v = np.column_stack([rng.uniform(-0.5, 0.5, k), np.full(k, 1.5)])  # 1.5 m/s into it
+    w = rng.normal(0.0, 30.0, (k, 3))
+    for extra in ([], [([0.0, -0.4], [0.0, 0.0, 0.0])]):  # the extra one moves away
+        vv = np.concatenate([v, [e[0] for e in extra]]) if extra else v
+        ww = np.concatenate([w, [e[1] for e in extra]]) if extra else w
+        n = np.tile(UP, (len(vv), 1))
+        r, m = np.full(len(vv), R), np.full(len(vv), M)
+        masks.clear()
+        V, W = mathavan.bounce_many(n, vv, ww, r, m, ph)
+        assert masks and any(masks) == (not extra)
+        for x in range(len(vv)):
+            vo, wo = mathavan.bounce_one(UP, vv[x].tolist(), ww[x].tolist(), R, M, ph)
+            assert np.array(vo).tobytes() == V[x].tobytes()
+            assert np.array(wo).tobytes() == W[x].tobytes()

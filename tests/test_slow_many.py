@@ -19,7 +19,7 @@ from termpool.physics.engine import Engine
 from termpool.physics.features import Features
 from termpool.physics.params import BALL_RADIUS, Physics
 from termpool.physics.schedule import Due
-from termpool.physics.state import CLUSTER_GAP
+from termpool.physics.state import CLUSTER_GAP, POCKETED
 from termpool.physics.table import Table
 from termpool.scene import load_scene
 from tests.test_cluster import CASES, _masses
@@ -282,3 +282,47 @@ def test_groups_broken_at_once_are_broken_as_event_by_event(seed):
     assert np.array_equal(a.groups.label, b.groups.label)
     assert np.array_equal(a.groups.count, b.groups.count)
     assert a.balls.motion.tobytes() == b.balls.motion.tobytes()
+
+
+def test_touching_pairs_are_those_within_the_gap_by_their_distance():
+    """`SlowContacts._touching` of several tables (it measures only the pairs whose squared
+    distance is near the largest reach): every pair of balls whose np.hypot distance less
+    the two radii is below CLUSTER_GAP, each way round, in order, and no other; on exact
+    racks, pairs a hair either side of the gap, balls of mixed radii, a sunk pair and a
+    pocketed ball; with the offsets, distances and closing speeds the definitions give."""
+    R = BALL_RADIUS
+    sizes = (R, 0.8 * R, 1.3 * R)  # the pairs' balls, a table each (the last the largest)
+    rows = []
+    for r2 in sizes:
+        rack = [(1.5 + 3 ** 0.5 * R * i, 0.6 + (j - i / 2) * 2 * R)
+                for i in range(5) for j in range(i + 1)]
+        gaps = [2 * r2 + CLUSTER_GAP * f for f in (1 - 1e-9, 1 + 1e-9, 0.5, 1.0)]
+        left = [(0.3, 0.3 + 0.2 * k) for k in range(4)]
+        right = [(0.3 + g, 0.3 + 0.2 * k) for k, g in enumerate(gaps)]
+        rows.append(rack + left + right + [(1.0, 1.0), (1.0 + R + r2 - 1e-7, 1.0)])
+    pos = np.array(rows)
+    B, N = pos.shape[:2]
+    radius = np.full((B, N), R)
+    radius[:, 15:23] = np.array(sizes)[:, None]
+    radius[:, 24] = sizes
+    vel = np.random.default_rng(2).normal(0.0, 0.01, pos.shape)
+    eng = Engine(Table.preset("9ft"), Physics(), pos, vel, None, radius, np.full((B, N), 0.17))
+    eng.balls.state[1, 3] = POCKETED
+    order = [2, 0, 1]
+    p, v, _, q, a, c, d, dist, closing = eng.slow._touching(order)
+    want = []
+    for k, b in enumerate(order):
+        live = eng.balls.state[b] != POCKETED
+        for i in range(N):
+            for j in range(N):
+                h = np.hypot(*(p[k, j] - p[k, i]))
+                reach = radius[b, i] + radius[b, j]
+                if i != j and live[i] and live[j] and h - reach < CLUSTER_GAP:
+                    want.append((k, i, j, h))
+    got = list(zip(q.tolist(), a.tolist(), c.tolist(), dist.tolist(), strict=True))
+    assert got == want
+    pairs = {(x, y, z) for x, y, z, _ in got}
+    assert all((k, 15, 19) in pairs and (k, 16, 20) not in pairs for k in range(3))
+    assert (0, 23, 24) in pairs and not any(x == 2 and 3 in (y, z) for x, y, z in pairs)
+    assert d.tobytes() == (p[q, c] - p[q, a]).tobytes()
+    assert closing.tobytes() == (-((v[q, c] - v[q, a]) * d).sum(axis=1) / dist).tobytes()

@@ -246,14 +246,6 @@ def blocks(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> li
     return out
 
 
-def block_lists(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray) -> list:
-    """`blocks` as lists of rows (for the plain-float solves of small sets)."""
-    out = []
-    for A, ct in _padded(J, starts, counts, k):
-        out += [[row[:r] for row in Aq[:r]] for Aq, r in zip(A.tolist(), ct, strict=True)]
-    return out
-
-
 def _padded(J: Rows, starts: np.ndarray, counts: np.ndarray, k: np.ndarray):
     """`blocks`' matrices, BLOCKS sets at a time: (matrices padded to the largest set of
     them, their sets' sizes as a list)."""
@@ -287,9 +279,9 @@ class Sets:
         self._mats: dict[int, list] = {}
 
     def matrices(self, k: np.ndarray, q_list: list[int]) -> list:
-        """The contact matrices of groups q_list for inverse masses k (`block_lists`), cut
-        to the rows with anything that can move (as np.abs(A).sum(axis=1) > 0 keeps them):
-        (those rows, the cut matrix's columns, or its rows when it is too large for plain
+        """The contact matrices of groups q_list for inverse masses k (`blocks`), cut to the
+        rows with anything that can move (as np.abs(A).sum(axis=1) > 0 keeps them): (those
+        rows, the cut matrix's columns as lists, or its rows when it is too large for plain
         floats), each group's built once for the same k (push solves again with the same
         masses after turning the forces)."""
         key = k.tobytes()
@@ -298,13 +290,23 @@ class Sets:
         need = [q for q in q_list if q not in self._mats]
         if need:
             q_need = np.array(need, dtype=np.int64)
-            for q, A in zip(need, block_lists(self.J, self.starts[q_need], self.counts[q_need],
-                                              k), strict=True):
-                live = [i for i, row in enumerate(A) if sum(map(abs, row)) > 0]
-                if len(live) < len(A):
-                    A = [[A[i][j] for j in live] for i in live]
-                cols = [list(c) for c in zip(*A, strict=True)] if len(live) <= PLAIN else A
-                self._mats[q] = (live, cols)
+            at = 0
+            for A, ct in _padded(self.J, self.starts[q_need], self.counts[q_need], k):
+                # A row's sum of magnitudes over its set's columns (the padding's are left
+                # out) is positive where any is: in any order, whatever the rounding.
+                inside = np.arange(A.shape[1]) < np.array(ct)[:, None]
+                moves = (np.where(inside[:, None, :], np.abs(A), 0.0).sum(axis=2) > 0).tolist()
+                by_col = A.transpose(0, 2, 1).tolist()
+                for q, r, AT, mv in zip(need[at:at + len(ct)], ct, by_col, moves, strict=True):
+                    live = [i for i in range(r) if mv[i]]
+                    if len(live) == r:
+                        cols = [col[:r] for col in AT[:r]]
+                    else:
+                        cols = [[AT[j][i] for i in live] for j in live]
+                    if len(live) > PLAIN:  # rows, for the array solve
+                        cols = [list(row) for row in zip(*cols, strict=True)]
+                    self._mats[q] = (live, cols)
+                at += len(ct)
         return [self._mats[q] for q in q_list]
 
     def rows(self, q: int) -> slice:
@@ -323,14 +325,19 @@ class Sets:
             if not live:
                 continue
             s = self.first[q]
-            bl = [b[s + i] for i in live]
-            if len(live) > PLAIN:
+            n = len(live)
+            every = live[-1] == n - 1  # (live is ascending: then it is every row)
+            bl = b[s:s + n] if every else [b[s + i] for i in live]
+            if n > PLAIN:
                 part = solve_inelastic(np.array(A, dtype=float), np.array(bl, dtype=float))
                 part = part.tolist()
             else:
                 part = inelastic_plain(A, bl, TOL)
-            for i, x in zip(live, part, strict=True):
-                lam[s + i] = x
+            if every:
+                lam[s:s + n] = part
+            else:
+                for i, x in zip(live, part, strict=True):
+                    lam[s + i] = x
         return free + J.spread(np.array(lam, dtype=float).reshape(len(J)), k)
 
     def resting(self, v, k) -> np.ndarray:

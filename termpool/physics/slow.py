@@ -15,6 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from termpool.physics import motion
 from termpool.physics.balls import Balls
 from termpool.physics.cluster import Rows, solve_inelastic
 from termpool.physics.events import ENDS
@@ -318,21 +319,31 @@ class SlowContacts:
         pairs (within CLUSTER_GAP, neither pocketed), each way round: (table's place q, ball
         a, ball c, offset c - a (K, 2), distance, how fast they close), ordered by q, a, c."""
         N = self.balls.N
-        C = len(tables)
-        tb = np.repeat(np.array(tables, dtype=np.int64), N)
-        p, v, w = self.balls.eval(tb, np.tile(np.arange(N), C), self.tb[tb])
-        p, v, w = p.reshape(C, N, 2), v.reshape(C, N, 2), w.reshape(C, N, 3)
-        R = self.balls.radius[tables]
-        live = self.balls.state[tables] != POCKETED
-        dist = np.hypot(p[:, None, :, 0] - p[:, :, None, 0], p[:, None, :, 1] - p[:, :, None, 1])
-        touch = ((dist - (R[:, :, None] + R[:, None, :]) < CLUSTER_GAP)
-                 & live[:, :, None] & live[:, None, :])
+        tarr = np.array(tables, dtype=np.int64)
+        p, v, w = motion.at_many(self.balls.motion.take(tarr, axis=0), self.tb[tarr][:, None])
+        R = self.balls.radius[tarr]
+        live = self.balls.state[tarr] != POCKETED
+        dx = p[:, None, :, 0] - p[:, :, None, 0]
+        dy = p[:, None, :, 1] - p[:, :, None, 1]
+        # The distances (np.hypot, the costly part) only of pairs that may touch: squared,
+        # against the largest reach with a margin far above their rounding; then exactly.
+        top = (2.0 * float(self.balls.radius.max()) + CLUSTER_GAP) * (1.0 + 1e-6)
+        near = dx * dx + dy * dy < top * top
+        near &= live[:, :, None] & live[:, None, :]
         k = np.arange(N)
-        touch[:, k, k] = False
-        q, a, c = np.nonzero(touch)
-        d = p[q, c] - p[q, a]
-        dist = dist[q, a, c]
-        closing = -((v[q, c] - v[q, a]) * d).sum(axis=1) / np.where(dist > 0, dist, 1)
+        near[:, k, k] = False
+        f = np.flatnonzero(near)
+        ga, c = np.divmod(f, N)  # ga = q N + a
+        q, a = np.divmod(ga, N)
+        gc = ga - a + c
+        R = R.reshape(-1)
+        dist = np.hypot(dx.take(f), dy.take(f))
+        keep = np.flatnonzero(dist - (R.take(ga) + R.take(gc)) < CLUSTER_GAP)
+        q, a, c, ga, gc, dist = (x.take(keep) for x in (q, a, c, ga, gc, dist))
+        P, V = p.reshape(-1, 2), v.reshape(-1, 2)
+        d = P.take(gc, axis=0) - P.take(ga, axis=0)
+        closing = -((V.take(gc, axis=0) - V.take(ga, axis=0)) * d).sum(axis=1) / np.where(
+            dist > 0, dist, 1)
         return p, v, w, q, a, c, d, dist, closing
 
     def _cluster(self, b: int, seeds: list[int], every: bool, p, v, w, a_, c_, d_, dist_,

@@ -12,6 +12,8 @@ same bits (tests/test_slow_many.py holds them to it).
 
 from __future__ import annotations
 
+from itertools import compress
+
 import numpy as np
 
 from termpool.physics.balls import Balls
@@ -76,22 +78,25 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     # Only members by the rails can touch a rail, jaw or tip (the rest of a rack pays nothing).
     pm, rcm = P[gm], balls.rc[tarr[mq], mb]
     by = np.flatnonzero(by_rails(features, pm, rcm))
-    seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
-    mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
-    capm = cap[mq_][:, None]
-    slow = dots(vm, tab.seg_n) >= -capm
-    x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
-    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tab.seg_n[f]),
-                   (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
-        z.append(val)
-    slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
-    x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
-    for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)), (rn, tip_dir[x, f]),
-                   (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
-        z.append(val)
-    rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
-    order = np.argsort(rq_ * 3 + rk_, kind="stable")
-    rq_, ra_, rc0, rn_, rg_, rk_ = (z[order] for z in (rq_, ra_, rc0, rn_, rg_, rk_))
+    if by.size:
+        seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
+        mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
+        capm = cap[mq_][:, None]
+        slow = dots(vm, tab.seg_n) >= -capm
+        x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
+        for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)),
+                       (rn, tab.seg_n[f]), (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
+            z.append(val)
+        slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
+        x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
+        for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)),
+                       (rn, tip_dir[x, f]), (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
+            z.append(val)
+        rq_, ra_, rc0, rn_, rg_, rk_ = (np.concatenate(z) for z in (rq, ra, rc_, rn, rg, rkind))
+        order = np.argsort(rq_ * 3 + rk_, kind="stable")
+        rq_, ra_, rc0, rn_, rg_, rk_ = (z[order] for z in (rq_, ra_, rc0, rn_, rg_, rk_))
+    else:  # no member by the rails: the pairs' rows alone, already in their order
+        rq_, ra_, rc0, rn_, rg_, rk_ = bq, a, c, rn[0], rg[0], rkind[0]
     ga = rq_ * N + ra_
     gc = np.where(rc0 >= 0, rq_ * N + rc0, -1)
     J = Rows(ga, gc, rn_, C * N)
@@ -153,8 +158,9 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     hits = moved.tolist()  # the members cluster by cluster
     s = 0
     for mem in members:
-        out.append((mem, [k for k, h in zip(mem, hits[s:s + len(mem)], strict=True) if h]))
-        s += len(mem)
+        e = s + len(mem)
+        out.append((mem, list(compress(mem, hits[s:e]))))
+        s = e
     return out
 
 
@@ -200,25 +206,21 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
     others freely. Balls are numbered cluster * N + ball."""
     N = balls.N
     C = len(members)
-    held_by = [set() for _ in range(C)]
-    for q, x, y in zip(rq.tolist(), ga.tolist(), gc.tolist(), strict=True):
-        held_by[q].add(x)
-        if y >= 0:
-            held_by[q].add(y)
-    held = [sorted(h) for h in held_by]  # global numbers, by ball within each cluster
-    free = [k for k in gm.tolist() if k not in held_by[k // N]]
+    held = np.zeros(C * N + 1, dtype=bool)  # (the last: ball -1, a cushion's, never held)
+    held[ga] = True
+    held[gc] = True
+    held[-1] = False
+    free = gm[~held[gm]]
     groups.label[tarr[mq], gm % N] = -1
-    if free:
-        fb = np.array(free, dtype=np.int64)
-        bt, bi = tarr[fb // N], fb % N
-        balls.set(bt, bi, tb[bt], P[fb], V[fb], W[fb])
-    if any(held):
-        hb = np.array([k for h in held for k in h], dtype=np.int64)
-        where = {k: n for n, k in enumerate(hb.tolist())}
+    if free.size:
+        bt, bi = tarr[free // N], free % N
+        balls.set(bt, bi, tb[bt], P[free], V[free], W[free])
+    hb = np.flatnonzero(held)  # global numbers: cluster by cluster, ball by ball
+    if hb.size:
+        where = np.full(C * N + 1, -1)
+        where[hb] = np.arange(hb.size)
         hq = hb // N
-        J = Rows(np.array([where[x] for x in ga.tolist()], dtype=np.int64),
-                 np.array([where.get(y, -1) for y in gc.tolist()], dtype=np.int64), rn,
-                 hb.size)
+        J = Rows(where[ga], where[gc], rn, hb.size)
         bt, bi = tarr[hq], hb % N
         vj, acc, alpha, state, duration, wj = push_many(
             ph, V[hb], W[hb], balls.radius[bt, bi], balls.mass[bt, bi], balls.spin_rate[bt, bi],
@@ -229,5 +231,6 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
         balls.motion[bt, bi, :Col.RATE] = np.concatenate(
             [t[:, None], P[hb], vj, acc, wj, alpha], axis=1)
         # Each group labelled by its first ball (the tables are distinct).
-        groups.label[bt, bi] = np.array([h[0] % N if h else -1 for h in held])[hq]
+        first = np.flatnonzero(np.diff(hq, prepend=-1))
+        groups.label[bt, bi] = np.repeat(bi[first], np.diff(first, append=hb.size))
     groups.count[tarr] = (groups.label[tarr] >= 0).sum(axis=1)

@@ -40,6 +40,7 @@ Cost and safety:
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -65,14 +66,29 @@ FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-
 # over the steps outweighs the work (the two forms agree to the bit, so either may run)
 
 
-def _step(dv, s, c, k, mu_w, mu_s, st, go, new) -> None:
+class _Rows(NamedTuple):
+    """What `_step` multiplies by, a row per ball: the slips' responses to friction
+    (`_gains`) as pairs of rows, g = (3.5, k2) and x = (x1, x2), and the constants it takes,
+    0, 1, 3.5 and a pair of 3.5 (numpy takes an array faster than a Python float, with the
+    same result)."""
+
+    g: np.ndarray
+    x: np.ndarray
+    zero: np.ndarray
+    one: np.ndarray
+    three5: np.ndarray
+    three5_2: np.ndarray
+
+
+def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
     """One impulse step on the rows of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
-    `go`: the normal part takes dv off vy, then friction at the nose and on the slate.
-    k: the slips' responses to friction, `_gains(s)` with their rows (3.5, k2) and (x1, x2);
-    new: room for the next rows. The pairs (a1, a2), (b1, b2), (fi1, fi2), (fc1, fc2) are
-    each worked as one array of two rows: the same operations, element for element, as
-    `_step_one`, in fewer calls."""
-    _, _, _, g, x = k
+    `go` (None: every row): the normal part takes dv off vy, then friction at the nose and
+    on the slate. Returns (the rows after it, room for the next: st and new in some order).
+    k: the slips' responses to friction and the constants (`_Rows`); mu_w, mu_s: the
+    frictions, a row each; new: room for the next rows. The pairs (a1, a2), (b1, b2),
+    (fi1, fi2), (fc1, fc2) are each worked as one array of two rows: the same operations,
+    element for element, as `_step_one`, in fewer calls."""
+    g, x, zero, one, three5, three5_2 = k
     dp = dv / c
     vy = st[0] - dv
     a = st[1:3].copy()
@@ -81,25 +97,28 @@ def _step(dv, s, c, k, mu_w, mu_s, st, go, new) -> None:
     b[1] -= dv
     sq = a * a
     slip = np.sqrt(sq[0] + sq[1])
-    live = slip > 0.0
-    safe = np.where(live, slip, 1.0)
+    live = slip > zero
+    safe = np.where(live, slip, one)
     d = a / safe
     sq = g * (d * d)
-    j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], 1.0))
+    j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], one))
     a -= j * (g * d)
     b -= j * (x * d)
     vy = vy + j * (s * d[1])
     np.add(st[5:7], j * d, out=new[5:7])
-    up = np.maximum(s * dp + j * (c * d[1]), 0.0)
+    up = np.maximum(s * dp + j * (c * d[1]), zero)
     sq = b * b
     slip = np.sqrt(sq[0] + sq[1])
-    e = b / np.where(slip > 0.0, slip, 1.0)
-    j = np.minimum(mu_s * up, slip / 3.5)
+    e = b / np.where(slip > zero, slip, one)
+    j = np.minimum(mu_s * up, slip / three5)
     np.subtract(vy, j * e[1], out=new[0])
     np.subtract(a, j * (x * e), out=new[1:3])
-    np.subtract(b, j * (3.5 * e), out=new[3:5])
+    np.subtract(b, j * (three5_2 * e), out=new[3:5])
     np.add(st[7:9], j * e, out=new[7:9])
+    if go is None:  # every row: the new rows are the next, st is room for the ones after
+        return new, st
     np.copyto(st, new, where=go)
+    return st, new
 
 
 def _step_one(dv, s, c, k, mu_w, mu_s, st) -> tuple:
@@ -170,21 +189,29 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     st = np.stack([vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy,
                    vy + r * wx, zero, zero, zero, zero])
     k2, x1, x2 = _gains(s)
-    k = (k2, x1, x2, np.stack([np.full_like(s, 3.5), k2]), np.stack([x1, x2]))
+    three5 = np.full_like(s, 3.5)
+    k = _Rows(np.stack([three5, k2]), np.stack([x1, x2]), zero, np.ones_like(s), three5,
+              np.stack([three5, three5]))
+    mu_w, mu_s = np.full_like(s, mu_w), np.full_like(s, mu_s)
+    half, two = np.full_like(s, 0.5), np.full_like(s, 2.0)
     new = np.empty_like(st)
     work = zero
     last = ~hit
     # Compression: until a step's normal impulse stops the ball moving into the cushion.
+    # (A step of every ball, the usual one, needs no mask.)
     for _ in range(MAX_STEPS):
-        go = ~last & (st[0] > 0.0)
-        if not go.any():
+        go = ~last & (st[0] > zero)
+        count = np.count_nonzero(go)
+        if not count:
             break
+        every = count == go.size
         vy = st[0]
         vn = vy - cdp
-        last = last | (go & (vn <= 0.0))
-        vn = np.maximum(vn, 0.0)
-        work = np.where(go, work + 0.5 * (vy * vy - vn * vn), work)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
+        last = last | ((vn <= zero) if every else (go & (vn <= zero)))
+        vn = np.maximum(vn, zero)
+        more = work + half * (vy * vy - vn * vn)
+        work = more if every else np.where(go, more, work)
+        st, new = _step(vy - vn, s, c, k, mu_w, mu_s, st, None if every else go, new)
     vy = st[0]
     go = hit & (vy > 0.0)
     work = np.where(go, work + 0.5 * (vy * vy), work)
@@ -192,16 +219,19 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     # Restitution: until the cushion has given back e^2 of that work.
     rest = ee * ee * work
     for _ in range(MAX_STEPS):
-        go = hit & (rest > 0.0)
-        if not go.any():
+        go = hit & (rest > zero)
+        count = np.count_nonzero(go)
+        if not count:
             break
+        every = count == go.size
         vy = st[0]
         vn = vy - cdp
-        gain = 0.5 * (vn * vn - vy * vy)
+        gain = half * (vn * vn - vy * vy)
         end = gain >= rest
-        vn = np.where(end, -np.sqrt(vy * vy + 2.0 * rest), vn)
-        rest = np.where(go, np.where(end, 0.0, rest - gain), rest)
-        _step(vy - vn, s, c, k, mu_w, mu_s, st, go, new)
+        vn = np.where(end, -np.sqrt(vy * vy + two * rest), vn)
+        less = np.where(end, zero, rest - gain)
+        rest = less if every else np.where(go, less, rest)
+        st, new = _step(vy - vn, s, c, k, mu_w, mu_s, st, None if every else go, new)
     vy = st[0]
     vy = np.minimum(np.where(hit & (rest > 0.0), -np.sqrt(vy * vy + 2.0 * rest), vy), 0.0)
     q = 2.5 / r  # R m / I: spin per unit of friction impulse per unit mass
