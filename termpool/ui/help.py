@@ -110,15 +110,20 @@ def key_entries(rows: Sequence[tuple[str, str]], cols: int, height: int) -> list
     return [lines[i:j] for i, j in zip(cuts, cuts[1:], strict=False) if j > i]
 
 
-def rules_lines(mode: str, width: int, **how) -> list[str]:
-    """The rules page of `mode` wrapped to `width`: paragraphs "Heading: text", a blank line
+def paragraph_lines(paragraphs: Sequence[tuple[str, str]], width: int) -> list[str]:
+    """(heading, text) paragraphs wrapped to `width` as "Heading: text", a blank line
     between them."""
     out: list[str] = []
-    for head, text in rules_page(mode, **how):
+    for head, text in paragraphs:
         if out:
             out.append("")
         out += textwrap.wrap(f"{head}: {text}", width, break_on_hyphens=False)
     return out
+
+
+def rules_lines(mode: str, width: int, **how) -> list[str]:
+    """The rules page of `mode` wrapped to `width` (`paragraph_lines`)."""
+    return paragraph_lines(rules_page(mode, **how), width)
 
 
 def paginate(lines: list[str], height: int) -> list[list[str]]:
@@ -160,19 +165,16 @@ def paginate_entries(entries: list[list[str]], height: int,
 
 def help_pages(keys: Sequence[tuple[str, str]], mode: str | None, cols: int, rows: int,
                aid: bool = True, **how) -> list[tuple[str, list[str]]]:
-    """The help box's pages for a cols x rows screen: the keys, what the aim aid draws, then
-    the rules of `mode` (of
-    every mode when None), each page with a footer that says how to turn pages and close the
-    box. `aid`: with the page on what the aim aid draws. `how` goes to `rules_page`
-    (three_foul, eight_break, theme)."""
+    """The help box's pages for a cols x rows screen: the keys, what the aim aid draws (with
+    `aid`), then the rules of `mode` (of every mode when None), each page with a footer that
+    says how to turn pages and close the box. `how` goes to `rules_page` (three_foul,
+    eight_break, theme)."""
     width = max(20, cols - BOX_EDGE)
     height = max(3, rows - BOX_ROWS)
     pages = [("keys", p) for p in paginate_entries(key_entries(keys, cols, height), height)]
     if aid:  # a player's help (a watched match shows no aid)
-        legend = [line for i, (head, text) in enumerate(AID_LEGEND)
-                  for line in ([""] if i else []) + textwrap.wrap(f"{head}: {text}", width,
-                                                                  break_on_hyphens=False)]
-        pages += [("the aim aid", p) for p in paginate(legend, height)]
+        pages += [("the aim aid", p) for p in paginate(paragraph_lines(AID_LEGEND, width),
+                                                        height)]
     for m in [mode] if mode is not None else list(MODE_NAMES):
         title = f"{MODE_NAMES[m]} rules"
         pages += [(title, p) for p in paginate(rules_lines(m, width, **how), height)]
