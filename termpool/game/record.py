@@ -264,6 +264,11 @@ def parse_replay(text: str, where: str = "replay") -> dict:
     return data
 
 
+def _where(path: str | os.PathLike) -> str:
+    """A replay file's name as its errors say it ("-" is stdin)."""
+    return "stdin" if os.fspath(path) == "-" else os.fspath(path)
+
+
 def read_replays(path: str | os.PathLike) -> list[dict]:
     """Read and parse a replay file ("-": standard input): one match, or several as JSON
     Lines (a match a line, as `play --record -` writes them). Raises ReplayError with one
@@ -272,7 +277,7 @@ def read_replays(path: str | os.PathLike) -> list[dict]:
         text = read_text(path, MAX_REPLAY_BYTES, "replay")
     except FileError as e:
         raise ReplayError(str(e)) from None
-    where = "stdin" if os.fspath(path) == "-" else os.fspath(path)
+    where = _where(path)
     try:
         return [parse_replay(text, where)]
     except ReplayError:
@@ -287,8 +292,7 @@ def read_replay(path: str | os.PathLike) -> dict:
     """`read_replays` for a file that must hold one match."""
     matches = read_replays(path)
     if len(matches) > 1:
-        where = "stdin" if os.fspath(path) == "-" else os.fspath(path)
-        raise ReplayError(f"{where}: holds {len(matches)} matches (JSON Lines); give one, "
+        raise ReplayError(f"{_where(path)}: holds {len(matches)} matches (JSON Lines); give one, "
                           "e.g. the second with `sed -n 2p`")
     return matches[0]
 
