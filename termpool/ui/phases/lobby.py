@@ -8,6 +8,7 @@ from dataclasses import replace
 from termpool import wire
 from termpool.rules.words import MODE_NAMES
 from termpool.text import shown
+from termpool.ui.phases import remote
 from termpool.ui.phases.turn import begin_match, to_menu
 from termpool.ui.settings import MAX_FRAMES
 from termpool.ui.state import LOBBY_GAMES, Lobby, Menu, State, lobby_choice
@@ -90,8 +91,7 @@ def menu_tick(s: State, t: float) -> State:
     s = start_online(s, link.start)
     if s.match is None or seat not in (0, 1) or link.resume is not None:
         return s  # ... with moves to make: said when they are made
-    other = shown(s.match.players[1 - seat])[:16]
-    return replace(s, message=((f"back in your match against {other}", "turn"),))
+    return replace(s, message=(remote.back_in(s, seat),))
 
 
 def tick(s: State, t: float) -> State:

@@ -17,7 +17,7 @@ from termpool.text import shown
 from termpool.ui import aid
 from termpool.ui.link import digest
 from termpool.ui.phases.place import clamp
-from termpool.ui.phases.turn import finish_shot, record, shoot, start_turn, to_menu
+from termpool.ui.phases.turn import finish_shot, give_match, shoot, start_turn, to_menu
 from termpool.ui.state import Aim, Pause, Place, Run, State, Waiting, shooter_is_remote
 
 REMOTE_POLL_S = 0.05  # how often a waiting screen looks for the other player's move
@@ -48,10 +48,7 @@ def check(s: State) -> State:
             return replace(s, message=(*s.message, (f"{name} has left", "dim")))
         if len(s.remote) == 2:  # watching
             return ended(s, f"{name} has left the match")
-        if isinstance(s.part, Run):  # their leaving came as a shot rolls here
-            s, _ = record(s)
-        if s.match.winner is None:
-            s.match.concede(s.remote[0])
+        s = give_match(s, s.remote[0])  # (their leaving may come as a shot rolls here)
         return ended(s, f"{name} has left the match: you win it (it is kept in your history)")
     if link.closed:
         return ended(s, "the server has gone; the match is kept in your history")
@@ -114,9 +111,13 @@ def tick(s: State, t: float) -> State:
         s = _make(replace(s, remote=(1 - seat,)), move, behind)
         if s.match is None:  # it ended
             return s
-        back = f"back in your match against {shown(s.match.players[1 - seat])[:16]}"
-        return replace(s, message=((back, "turn"), *s.message))
+        return replace(s, message=(back_in(s, seat), *s.message))
     return _make(s, move, behind)
+
+
+def back_in(s: State, seat: int) -> tuple[str, str]:
+    """The line that tells a player back in their match (on side `seat`) whom it is with."""
+    return f"back in your match against {shown(s.match.players[1 - seat])[:16]}", "turn"
 
 
 def _make(s: State, move, behind: bool) -> State:

@@ -225,17 +225,20 @@ def record(s: State) -> tuple[State, Match | None]:
     return s, s.played[-1] if s.played else m
 
 
-def concede_online(s: State) -> State:
-    """This screen's player leaves an online match before its end (Q): the other player wins
-    it (a shot still rolling is played out first). A connection that merely drops concedes
-    nothing: the match waits for them to come back."""
-    m = s.match
-    if not concedes(s):
-        return s
+def give_match(s: State, player: int) -> State:
+    """`player` leaves the match in play before its end: the other wins it (a shot still
+    rolling is played out first; a match already over stays as it is)."""
     if isinstance(s.part, Run):
         s, _ = record(s)
-    m.concede(1 - s.remote[0])
+    s.match.concede(player)
     return s
+
+
+def concede_online(s: State) -> State:
+    """This screen's player leaves an online match before its end (Q): the other player wins
+    it. A connection that merely drops concedes nothing: the match waits for them to come
+    back."""
+    return give_match(s, 1 - s.remote[0]) if concedes(s) else s
 
 
 def quit_game(s: State) -> State:
