@@ -642,12 +642,18 @@ def test_without_a_server_the_menu_has_no_online_entry():
 
 
 # ------------------------------------------------------------------ the lobby's own keys
+def challenge(by: App, to: App) -> None:
+    """`by` (in the lobby with `to`, and no one else) challenges `to`, who sees it."""
+    name = to.state.opts.player1
+    until([by, to], lambda: [p["where"] for p in by.state.link.others()] == ["lobby"],
+          f"{name} in the lobby")
+    by.key(Key("enter"), time.monotonic())
+    until([by, to], lambda: to.state.link.challenged is not None, "the challenge")
+
+
 def test_n_declines_a_challenge_and_esc_takes_one_back_or_leaves(lobby):
     ann, bob = in_lobby(lobby, "ann"), in_lobby(lobby, "bob")
-    until([ann, bob], lambda: [p["where"] for p in ann.state.link.others()] == ["lobby"],
-          "bob in ann's lobby")
-    ann.key(Key("enter"), time.monotonic())
-    until([ann, bob], lambda: bob.state.link.challenged is not None, "the challenge")
+    challenge(ann, bob)
     bell = bob.state.opts.bell
     bob.key(Key("n"), time.monotonic())  # N answers the challenge, not the bell
     assert bob.state.opts.bell == bell and bob.state.link.challenged is None
@@ -665,10 +671,7 @@ def test_n_declines_a_challenge_and_esc_takes_one_back_or_leaves(lobby):
 
 def test_leaving_the_lobby_by_the_quit_box_takes_ones_challenge_with_one(lobby):
     ann, bob = in_lobby(lobby, "ann"), in_lobby(lobby, "bob")
-    until([ann, bob], lambda: [p["where"] for p in bob.state.link.others()] == ["lobby"],
-          "ann in bob's lobby")
-    bob.key(Key("enter"), time.monotonic())
-    until([ann, bob], lambda: ann.state.link.challenged is not None, "the challenge")
+    challenge(bob, ann)
     bob.key(Key("q"), time.monotonic())
     bob.key(Key("m"), time.monotonic())  # Q, then M: the menu
     assert bob.state.phase is Phase.MENU

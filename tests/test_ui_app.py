@@ -1683,14 +1683,21 @@ def test_the_stats_screen_scrolls_both_ways_and_says_so() -> None:
     assert app.state.box is None
 
 
-@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24), (120, 40)])
-def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(cols, rows):
+def at_the_push_out_question() -> App:
+    """A 9-ball game between two players after its break and a push-out: the other player's
+    question (shoot from here or pass the shot back) on show."""
     app = app_for(mode="9ball", opponent="human")
     run_script(app, "enter space-hold 1.2 wait 20")
     if app.state.phase is Phase.PLACE:
         app.key(Key("enter"), 100.0)
     run_script(app, "o space-hold 0.3 wait 20")
     assert app.state.phase is Phase.OPTION
+    return app
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(50, 16), (80, 24), (120, 40)])
+def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(cols, rows):
+    app = at_the_push_out_question()
     m = app.state.match
     centre = np.array([m.table.length / 2, m.table.width / 2])
     c = m.ids.index("cue")
@@ -1716,12 +1723,7 @@ def test_the_push_out_question_leaves_the_cue_ball_and_the_balls_by_it_in_view(c
 def test_the_push_out_question_never_covers_the_players_row(cols, rows, where):
     # The cue ball with balls all about it, so that no place on the table keeps them all in
     # view: the box must still leave the players' row (whose call it is) alone.
-    app = app_for(mode="9ball", opponent="human")
-    run_script(app, "enter space-hold 1.2 wait 20")
-    if app.state.phase is Phase.PLACE:
-        app.key(Key("enter"), 100.0)
-    run_script(app, "o space-hold 0.3 wait 20")
-    assert app.state.phase is Phase.OPTION
+    app = at_the_push_out_question()
     m = app.state.match
     c = m.ids.index("cue")
     at = np.array([m.table.length * where[0], m.table.width * where[1]])
