@@ -132,7 +132,9 @@ def test_renewing_many_balls_at_once_is_renewing_them_one_by_one(monkeypatch):
     """All balls of the six tables renewed in one call, some listed twice (an event's ball is
     also its cluster's): the same times and features, bit for bit, as renewing each ball alone
     in plain floats, in turn. A pair of renewed balls is met once in the call, and each
-    alone meets it from its own side: both sides give the same bits."""
+    alone meets it from its own side: both sides give the same bits. (Where a pair meets
+    now, pairs that cannot meet at the clock wait, `Schedule._later`: made, they are the
+    same too.)"""
     scene, pos, vel = _tables()
     many, one = (_engine(scene, pos, vel, schedule.CHUNK, monkeypatch) for _ in range(2))
     B, n = many.B, many.N
@@ -142,6 +144,8 @@ def test_renewing_many_balls_at_once_is_renewing_them_one_by_one(monkeypatch):
         eng.tb[:] = 0.01 * np.arange(B)
     with np.errstate(all="ignore"):
         many.schedule.predict_many(np.concatenate([b, b[twice]]), np.concatenate([i, i[twice]]))
+        assert many.schedule.pending  # the frozen pairs meet now: some pairs wait
+        many.schedule.complete(force=True)
         for bb, ii in zip(b.tolist(), i.tolist(), strict=True):
             one.schedule.predict_few(np.array([bb]), np.array([ii]))
     assert many.schedule.times.tobytes() == one.schedule.times.tobytes()

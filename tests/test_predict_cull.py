@@ -104,11 +104,13 @@ def _tables():
 
 
 def _renew_all(eng: Engine, t: float) -> tuple:
-    """Every ball of every table renewed at clock t: the times and features."""
+    """Every ball of every table renewed at clock t: the times and features (with the
+    pairs and cushions that could wait for a later pass made too)."""
     eng.tb[:] = t
     b, i = np.divmod(np.arange(eng.B * eng.N), eng.N)
     with np.errstate(all="ignore"):
         eng.schedule.predict_many(b, i)
+        eng.schedule.complete(force=True)
     return eng.schedule.times.tobytes(), eng.f_cush.tobytes()
 
 

@@ -127,6 +127,7 @@ class Engine:
             self.balls.set(b, i, self.tb[b], pos[b, i], vel[b, i], w[b, i])
             self._predict(b, i)
             self.schedule.refresh(np.arange(B))
+        self.schedule.defer = B > 1  # (from the first event on: see Schedule._later)
 
     # ----------------------------------------------------------------- the event loop
     def _run_until(self, t_end: float) -> None:
@@ -167,12 +168,17 @@ class Engine:
                 self.tb[tabs] = self.t_next[tabs]
                 self._handle(tabs, self.schedule.c_next[tabs])
                 self.schedule.refresh(tabs)
+                if self.schedule.pending:
+                    self.schedule.complete()
 
     def _spend(self, units: int) -> None:
         """Count work before a step or a pass; raise WorkLimit past the limit (between
         passes, so the engine's state stays whole)."""
         self.work += units
         if self.work > self.max_work:
+            if self.schedule.pending:  # every prediction made, as after any pass
+                with np.errstate(all="ignore"):
+                    self.schedule.complete(force=True)
             raise WorkLimit(f"engine: the run met its work limit of {self.max_work:,.0f} units "
                             f"at {float(self.tb.max()):.6g} s of simulated time (docs/limits.md)")
 

@@ -48,18 +48,24 @@ def first_contact(
     return first_contact_rows(np.concatenate([p0.T, v.T, a.T]), dist, horizon, pressed)
 
 
+def meeting_now(px, py, vx, vy, dist) -> tuple:
+    """Relative positions and velocities (K,) and contact distances: (p.v, |p|, V_MIN |p|,
+    touching, meeting now), where touching pairs (gap < TOUCH) that close faster than V_MIN,
+    or have sunk deeper than SINK (left so by another contact), meet at once. (A touching
+    pair pressed together meets at once too: `first_contact_rows` looks at those.)"""
+    pv = px * vx + py * vy
+    r0 = np.sqrt(px * px + py * py)
+    touching = r0 - dist < TOUCH
+    vr = V_MIN * r0  # (-(V_MIN r0) is -V_MIN r0, bit for bit)
+    return pv, r0, vr, touching, touching & ((pv < -vr) | (r0 < dist - SINK))
+
+
 def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
                        pressed: bool = True) -> np.ndarray:
     """`first_contact` of relative motions given as the rows of rel (6, K): x, y, vx, vy,
     ax, ay (the candidates that pass a cull are one take of it)."""
     px, py, vx, vy, ax, ay = rel
-    pv = px * vx + py * vy
-    r0 = np.sqrt(px * px + py * py)
-    touching = r0 - dist < TOUCH
-    # Closing, or sunk deeper than SINK (left so by another contact), or pressed together:
-    # resolve at once. (-(V_MIN r0) is -V_MIN r0, bit for bit.)
-    vr = V_MIN * r0
-    now = touching & ((pv < -vr) | (r0 < dist - SINK))
+    pv, r0, vr, touching, now = meeting_now(px, py, vx, vy, dist)
     rest = np.flatnonzero(touching & ~now & (pv <= vr)) if pressed else ()
     if len(rest):
         # The distance's second derivative, (v.v + p.a) / r - (p.v)^2 / r^3.

@@ -14,7 +14,7 @@ from termpool.physics.balls import FEW, Balls
 from termpool.physics.features import Features
 from termpool.physics.flat import flat
 from termpool.physics.motion import Col, swept
-from termpool.physics.roots import first_contact, first_contact_few, first_contact_rows
+from termpool.physics.roots import first_contact, first_contact_few, first_contact_rows, meeting_now
 from termpool.physics.state import POCKETED, ROLLING, SLIDING
 from termpool.physics.vec import min_one
 
@@ -24,6 +24,12 @@ CHUNK = 16384
 PLAIN_MAX = 1024  # one table's renewals of up to this many (ball x ball) in plain floats
 GAP = 1e-6  # m: boxes of paths (`_overlap`) are widened by this, far above their rounding
 CULL = True  # skip the pairs and points that boxes of paths show cannot be met (tests: off)
+# A batch's renewals in a cascade of contacts at one instant (a break's rack meets dozens of
+# times at the impact's instant, a pass each) leave the pairs and cushions that cannot be met
+# within LATER_TIME for later (`_later`): the same predictions, made once, when the table's
+# clock is to move.
+LATER_TIME = 1e-6  # s: a pair meeting this late meets past its clock's next float (to 4e9 s)
+LATER_GAP = 1e-6  # m: and a pair this far apart is not touching
 _MOVING = np.array([s in (SLIDING, ROLLING) for s in range(5)])  # by state code
 _LIVE = np.array([s != POCKETED for s in range(5)])
 _MOVING_ONE, _LIVE_ONE = _MOVING.tolist(), _LIVE.tolist()
@@ -95,6 +101,13 @@ class Schedule:
         self._place = np.zeros(B, dtype=np.intp)  # `_tables`' marks, zero between calls
         self.chunk = CHUNK
         self.one = B == 1
+        # Predictions left for later (`_later`): the balls whose pairs or cushion wait, and
+        # their tables; off for one table and until the engine has made its first ones.
+        self.defer = False
+        self.pending = False  # whether any table has predictions waiting
+        self._late = np.zeros((B, N), dtype=bool)
+        self._late_1d = self._late.reshape(-1)  # (a view)
+        self._late_tables = np.zeros(B, dtype=bool)
         # Flat views of the arrays the plain-float paths read and write (flat.py): the row
         # of times of table b begins at b * width.
         self.width = 3 * N + N * N
@@ -155,6 +168,8 @@ class Schedule:
             first = _firsts(key)
             if first.size < b.size:
                 b, i, key = b.take(first), i.take(first), key.take(first)
+        if self.pending:  # renewed now: none of their pairs waits (unless `_later` says)
+            self._late_1d[key] = False
         t = self.tb.take(b)
         st = self.balls.state.reshape(-1).take(key)
         moving = _MOVING.take(st)
@@ -222,25 +237,26 @@ class Schedule:
         rel -= q.take(mi, axis=1)
         dist = [radius.take(k) + radius.take(ui).take(mi)]
         horizon = [np.minimum(end.take(mi), end_k.ravel().take(k)) - t.take(mi)]
+        hot = None  # rows of tables with a pair meeting now (`_later`)
+        if self.defer and mi.size:
+            now, hot = self._later(rel, dist[0], horizon[0], mi, u, tabs, b, i)
+            if now is not None:
+                mi, kk, rel = mi.take(now), kk.take(now), rel.take(now, axis=1)
+                dist, horizon = [dist[0].take(now)], [horizon[0].take(now)]
         # Cushions, jaw tips and pocket holes, for moving balls that can reach the cushion
         # noses or a hole within their window (a ball in open felt costs nothing here); tips
-        # and holes are the same quartic as a pair. A corner hole may reach into the table
-        # past the rail lines, up to its mouth.
+        # and holes are the same quartic as a pair.
         T = end - t
         rc = balls.rc.ravel().take(b * N + i)
-        reach = np.hypot(q[2], q[3]) * T + 0.5 * np.hypot(q[4], q[5]) * T * T + rc
-        tab = feat.table
-        x, y = q[0], q[1]
-        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
-        if len(tab.hole_r):  # (a hole a row, so that each operation runs along the balls)
-            hx, hy, hr = self._holes
-            dx, dy = x - hx, y - hy
-            # hypot(dx, dy) >= max(|dx|, |dy|): a ball that far from every hole is near none,
-            # and hypot (slow) is worked out only for the others.
-            c = np.flatnonzero(((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
-                               & ~near)
-            if c.size:
-                near[c] = ((np.hypot(dx[:, c], dy[:, c]) - hr) < reach.take(c)).any(axis=0)
+        hv, ha = np.hypot(q[2], q[3]), np.hypot(q[4], q[5])
+        reach = hv * T + 0.5 * ha * T * T + rc
+        near = self._reaching(q[0], q[1], reach)
+        if hot is not None:  # as pairs: cushions that cannot be met at the clock can wait
+            soon = LATER_GAP + LATER_TIME * (hv + ha * T) + rc
+            wait = hot & moving & near & ~self._reaching(q[0], q[1], soon)
+            if wait.any():
+                self._wait(b[wait], i[wait])
+                near &= ~wait
         mv = np.flatnonzero(moving & near)
         nc, S = len(feat.circles), feat.nseg
         qm, rcm, Tm = q.take(mv, axis=1), rc.take(mv), T.take(mv)
@@ -286,6 +302,74 @@ class Schedule:
             bm, im = b.take(mv), i.take(mv)
             self._times_1d[bm * self.width + 2 * N + im] = t.take(mv) + allt[np.arange(mv.size), f]
             self._f_cush_1d[bm * N + im] = f
+
+    def _later(self, rel, dist, hz, mi, u, tabs, b, i) -> np.ndarray | None:
+        """Which pair candidates (rows of rel, of renewal rows mi) to predict now (None:
+        all), and which renewal rows are of tables with a pair meeting now (None: none).
+        Where a pair of a table meets now, the table's next event is at its clock, and
+        pairs that cannot meet before the clock's next float do not decide it: they wait
+        until the table's clock is to move (`complete`). A pair must close its gap to
+        meet, at no more than its speed and acceleration over its window allow, so a pair
+        more than LATER_GAP and LATER_TIME of that apart meets LATER_TIME on at the soonest.
+        (A window that is not a number keeps its pair.)"""
+        px, py, vx, vy, ax, ay = rel
+        _, r0, _, _, now = meeting_now(px, py, vx, vy, dist)
+        if not now.any():
+            return None, None
+        hot = np.zeros(tabs.size, dtype=bool)
+        hot[u.take(mi[now])] = True
+        late = ((r0 - dist > LATER_GAP + LATER_TIME * (np.sqrt(vx * vx + vy * vy)
+                                                       + np.sqrt(ax * ax + ay * ay) * hz))
+                & hot.take(u.take(mi)))
+        hot = hot.take(u)
+        if not late.any():
+            return None, hot
+        rows = mi[late]
+        self._wait(b.take(rows), i.take(rows))
+        return np.flatnonzero(~late), hot
+
+    def _wait(self, b, i) -> None:
+        """Balls (b, i) have predictions left for later (`complete`)."""
+        self._late_1d[b * self.N + i] = True
+        self._late_tables[b] = True
+        self.pending = True
+
+    def _reaching(self, x, y, reach) -> np.ndarray:
+        """Whether balls at (x, y) (M,) may come within reach (M,) of a cushion nose, or
+        of a hole's edge (a corner hole may reach into the table past the rail lines, up to
+        its mouth)."""
+        tab = self.features.table
+        near = (x < reach) | (y < reach) | (x > tab.length - reach) | (y > tab.width - reach)
+        if len(tab.hole_r):  # (a hole a row, so that each operation runs along the balls)
+            hx, hy, hr = self._holes
+            dx, dy = x - hx, y - hy
+            # hypot(dx, dy) >= max(|dx|, |dy|): a ball that far from every hole is near none,
+            # and hypot (slow) is worked out only for the others.
+            c = np.flatnonzero(((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
+                               & ~near)
+            if c.size:
+                near[c] = ((np.hypot(dx[:, c], dy[:, c]) - hr) < reach.take(c)).any(axis=0)
+        return near
+
+    def complete(self, force: bool = False) -> None:
+        """Predict the pairs `_later` left, of every table whose next event is no longer at
+        its clock (with `force`, of every table): its balls with pairs waiting are renewed
+        in full, which gives the pairs that did not wait the same times again."""
+        due = np.flatnonzero(self._late_tables)
+        if not force:
+            due = due[self.t_next.take(due) != self.tb.take(due)]
+        if due.size:
+            b, i = np.nonzero(self._late[due])
+            b = due.take(b)
+            self._late[due] = False
+            self._late_tables[due] = False
+            self.defer = False
+            try:
+                self.predict(b, i)
+            finally:
+                self.defer = True
+            self.refresh(due)
+        self.pending = bool(self._late_tables.any())
 
     def _tables(self, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """np.unique(b, return_inverse=True) for table numbers b: the tables in order, and
