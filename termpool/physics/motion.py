@@ -28,7 +28,7 @@ from termpool.physics.state import (
     SPINNING,
     STATIONARY,
 )
-from termpool.physics.vec import max_one, norm, perp
+from termpool.physics.vec import max_one, perp
 
 _hypot = np.hypot
 INF = math.inf
@@ -54,6 +54,15 @@ def _over(x: float, d: float) -> float:
     return math.copysign(INF, x) * math.copysign(1.0, d)
 
 
+def slip(v: np.ndarray, w: np.ndarray, R: np.ndarray) -> tuple:
+    """The contact point's slip u = v + R (z x w) of balls with velocities v (K, 2), spins
+    w (K, 3) and radii R (K,), as (ux, uy, |u|). (Worked a component at a time: numpy
+    takes an operation on (K, 2) rows with a (K, 1) column two elements at a time.)"""
+    ux = v[:, 0] + R * (w[:, 1] * -1.0)
+    uy = v[:, 1] + R * w[:, 0]
+    return ux, uy, _hypot(ux, uy)
+
+
 def snap(ph: Physics, p, v, w, R, rate, only=None, move: bool = True) -> tuple:
     """Complete tiny slides at once: returns (p, v, w, t_s), t_s = 0 where nothing changed.
 
@@ -65,14 +74,19 @@ def snap(ph: Physics, p, v, w, R, rate, only=None, move: bool = True) -> tuple:
     only the velocities change (the solves of slow contacts, whose clocks stay put). w is
     changed in place. No snap on frictionless cloth, where a slide never ends.
     """
-    u = v + R[:, None] * perp(w[:, :2])
-    us = norm(u)
+    return _snap(ph, p, v, w, R, rate, slip(v, w, R), only, move)[:4]
+
+
+def _snap(ph: Physics, p, v, w, R, rate, u: tuple, only, move: bool) -> tuple:
+    """`snap` given the balls' `slip` u; returns (p, v, w, t_s, whether any slide ended)."""
+    ux, uy, us = u
     small = (us <= EPS_U) & (us > 0) & (ph.mu_slide > 0)
     if only is not None:
         small &= only
     ts = np.where(small, us / (3.5 * ph.mu_slide * ph.g), 0.0)
     if not small.any():
-        return p, v, w, ts
+        return p, v, w, ts, False
+    u = np.stack([ux, uy], axis=1)
     s = small[:, None]
     if move:
         uhat = u / np.where(us > 0, us, 1.0)[:, None]
@@ -82,42 +96,46 @@ def snap(ph: Physics, p, v, w, R, rate, only=None, move: bool = True) -> tuple:
         w[:, 2] = np.copysign(np.maximum(np.abs(wz) - rate * ts, 0.0), wz)
     v = np.where(s, v - u / 3.5, v)
     w[:, :2] = np.where(s, perp(v) / R[:, None], w[:, :2])
-    return p, v, w, ts
+    return p, v, w, ts, True
 
 
 def start_many(ph: Physics, t, p, v, w, R, rate, pocketed) -> tuple:
     """New motions of K balls from times t at (p, v, w), radii R, side-spin decay rates `rate`,
     `pocketed` (K,) bools: returns (state, t_trans, rows), rows (K, Col.RATE) the packed
-    motions. w is changed in place."""
-    g = ph.g
-    # A tiny slide is completed at once: the ball starts rolling where and when it ends.
-    p, v, w, ts = snap(ph, p, v, w, R, rate)
+    motions. w is changed in place. (Worked a component at a time, as `start` is.)"""
+    g, mu_s, mu_r = ph.g, ph.mu_slide, ph.mu_roll
+    u = slip(v, w, R)
+    p, v, w, ts, snapped = _snap(ph, p, v, w, R, rate, u, None, True)
     t = t + ts
-    u = v + R[:, None] * perp(w[:, :2])  # contact-point slip
-    us = norm(u)
-    vs, wz = norm(v), np.abs(w[:, 2])
-    sliding = (us > (EPS_U if ph.mu_slide > 0 else 0.0)) & ~pocketed
-    rolling = ~sliding & (vs > EPS_V) & ~pocketed
-    spinning = ~sliding & ~rolling & (wz > EPS_W) & ~pocketed
+    ux, uy, us = slip(v, w, R) if snapped else u
+    vx, vy = v[:, 0], v[:, 1]
+    vs, wza = _hypot(vx, vy), np.abs(w[:, 2])
+    live = ~pocketed
+    sliding = (us > (EPS_U if mu_s > 0 else 0.0)) & live
+    rolling = ~sliding & (vs > EPS_V) & live
+    spinning = ~sliding & ~rolling & (wza > EPS_W) & live
     still = ~(sliding | rolling)
-    v = np.where(still[:, None], 0.0, v)
+    vx, vy = np.where(still, 0.0, vx), np.where(still, 0.0, vy)
     # Rolling is kept exact (slip zero); still balls keep only their side spin.
-    w[:, :2] = np.where(rolling[:, None], perp(v) / R[:, None],
-                        np.where(still[:, None], 0.0, w[:, :2]))
-    w[:, 2] = np.where(spinning | ~still, w[:, 2], 0.0)
-    uhat = np.where(sliding[:, None], u / us[:, None], 0.0)
-    vhat = np.where(rolling[:, None], v / vs[:, None], 0.0)
-    acc = -ph.mu_slide * g * uhat - ph.mu_roll * g * vhat
-    alpha = np.where(sliding[:, None], (2.5 * ph.mu_slide * g / R)[:, None] * perp(uhat),
-                     perp(acc) / R[:, None])
-    dt = np.where(sliding, us / (3.5 * ph.mu_slide * g),
-                  np.where(rolling, vs / (ph.mu_roll * g),
-                           np.where(spinning, wz / rate, np.inf)))
+    w[:, 0] = wx = np.where(rolling, (vy * -1.0) / R, np.where(still, 0.0, w[:, 0]))
+    w[:, 1] = wy = np.where(rolling, vx / R, np.where(still, 0.0, w[:, 1]))
+    w[:, 2] = wz = np.where(spinning | ~still, w[:, 2], 0.0)
+    uhx, uhy = np.where(sliding, ux / us, 0.0), np.where(sliding, uy / us, 0.0)
+    vhx, vhy = np.where(rolling, vx / vs, 0.0), np.where(rolling, vy / vs, 0.0)
+    ax = -mu_s * g * uhx - mu_r * g * vhx
+    ay = -mu_s * g * uhy - mu_r * g * vhy
+    k = 2.5 * mu_s * g / R
+    alx = np.where(sliding, k * (uhy * -1.0), (ay * -1.0) / R)
+    aly = np.where(sliding, k * uhx, ax / R)
+    dt = np.where(sliding, us / (3.5 * mu_s * g),
+                  np.where(rolling, vs / (mu_r * g),
+                           np.where(spinning, wza / rate, np.inf)))
     dt = np.where(np.isnan(dt) | pocketed, np.inf, dt)
     state = np.where(sliding, SLIDING, np.where(rolling, ROLLING,
-                                                 np.where(spinning, SPINNING, STATIONARY)))
+                                                  np.where(spinning, SPINNING, STATIONARY)))
     state = np.where(pocketed, POCKETED, state)
-    return state, t + dt, np.concatenate([t[:, None], p, v, acc, w, alpha], axis=1)
+    rows = np.array([t, p[:, 0], p[:, 1], vx, vy, ax, ay, wx, wy, wz, alx, aly]).T
+    return state, t + dt, rows
 
 
 def start(ph: Physics, t: float, p: list, v: list, w: list, R: float, rate: float,
