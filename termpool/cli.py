@@ -381,6 +381,12 @@ def _replay(args: argparse.Namespace) -> int:
             n = sum(map(len, checked))
             verdict = "all identical" if not bad else f"{bad} differ"
             sys.stdout.write(f"{len(checked)} matches, {n} shots: {verdict}\n")
+        if len(checked) == 1 and args.file != "-" and sys.stdout.isatty():
+            # Someone at a terminal may have meant to watch it: say how, once.
+            import shlex
+
+            sys.stdout.write(shown(f"to watch it: termpool replay {shlex.quote(args.file)} "
+                                   "--watch") + "\n")
     sys.stdout.flush()
     return 1 if bad else 0
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import json
+import sys
 import math
 from dataclasses import replace
 from pathlib import Path
@@ -100,6 +101,24 @@ def test_round_trip_replays_identically(saved, capsys, tmp_path) -> None:
     assert len(lines) == len(saved["shots"]) + 1
     assert all("identical" in line for line in lines)
     assert lines[-1] == f"{len(saved['shots'])} shots: all identical"
+
+
+def test_at_a_terminal_the_check_says_how_to_watch_the_match(saved, capsys, tmp_path,
+                                                              monkeypatch) -> None:
+    """Someone typing `termpool replay FILE` may have meant to watch it: at a terminal the
+    check ends by saying how; a script reading the output (no terminal) gets the checks
+    alone, and so does --json."""
+    path = write(tmp_path, saved)
+    monkeypatch.setattr(sys.stdout, "isatty", lambda: True)
+    rc, out, _ = run_cli(capsys, path)
+    assert rc == 0
+    assert out.splitlines()[-2:] == [f"{len(saved['shots'])} shots: all identical",
+                                     f"to watch it: termpool replay {path} --watch"]
+    rc, out, _ = run_cli(capsys, path, "--json")
+    assert "--watch" not in out and json.loads(out)["identical"] is True
+    monkeypatch.setattr(sys.stdout, "isatty", lambda: False)
+    rc, out, _ = run_cli(capsys, path)
+    assert "watch" not in out
 
 
 def test_round_trip_json(saved, capsys, tmp_path) -> None:
