@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import copy
 import json
-import sys
 import math
+import sys
 from dataclasses import replace
 from pathlib import Path
 
