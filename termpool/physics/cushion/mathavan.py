@@ -68,16 +68,17 @@ FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-
 
 class _Rows(NamedTuple):
     """What `_step` multiplies by, a row per ball: the slips' responses to friction
-    (`_gains`) as pairs of rows, g = (3.5, k2) and x = (x1, x2), and the constants it takes,
-    0, 1, 3.5 and a pair of 3.5 (numpy takes an array faster than a Python float, with the
-    same result)."""
+    (`_gains`), g = (3.5, k2) for the nose's slip and, for both slips at once (a1, a2, b1,
+    b2), at the nose (3.5, k2, x1, x2) and on the slate (x1, x2, 3.5, 3.5); and the
+    constants it takes, 0, 1 and 3.5 (numpy takes an array faster than a Python float, with
+    the same result)."""
 
     g: np.ndarray
-    x: np.ndarray
+    nose: np.ndarray
+    slate: np.ndarray
     zero: np.ndarray
     one: np.ndarray
     three5: np.ndarray
-    three5_2: np.ndarray
 
 
 def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
@@ -85,35 +86,33 @@ def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
     `go` (None: every row): the normal part takes dv off vy, then friction at the nose and
     on the slate. Returns (the rows after it, room for the next: st and new in some order).
     k: the slips' responses to friction and the constants (`_Rows`); mu_w, mu_s: the
-    frictions, a row each; new: room for the next rows. The pairs (a1, a2), (b1, b2),
-    (fi1, fi2), (fc1, fc2) are each worked as one array of two rows: the same operations,
-    element for element, as `_step_one`, in fewer calls."""
-    g, x, zero, one, three5, three5_2 = k
+    frictions, a row each; new: room for the next rows. The slips (a1, a2, b1, b2) are one
+    array of four rows, and the pairs (fi1, fi2), (fc1, fc2) each one of two: the same
+    operations, element for element, as `_step_one`, in fewer calls."""
+    g, nose, slate, zero, one, three5 = k
     dp = dv / c
     vy = st[0] - dv
-    a = st[1:3].copy()
-    a[1] += s * dv
-    b = st[3:5].copy()
-    b[1] -= dv
+    ab = st[1:5].copy()
+    ab[1] += s * dv
+    ab[3] -= dv
+    a = ab[:2]
     sq = a * a
     slip = np.sqrt(sq[0] + sq[1])
     live = slip > zero
-    safe = np.where(live, slip, one)
-    d = a / safe
+    d = a / np.where(live, slip, one)
     sq = g * (d * d)
     j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], one))
-    a -= j * (g * d)
-    b -= j * (x * d)
+    ab -= j * (nose * np.concatenate((d, d)))
     vy = vy + j * (s * d[1])
     np.add(st[5:7], j * d, out=new[5:7])
     up = np.maximum(s * dp + j * (c * d[1]), zero)
+    b = ab[2:]
     sq = b * b
     slip = np.sqrt(sq[0] + sq[1])
     e = b / np.where(slip > zero, slip, one)
     j = np.minimum(mu_s * up, slip / three5)
     np.subtract(vy, j * e[1], out=new[0])
-    np.subtract(a, j * (x * e), out=new[1:3])
-    np.subtract(b, j * (three5_2 * e), out=new[3:5])
+    np.subtract(ab, j * (slate * np.concatenate((e, e))), out=new[1:5])
     np.add(st[7:9], j * e, out=new[7:9])
     if go is None:  # every row: the new rows are the next, st is room for the ones after
         return new, st
@@ -190,8 +189,8 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
                    vy + r * wx, zero, zero, zero, zero])
     k2, x1, x2 = _gains(s)
     three5 = np.full_like(s, 3.5)
-    k = _Rows(np.stack([three5, k2]), np.stack([x1, x2]), zero, np.ones_like(s), three5,
-              np.stack([three5, three5]))
+    k = _Rows(np.stack([three5, k2]), np.stack([three5, k2, x1, x2]),
+              np.stack([x1, x2, three5, three5]), zero, np.ones_like(s), three5)
     mu_w, mu_s = np.full_like(s, mu_w), np.full_like(s, mu_s)
     half, two = np.full_like(s, 0.5), np.full_like(s, 2.0)
     new = np.empty_like(st)
