@@ -12,16 +12,16 @@ import pytest
 from termpool.physics import schedule
 from termpool.physics.engine import Engine, WorkLimit
 from termpool.physics.params import BALL_RADIUS, Physics
-from termpool.scene import load_scene
+from termpool.scene import MAX_SPEED, load_scene
 from tests.test_predict_chunks import _tables
 from tests.test_slow_many import _on_the_rails
 
 
 def _breaks() -> tuple:
-    """Straight breaks at 16 powers from a tap to a hard break: the cue ball on the head
-    spot aimed dead at the apex of a frozen rack."""
+    """Straight breaks at 16 powers from a tap to the fastest shot a scene may give: the
+    cue ball on the head spot aimed dead at the apex of a frozen rack."""
     sc = load_scene({"balls": "8ball", "shot": {"speed": 1.0}})
-    speeds = np.linspace(0.25, 12.0, 16)
+    speeds = np.linspace(0.25, MAX_SPEED, 16)
     pos = np.broadcast_to(sc.pos, (16,) + sc.pos.shape).copy()
     vel = sc.vel[None] * speeds[:, None, None]
     w = sc.w[None] * speeds[:, None, None]
