@@ -76,6 +76,17 @@ def test_at_80x24_and_60x20_the_verdict_reads_whole(cols, rows, verdict, colors)
     assert shown[-1].endswith("Q quit")  # and the keys' line stays
 
 
+@pytest.mark.parametrize("colors", ["mono", "truecolor"])
+def test_at_60x20_a_verdict_three_rows_long_takes_the_keys_row_to_read_whole(colors) -> None:
+    # On your own turn: what to do, then the verdict; the keys' line gives way (H still
+    # opens the help) rather than cut what the rule said.
+    app = app_for(colors=colors)
+    app.state = replace(app.state, message=((LONG_FOUL, "foul"),))
+    shown = panel_rows(app, 60, 20)
+    assert LONG_FOUL in joined(shown) and "You to break" in joined(shown), "\n".join(shown)
+    assert not any("…" in line for line in shown)
+
+
 @pytest.mark.parametrize(("cols", "rows"), [(80, 24), (60, 20)])
 def test_a_warning_of_the_shot_aimed_reads_whole_beside_the_last_verdict(cols, rows) -> None:
     warning = ("As aimed: the cue ball hit the 9 first, not the lowest ball, the 4; third foul "

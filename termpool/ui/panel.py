@@ -37,7 +37,8 @@ FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
 BOX_BG = (28, 32, 40)
 TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "turn": TURN_C, "foul": FOUL_C,
-         "good": GOOD_C, "plan": TURN_C}  # "plan": the computer's plan, a note
+         "warn": FOUL_C, "good": GOOD_C, "plan": TURN_C}
+# ("warn": what the aim would do, said while aiming; "plan": the computer's plan, a note)
 
 
 @dataclass
@@ -117,7 +118,7 @@ def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str,
     return [*lines[:room - 1], (text + "…", tone)]
 
 
-KEPT_TONES = ("plain", "good", "foul")  # verdicts and warnings: the status lines kept longest
+KEPT_TONES = ("plain", "good", "foul", "warn")  # verdicts and warnings: kept longest
 
 
 def fit_status(status: Sequence[tuple[str, str]], room: int,
@@ -125,7 +126,7 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
     """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
     all fit whole, rows go in turn to: the lines before the first verdict or warning that
     are not notes (what to do now, news), the verdicts and warnings ("plain", "good",
-    "foul") a row each, then each of them whole in order, the other lines a row each (the
+    "foul", "warn") a row each, then each of them whole in order, the other lines a row each (the
     computer's plan, "plan", and dim notes such as "F: fast forward" or "Computer is
     aiming", which the key bar and the players' row say too), then whole. A line given
     fewer rows than it needs is cut at a word with "…"; one given none is left out. So what
@@ -157,11 +158,12 @@ def _leading(status: Sequence[tuple[str, str]], kept: list[int]) -> list[int]:
 
 def status_rows_needed(status: Sequence[tuple[str, str]], width: int) -> int:
     """The rows a bottom panel's status takes before the keys' line does: a row for each
-    leading line (`_leading`) and for each verdict or warning; where two or more of the latter
-    compete (a warning of the shot aimed and the last verdict), the first of them whole too."""
+    leading line (`_leading`) and for each verdict or warning; the first of these whole
+    where it is a verdict, or where two or more compete (a warning of the shot aimed and
+    the last verdict). A warning alone, which changes as the aim moves, keeps the keys."""
     kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
     rows = len(_leading(status, kept)) + len(kept)
-    if len(kept) > 1:
+    if len(kept) > 1 or kept and status[kept[0]][1] != "warn":
         rows += len(_wrap(status[kept[0]][0], width)) - 1
     return rows
 

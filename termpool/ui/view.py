@@ -309,7 +309,7 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
     out = []
     warned = m.warning() if s.phase in (Phase.AIM, Phase.PLACE) else None
     if warned is not None:
-        out.append((words.foul_warning(voice(s), warned), "foul"))
+        out.append((words.foul_warning(voice(s), warned), "warn"))
     ch = s.controls.charge
     if s.phase is Phase.AIM:
         what = "break" if m.state.is_break else "shoot"
@@ -338,7 +338,7 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
             warning = None if foreseen is None else \
                 words.aid_warning(foreseen, voice(s), m.shooter)
             if warning:  # a shot the aid sees foul or lose, next to whose turn it is
-                out.append((warning, "foul"))
+                out.append((warning, "warn"))
             out.append((power_line(s), "dim"))
     elif s.phase is Phase.PLACE:
         where = KITCHEN if m.ball_in_hand == "kitchen" else "anywhere"
