@@ -1,0 +1,68 @@
+"""CPU time of the bench's 256-break batch run to rest, in checkouts of the tree side by side.
+
+    python benchmarks/batch_trees.py --tree OLD --tree NEW [--rounds N] [--batches K]
+
+Each round runs every tree in turn in a fresh interpreter (its own `termpool` and `bench`,
+one BLAS thread): the batch once to warm up, then K times, keeping the least CPU time
+(`time.process_time`). Alternating the trees round by round lets the load of a shared
+machine fall on all of them alike. Prints each tree's median over the rounds, its breaks a
+second, and the change from the first tree.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+
+BATCH = 256  # breaks, as `termpool bench speed` batches them by default
+# What a child runs, in the tree it is given (its working directory and import path).
+CHILD = f"""
+import sys, time
+from bench.common import make_engine
+from bench.speed import batch_breaks
+from termpool.scene import load_scene
+scene = load_scene("bench/scenes/break.json")
+pos, vel, w = batch_breaks(scene, {BATCH})
+best = []
+for k in range(int(sys.argv[1]) + 1):
+    c = time.process_time()
+    make_engine(scene, pos, vel, w).run_events()
+    if k:
+        best.append(time.process_time() - c)
+print(min(best))
+"""
+
+
+def one(tree: str, batches: int) -> float:
+    env = dict(os.environ, PYTHONPATH=tree)
+    for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        env[name] = "1"
+    out = subprocess.run([sys.executable, "-c", CHILD, str(batches)], cwd=tree, env=env,
+                         capture_output=True, text=True, check=True)
+    return float(out.stdout)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--tree", action="append", required=True, help="a checkout (repeat)")
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--batches", type=int, default=3, help="timed batches a process")
+    args = ap.parse_args()
+    cpu: dict[str, list[float]] = {t: [] for t in args.tree}
+    for _ in range(args.rounds):
+        for tree in args.tree:
+            cpu[tree].append(one(tree, args.batches))
+    first = statistics.median(cpu[args.tree[0]])
+    for tree, xs in cpu.items():
+        m = statistics.median(xs)
+        runs = ", ".join(f"{1e3 * x:.0f}" for x in xs)
+        print(f"{tree}: {1e3 * m:.1f} ms CPU, {BATCH / m:.0f} breaks/s ({runs} ms);"
+              f" {100 * (m / first - 1):+.1f} %")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
