@@ -697,6 +697,41 @@ def test_repeat_mode_infers_the_release(term, duration):
         <= rate / 1.2 + 1e-9
 
 
+@pytest.mark.parametrize("term", sorted(TERMINALS))
+def test_repeat_mode_meter_shows_the_power_that_strikes(term):
+    # A legacy terminal: after the last repeat the meter must not run on to the inferred
+    # release and then strike less; from one interval after that repeat it holds at the
+    # power the release will strike, and each frame up to the strike shows it.
+    delay, rate = TERMINALS[term]
+    for duration in (0.7, 1.0, 1.1):
+        pc = PowerCharge("repeat", full_time=1.2)
+        events = legacy_hold(delay, rate, duration)
+        for t, k in events:
+            assert pc.key(k, t) is None
+        last = events[-1][0]
+        shown = []
+        t = last
+        while (p := pc.poll(t)) is None:
+            shown.append((t, pc.level(t)))
+            t += 1 / 240
+        # rising while repeats may still come, then held at the strike's power
+        assert shown[0][1] < p and [x for _, x in shown] == sorted(x for _, x in shown)
+        assert all(x == p for u, x in shown if u >= last + rate + 1e-9)
+        assert shown[-1][1] == p
+
+
+def test_a_terminal_with_key_kinds_in_repeat_mode_keeps_its_meter_running():
+    # Repeat mode, but the terminal says which events are repeats and releases: the
+    # release is real, so the meter runs until it comes.
+    pc = PowerCharge("repeat", full_time=1.2)
+    events = kitty_hold(0.5, 0.033, 1.0)
+    for t, k in events[:-1]:
+        assert pc.key(k, t) is None
+    last = events[-2][0]
+    assert pc.level(last + 0.1) == pytest.approx((last + 0.1) / 1.2)
+    assert pc.key(*events[-1][::-1]) == pytest.approx(1.0 / 1.2)
+
+
 def test_repeat_mode_with_jitter_never_fires_early():
     rng = random.Random(5)
     for trial in range(40):

@@ -332,10 +332,10 @@ class PowerCharge:
     it is the terminal's, and `observe` learns it from repeats that go on after a strike too);
     the release is inferred when no repeat came for GAP_INTERVALS intervals (bounded to
     GAP_MIN..GAP_MAX s) and placed one interval after the last repeat, so the power does not
-    depend on when `poll` is called. A press with no repeat within INITIAL_DELAY_MAX s was a
-    tap (or the terminal does not repeat): that shot falls back to the classic meter, rising
-    from 0 at that moment (press again to strike), and `label` says so. Until then `waiting`
-    is true and the level 0.
+    depend on when `poll` is called; the meter holds there meanwhile, showing what strikes.
+    A press with no repeat within INITIAL_DELAY_MAX s was a tap (or the terminal does not
+    repeat): that shot falls back to the classic meter, rising from 0 at that moment (press
+    again to strike), and `label` says so. Until then `waiting` is true and the level 0.
 
     Set power (any mode): `preset(level)` (the digit keys) makes the next press strike at
     once at that level, until `preset(None)`.
@@ -426,9 +426,14 @@ class PowerCharge:
             return 0.0
         if self.waiting:
             return 0.0  # the charge starts at the first repeat
-        x = max(0.0, t - self._t0) / self.full_time
         if self._phase == "charge":
-            return min(1.0, x)
+            if self._inferring():
+                # No repeat for an interval: the key may be up already, and a release
+                # inferred later strikes at one interval after the last repeat. The meter
+                # holds there, so that what it shows is what strikes.
+                t = min(t, self._last + self._interval())
+            return min(1.0, max(0.0, t - self._t0) / self.full_time)
+        x = max(0.0, t - self._t0) / self.full_time
         x %= 2.0
         return x if x <= 1.0 else 2.0 - x
 
@@ -463,6 +468,11 @@ class PowerCharge:
             self._tail = t
         else:
             self._tail = None
+
+    def _inferring(self) -> bool:
+        """Repeat mode on a terminal that tells no key kinds, charging from its repeats: its
+        release will be inferred."""
+        return self.mode == "repeat" and self._repeats > 0 and not self._kinds
 
     def release_due(self) -> float | None:
         """Repeat mode: the time at which silence will mean a release (None: no such time),
