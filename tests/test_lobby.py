@@ -461,6 +461,83 @@ def test_a_player_whose_connection_drops_is_back_in_the_match_when_they_return(l
     assert got["all"]["matches"] == 1 and got["last"] == [lines[1]]
 
 
+def drop_after_own_shot(lobby, tmp_path, bob_records=None) -> tuple[App, App]:
+    """Ann and bob in a match, bob's connection dropping right after a shot of his own (his
+    game ending as a SIGHUP ends it: its match kept); then bob back, a new session, in
+    his match again. Returns (ann, bob's new app)."""
+    from termpool.ui.phases.turn import log_match
+
+    ann, bob = online(lobby, tmp_path)
+    if bob_records is not None:
+        bob.state = replace(bob.state, files=replace(bob.state.files, records=bob_records()))
+    break_online(ann, bob)
+    play_a_shot([ann, bob])
+    while bob.state.match.history[-1]["player"] != 1:
+        play_a_shot([ann, bob])
+    log_match(bob.state)
+    bob.state.link.close()
+    until([ann], lambda: ann.state.link.away == "bob", "ann told")
+    back = App(Options(colors="mono", player1="bob"), link=Link(lobby.path, lobby.admit("bob")),
+               records=None if bob_records is None else bob_records())
+    until([ann, back], lambda: back.state.match is not None and back.state.link.resume is None
+          and back.state.phase is not Phase.RUN, "bob back in his match")
+    return ann, back
+
+
+def test_a_player_back_after_their_own_shot_does_not_send_it_again(lobby, tmp_path,
+                                                                   monkeypatch):
+    """Bob's last move before his connection dropped was his shot: back in the match, his
+    new session makes it as it makes the others, and sends no move, so ann's copy (which
+    has that shot already) is not thrown out of step; the match goes on."""
+    sent = []
+    real = Link.send
+
+    def send(self, kind, **fields):
+        sent.append((self, kind))
+        real(self, kind, **fields)
+
+    monkeypatch.setattr(Link, "send", send)
+    ann, back = drop_after_own_shot(lobby, tmp_path)
+    assert not [k for link, k in sent if link is back.state.link and k == wire.MOVE]
+    assert digest(ann.state.match) == digest(back.state.match)
+    for _ in range(2):  # whoever is to shoot, twice over
+        play_a_shot([ann, back], 3.0, 250.0)
+        assert ann.state.match is not None and back.state.match is not None, \
+            (ann.state.message, back.state.message)
+        assert digest(ann.state.match) == digest(back.state.match)
+
+
+def test_a_player_back_in_their_match_goes_on_in_its_record_from_before_the_drop(lobby,
+                                                                                 tmp_path):
+    """Bob's game ends as his connection drops (its record kept); back in the match, his new
+    session writes the whole match into that file, not into a second one, and never with
+    fewer shots than that file holds."""
+    from termpool.files import kept_records
+    from termpool.game.record import read_replay
+    from termpool.ui.records import Records
+
+    folder = tmp_path / "bob-records"
+    written = []
+
+    class Counted(Records):
+        def _write(self, k, kept, shots):
+            written.append((self, shots))
+            super()._write(k, kept, shots)
+
+    ann, back = drop_after_own_shot(lobby, tmp_path, lambda: Counted(None, folder=folder))
+    (first,) = kept_records(folder)
+    dropped = len(back.state.match.history)
+    before = read_replay(first)["shots"]
+    assert len(before) == dropped
+    play_a_shot([ann, back], 3.0, 250.0)
+    assert kept_records(folder) == [first]  # one file for the match
+    after = read_replay(first)["shots"]
+    assert after[:dropped] == before and len(after) == dropped + 1
+    # The new session's writes, its catch-up's included: never fewer shots than the file had.
+    mine = [n for who, n in written if who is back.state.files.records]
+    assert mine and min(mine) >= dropped
+
+
 def test_leaving_while_the_other_player_is_away_gives_them_nothing(lobby, tmp_path):
     ann, bob = online(lobby, tmp_path)
     break_online(ann, bob)

@@ -48,6 +48,7 @@ class _Kept:
     where: str | None = None  # the file it is in (None: lost)
     why: str | None = None  # why it is not in its own file
     target: str | None = None  # its own file in the records folder (chosen when first kept)
+    floor: int = 0  # shots its file holds already (adopted): not written again with fewer
 
 
 class Records:
@@ -80,10 +81,33 @@ class Records:
         elif (kept.shots, kept.winner) == (len(match.history), match.winner) \
                 and kept.where is not None:
             return
+        if len(match.history) < kept.floor:  # an adopted file is not cut short meanwhile
+            return
         if self.path != "-":
             self._write(self._kept.index(kept) + 1, kept, len(match.history))
         else:
             kept.shots = len(match.history)
+
+    def adopt(self, match, look: int = 20) -> None:
+        """`match` is one this player's earlier session kept a part of (an online match they
+        are back in after their connection dropped): of the newest `look` files in the
+        records folder, the one of the same match (its settings, players and seed, which a
+        challenge draws at random) is the file it goes on in, rather than a second one."""
+        if self.folder is None or any(x.match is match for x in self._kept):
+            return
+        want = files.parse_json(files.to_json(match.to_json()["match"]), "match")
+        for path in reversed(files.kept_records(self.folder)[-look:]):
+            try:
+                old = files.parse_json(files.read_text(path, files.MAX_REPLAY_BYTES,
+                                                       "record"), str(path))
+            except (OSError, files.FileError):
+                continue
+            if isinstance(old, dict) and old.get("match") == want:
+                shots = old.get("shots")
+                self._kept.append(_Kept(match, target=str(path),
+                                        floor=len(shots) if isinstance(shots, list) else 0))
+                self._ours.add(str(path))  # this player's own record of it, to go on
+                return
 
     def kept_at(self, match) -> str | None:
         """The file `match` was last written to (None: not kept, or lost)."""

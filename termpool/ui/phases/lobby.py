@@ -136,8 +136,11 @@ def start_online(s: State, start: dict) -> State:
         # them as a watcher does, and then plays their side (remote.tick).
         s.link.resume = seat if seat is not None and s.link.backlog else None
         remote = (0, 1) if seat is None or s.link.resume is not None else (1 - seat,)
-        return begin_match(s, opts, tuple(str(n) for n in names), int(game["seed"]),
-                           (False, False), remote=remote)
+        s = begin_match(s, opts, tuple(str(n) for n in names), int(game["seed"]),
+                        (False, False), remote=remote)
+        if s.link.resume is not None and s.files.records is not None:
+            s.files.records.adopt(s.match)  # its record from before the drop goes on
+        return s
     except (KeyError, TypeError, ValueError, OverflowError) as e:
         s.link.send(wire.LEAVE)
         return replace(s, part=Lobby(), message=((f"that match could not start: {e}",

@@ -105,12 +105,16 @@ def tick(s: State, t: float) -> State:
     behind = s.link.backlog > 0  # a move made before this screen came to watch
     s.link.backlog = max(0, s.link.backlog - 1)
     if behind and not s.link.backlog and s.link.resume is not None:
-        # A player back in their match: with its last move so far, they play their side
-        # again (from that move's turn on).
+        # A player back in their match: its last move so far is made as the others were
+        # (their own, made before the drop, is not sent again), then they play their side
+        # again, from that move's turn on.
         seat, s.link.resume = s.link.resume, None
-        s = _make(replace(s, remote=(1 - seat,)), move, behind)
+        s = _make(s, move, behind)
         if s.match is None:  # it ended
             return s
+        s = replace(s, remote=(1 - seat,))
+        if isinstance(s.part, Waiting) and not shooter_is_remote(s):  # their turn now
+            s = start_turn(s)
         return replace(s, message=(back_in(s, seat), *s.message))
     return _make(s, move, behind)
 
