@@ -14,7 +14,8 @@ match to the data directory instead (`files.write_fallback`).
 Nothing is printed while the game holds the terminal: the lines saying where each match went
 are kept for the end (`lines`). With FILE "-" the matches go to standard output at the end
 as JSON Lines: each match one JSON object on a line of its own, in the order played (one line
-is a replay file: `termpool replay -` reads it from stdin).
+is a replay file: `termpool replay -` reads it from stdin). A player back in an online match
+after their connection dropped goes on in the file their dropped session kept (`adopt`).
 """
 
 from __future__ import annotations
