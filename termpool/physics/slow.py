@@ -30,7 +30,6 @@ from termpool.physics.slow_many import solve_clusters
 from termpool.physics.state import CLUSTER_GAP, EPS_U, POCKETED
 from termpool.physics.vec import dots
 from termpool.physics.vec import norm as _norm
-from termpool.physics.vec import perp as _perp
 
 
 class Cluster(NamedTuple):
@@ -403,7 +402,7 @@ class SlowContacts:
         J = Rows(ra, rc_, rn, N)  # u = J v: separating speed along each contact normal
         # A rolling ball given a small push slides for an instant and then rolls on with 5/7
         # of the push (the slip completion, motion.snap): it answers as if 7/5 as heavy.
-        slip = _norm(v + R[:, None] * _perp(w[:, :2]))
+        slip = motion.slip(v, w, R)[2]
         snaps = (slip <= EPS_U) & (self.physics.mu_slide > 0)
         k_snap = np.where(snaps, 5.0 / 7.0, 1.0) / m
         inv_m = 1.0 / m

@@ -21,12 +21,12 @@ from termpool.physics.cluster import PLAIN, TOL, Columns, Rows, inelastic_plain,
 from termpool.physics.features import Features
 from termpool.physics.joined import Groups, Sets, blocks, push_many
 from termpool.physics.motion import Col, snap
+from termpool.physics.motion import slip as motion_slip
 from termpool.physics.params import Physics
 from termpool.physics.roots import V_MIN
 from termpool.physics.state import CLUSTER_GAP, EPS_U
 from termpool.physics.vec import any_by, dots
 from termpool.physics.vec import norm as _norm
-from termpool.physics.vec import perp as _perp
 
 
 def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups,
@@ -103,7 +103,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     counts = np.bincount(rq_, minlength=C)
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
     Rf, mf = balls.radius[tarr].ravel(), balls.mass[tarr].ravel()
-    slip = _norm(V + Rf[:, None] * _perp(W[:, :2]))
+    slip = motion_slip(V, W, Rf)[2]
     snaps = (slip <= EPS_U) & (ph.mu_slide > 0)
     inv_m = 1.0 / mf
     # Velocities: each cluster until none of its contacts closes.
