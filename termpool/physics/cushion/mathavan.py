@@ -68,12 +68,11 @@ FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-
 
 class _Rows(NamedTuple):
     """What `_step` multiplies by, a row per ball: the slips' responses to friction
-    (`_gains`), g = (3.5, k2) for the nose's slip and, for both slips at once (a1, a2, b1,
-    b2), at the nose (3.5, k2, x1, x2) and on the slate (x1, x2, 3.5, 3.5); and the
-    constants it takes, 0, 1 and 3.5 (numpy takes an array faster than a Python float, with
-    the same result)."""
+    (`_gains`), for both slips at once (a1, a2, b1, b2), at the nose (3.5, k2, x1, x2: the
+    first two the nose slip's own) and on the slate (x1, x2, 3.5, 3.5); and the constants it
+    takes, 0, 1 and 3.5 (numpy takes an array faster than a Python float, with the same
+    result)."""
 
-    g: np.ndarray
     nose: np.ndarray
     slate: np.ndarray
     zero: np.ndarray
@@ -89,7 +88,7 @@ def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
     frictions, a row each; new: room for the next rows. The slips (a1, a2, b1, b2) are one
     array of four rows, and the pairs (fi1, fi2), (fc1, fc2) each one of two: the same
     operations, element for element, as `_step_one`, in fewer calls."""
-    g, nose, slate, zero, one, three5 = k
+    nose, slate, zero, one, three5 = k
     dp = dv / c
     vy = st[0] - dv
     ab = st[1:5].copy()
@@ -100,7 +99,7 @@ def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
     slip = np.sqrt(sq[0] + sq[1])
     live = slip > zero
     d = a / np.where(live, slip, one)
-    sq = g * (d * d)
+    sq = nose[:2] * (d * d)
     j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], one))
     ab -= j * (nose * np.concatenate((d, d)))
     vy = vy + j * (s * d[1])
@@ -189,8 +188,8 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
                    vy + r * wx, zero, zero, zero, zero])
     k2, x1, x2 = _gains(s)
     three5 = np.full_like(s, 3.5)
-    k = _Rows(np.stack([three5, k2]), np.stack([three5, k2, x1, x2]),
-              np.stack([x1, x2, three5, three5]), zero, np.ones_like(s), three5)
+    k = _Rows(np.stack([three5, k2, x1, x2]), np.stack([x1, x2, three5, three5]), zero,
+              np.ones_like(s), three5)
     mu_w, mu_s = np.full_like(s, mu_w), np.full_like(s, mu_s)
     half, two = np.full_like(s, 0.5), np.full_like(s, 2.0)
     new = np.empty_like(st)
