@@ -16,6 +16,11 @@ import os
 import statistics
 import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from termpool.command import BLAS_THREADS  # noqa: E402
 
 BATCH = 256  # breaks, as `termpool bench speed` batches them by default
 # What a child runs, in the tree it is given (its working directory and import path).
@@ -37,9 +42,7 @@ print(min(best))
 
 
 def one(tree: str, batches: int) -> float:
-    env = dict(os.environ, PYTHONPATH=tree)
-    for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        env[name] = "1"
+    env = dict(os.environ, PYTHONPATH=tree, **{name: "1" for name in BLAS_THREADS})
     out = subprocess.run([sys.executable, "-c", CHILD, str(batches)], cwd=tree, env=env,
                          capture_output=True, text=True, check=True)
     return float(out.stdout)
