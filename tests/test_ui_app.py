@@ -107,6 +107,33 @@ def test_held_space_on_a_legacy_terminal_is_inferred_from_auto_repeat() -> None:
     assert lo <= shot["speed"] <= hi
 
 
+def test_a_legacy_hold_s_last_frame_shows_the_power_it_strikes() -> None:
+    # No key releases: after the last repeat the app wakes when the meter stops (one
+    # interval on), draws it there, and then strikes that power when the release is
+    # inferred; before, it slept to the strike, and the last frame read an interval under.
+    app = app_for(input_mode="repeat")
+    app.key(Key("enter"), 0.0)
+    times = [0.2] + [0.7 + 0.033 * k for k in range(16)]
+    for t in times:
+        app.key(Key("space"), t)
+        app.tick(t)
+    last = times[-1]
+    hold = last + app.wake_in(last)
+    assert hold - last == pytest.approx(0.033)  # the terminal's interval, learnt
+    app.tick(hold)
+    level = app.state.controls.charge.level(hold)
+    shown = screen_text(app.cells(100, 32)[0])
+    assert f"power {round(100 * level)}%" in shown
+    due = hold + app.wake_in(hold)
+    assert due > hold
+    app.tick(due)
+    t = due
+    while not app.state.match.history and t < due + 60:  # the shot played out
+        t += 1 / 60
+        app.tick(t)
+    assert shots(app)[0]["speed"] == power_to_speed(level)
+
+
 def test_classic_meter_press_to_start_press_to_strike() -> None:
     app = app_for(input_mode="classic")
     run_script(app, "enter wait 0.2 space wait 0.5 space wait 1", legacy=True)

@@ -427,11 +427,9 @@ class PowerCharge:
         if self.waiting:
             return 0.0  # the charge starts at the first repeat
         if self._phase == "charge":
-            if self._inferring():
-                # No repeat for an interval: the key may be up already, and a release
-                # inferred later strikes at one interval after the last repeat. The meter
-                # holds there, so that what it shows is what strikes.
-                t = min(t, self._last + self._interval())
+            hold = self.hold_at()
+            if hold is not None:
+                t = min(t, hold)
             return min(1.0, max(0.0, t - self._t0) / self.full_time)
         x = max(0.0, t - self._t0) / self.full_time
         x %= 2.0
@@ -469,10 +467,19 @@ class PowerCharge:
         else:
             self._tail = None
 
-    def _inferring(self) -> bool:
-        """Repeat mode on a terminal that tells no key kinds, charging from its repeats: its
-        release will be inferred."""
-        return self.mode == "repeat" and self._repeats > 0 and not self._kinds
+    def hold_at(self) -> float | None:
+        """Repeat mode on a terminal that tells no key kinds, charging from its repeats (its
+        release will be inferred): when the meter stops, one interval after the last repeat.
+        The key may be up already, and an inferred release strikes at that level, so the
+        meter holds there and shows what strikes (None: no such time)."""
+        if self.mode != "repeat" or self._phase != "charge" or not self._repeats \
+                or self._kinds:
+            return None
+        return self._inferred()
+
+    def _inferred(self) -> float:
+        """When an inferred release is placed: one interval after the last repeat."""
+        return self._last + self._interval()
 
     def release_due(self) -> float | None:
         """Repeat mode: the time at which silence will mean a release (None: no such time),
@@ -507,7 +514,7 @@ class PowerCharge:
                 self._t0 += self.INITIAL_DELAY_MAX
             return None
         if t - self._last > self._release_gap():
-            return self._fire(self._last + self._interval())
+            return self._fire(self._inferred())
         return None
 
     def _event(self, key: Key, t: float) -> float | None:

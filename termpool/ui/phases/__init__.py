@@ -106,9 +106,12 @@ def wake_in(s: State, t: float) -> float | None:
         return remote.REMOTE_POLL_S
     online = ONLINE_POLL_S if s.remote else None
     charge = s.controls.charge
-    if charge.active:  # the meter moves; an inferred release is due at its time
+    if charge.active:  # the meter moves; it stops, and an inferred release is due, at times
         due = charge.release_due()
-        return 0.0 if due is None else max(0.0, due - t)
+        if due is None:
+            return 0.0
+        hold = charge.hold_at()  # (drawn then, the meter shows the power that will strike)
+        return max(0.0, (hold if hold is not None and t < hold else due) - t)
     return online
 
 
