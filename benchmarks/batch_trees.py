@@ -2,11 +2,12 @@
 
     python benchmarks/batch_trees.py --tree OLD --tree NEW [--rounds N] [--batches K]
 
-Each round runs every tree in turn in a fresh interpreter (its own `termpool` and `bench`,
-one BLAS thread): the batch once to warm up, then K times, keeping the least CPU time
-(`time.process_time`). Alternating the trees round by round lets the load of a shared
-machine fall on all of them alike. Prints each tree's median over the rounds, its breaks a
-second, and the change from the first tree.
+Any checkout since the speed figures began (2026-11-27) will do. Each round runs every tree
+in turn in a fresh interpreter (its own `termpool` and `bench`, one BLAS thread): the batch
+once to warm up, then K times, keeping the least CPU time (`time.process_time`).
+Alternating the trees round by round lets the load of a shared machine fall on all of them
+alike. Prints each tree's median over the rounds, its breaks a second, and the change from
+the first tree.
 """
 
 from __future__ import annotations
@@ -24,12 +25,17 @@ from termpool.command import BLAS_THREADS  # noqa: E402
 
 BATCH = 256  # breaks, as `termpool bench speed` batches them by default
 # What a child runs, in the tree it is given (its working directory and import path).
+# (Trees from before 2026-12-01 kept the benchmarks inside the package: termpool/bench.py.)
 CHILD = f"""
 import sys, time
-from bench.common import make_engine
-from bench.speed import batch_breaks
-from termpool.scene import load_scene
-scene = load_scene("bench/scenes/break.json")
+try:
+    from bench.common import make_engine
+    from bench.speed import batch_breaks
+    from termpool.scene import load_scene
+    scene = load_scene("bench/scenes/break.json")
+except ImportError:
+    from termpool.bench import _break_scene, _engine as make_engine, batch_breaks
+    scene = _break_scene()
 pos, vel, w = batch_breaks(scene, {BATCH})
 best = []
 for k in range(int(sys.argv[1]) + 1):
