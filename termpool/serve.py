@@ -29,6 +29,7 @@ import struct
 import sys
 import tempfile
 import termios
+import warnings
 from pathlib import Path
 
 from termpool import wire
@@ -318,7 +319,11 @@ async def _serve(args: argparse.Namespace, directory: Path) -> int:
 def run(args: argparse.Namespace) -> int:
     """`termpool serve`: listen until SIGINT, SIGTERM or SIGHUP, then hang up every game."""
     try:
-        import asyncssh  # noqa: F401
+        with warnings.catch_warnings():
+            # asyncssh names DSA keys at import, which newer cryptography warns about (some
+            # ten lines on stderr): nothing the server's operator can act on.
+            warnings.simplefilter("ignore")
+            import asyncssh  # noqa: F401
     except ImportError:
         say("serve: needs asyncssh (pip install 'termpool[ssh]')")
         return 2
