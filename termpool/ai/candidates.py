@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from termpool.physics import libm
 from termpool.physics.cue import clamp_tip, strike
 from termpool.physics.engine import Engine
 from termpool.physics.events import Event, EventKind
@@ -258,8 +259,8 @@ def calibrate(t: OnTable, cands: Cands, table: Table, physics: Physics,
     B = len(pots)
     for _ in range(rounds):
         rad = np.radians(normal)
-        ghost = pt - reach[:, None] * np.stack([np.cos(rad), np.sin(rad)], axis=1)
-        angles = np.degrees(np.arctan2(ghost[:, 1] - pc[1], ghost[:, 0] - pc[0]))
+        ghost = pt - reach[:, None] * np.stack([libm.cos(rad), libm.sin(rad)], axis=1)
+        angles = np.degrees(libm.arctan2(ghost[:, 1] - pc[1], ghost[:, 0] - pc[0]))
         pos = np.stack([np.broadcast_to(pc, (B, 2)), pt], axis=1)
         vel = np.zeros((B, 2, 2))
         w = np.zeros((B, 2, 3))

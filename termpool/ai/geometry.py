@@ -12,6 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from termpool.physics import libm
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
 
@@ -42,7 +43,7 @@ def pocket_geometry(table: Table, radius: float) -> Pockets:
     half = np.linalg.norm(tips[:, 0] - tips[:, 1], axis=1) / 2
     side = np.array([name.startswith("side") for name in table.hole_names])
     limit = np.radians(np.where(side, SIDE_LIMIT, CORNER_LIMIT))
-    return Pockets(tuple(table.hole_names), mid + radius * out, out, half, np.cos(limit))
+    return Pockets(tuple(table.hole_names), mid + radius * out, out, half, libm.cos(limit))
 
 
 def blocked(a: np.ndarray, b: np.ndarray, obst: np.ndarray, rad_move, rad_obst: np.ndarray,
@@ -128,7 +129,7 @@ def erf(x: np.ndarray) -> np.ndarray:
     t = 1.0 / (1.0 + 0.3275911 * x)
     poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (
         -1.453152027 + t * 1.061405429))))
-    return 1.0 - poly * np.exp(-x * x)
+    return 1.0 - poly * libm.exp(-x * x)
 
 
 def leave_value(chance: np.ndarray) -> np.ndarray:

@@ -28,6 +28,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from termpool.physics import libm
 from termpool.physics.balls import Balls
 from termpool.physics.cluster import PLAIN, TOL, Rows, inelastic_plain, solve_inelastic, solve_psd
 from termpool.physics.flat import flat
@@ -61,10 +62,10 @@ def _renewal(x: np.ndarray, k: np.ndarray, turn: np.ndarray) -> tuple[np.ndarray
     size = np.sqrt(xx * kk)
     live = (kk > 0) & (xx > 0)
     straight = (c <= 1e-12 * size) | ~live
-    near = ~straight & (d < 0) & (c < np.sin(turn) * size)
+    near = ~straight & (d < 0) & (c < libm.sin(turn) * size)
     with np.errstate(divide="ignore", invalid="ignore"):
         to_zero = np.where(d < 0, np.sqrt(xx / kk), np.inf)
-        tan = np.tan(turn)
+        tan = libm.tan(turn)
         den = c - d * tan
         turn = np.where(den > 0, tan * xx / den, np.inf)
         least = -d / kk

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from termpool.physics import libm
 from termpool.physics.ball_ball.frictionless import impulse, impulse_one
 from termpool.physics.vec import cross, cross_one, min_one, to3
 
@@ -23,7 +24,7 @@ def collide(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
     slip = (to3(vi) + cross(wi, arm_i)) - (to3(vj) + cross(wj, arm_j))
     slip_t = slip - np.einsum("ij,ij->i", slip, n3)[:, None] * n3
     speed = np.linalg.norm(slip_t, axis=1)
-    mu = 0.00995 + 0.108 * np.exp(-1.088 * speed)
+    mu = 0.00995 + 0.108 * libm.exp(-1.088 * speed)
     k = 3.5 * inv  # 1/mi + 1/mj + R^2/I terms of two solid spheres
     jt = np.minimum(mu * jn, speed / k)
     dirn = np.where(speed[:, None] > 0, slip_t / speed[:, None], 0.0)
@@ -40,8 +41,7 @@ def collide(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
 def collide_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
     """`collide` for one contact in plain floats, operation for operation as the array version
     does it, so the results are bit-identical (numpy's row sums and norms of 2 and 3
-    components add in the order written here; exp goes through numpy, whose last bit can
-    differ from the C library's)."""
+    components add in the order written here; exp is the C library's in both: libm.py)."""
     (n0, n1), jn, inv, vi, vj = impulse_one(pi, pj, vi, vj, mi, mj, ph.e_ball, ph.v_inelastic)
     arm_i = [ri * n0, ri * n1, ri * 0.0]
     arm_j = [-rj * n0, -rj * n1, -rj * 0.0]
@@ -51,7 +51,7 @@ def collide_one(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
     sn = (slip[0] * n0 + slip[2] * 0.0) + slip[1] * n1
     st = [slip[0] - sn * n0, slip[1] - sn * n1, slip[2] - sn * 0.0]
     speed = math.sqrt((st[0] * st[0] + st[1] * st[1]) + st[2] * st[2])
-    mu = 0.00995 + 0.108 * float(np.exp(-1.088 * speed))
+    mu = 0.00995 + 0.108 * math.exp(-1.088 * speed)
     k = 3.5 * inv
     a, b = mu * jn, speed / k
     jt = min_one(a, b)
