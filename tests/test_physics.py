@@ -481,6 +481,59 @@ def test_ball_pressed_into_a_rail_by_its_spin_slides_along_it(ut, un):
     # renewed every joined.TURN of its turn
 
 
+def _pressed_pair(slip: tuple) -> tuple:
+    """Ball 0 rolling at 0.3 m/s along +y with the given small slip, frozen against ball 1
+    on its +x side (the contact's normal pushes ball 0 along -x): `joined.push`'s inputs."""
+    v = np.array([[0.0, 0.3], [0.0, 0.0]])
+    d = np.array(slip) - v[0]  # u = v + R z x w = v + R (-wy, wx)
+    w = np.zeros((2, 3))
+    w[0, 0], w[0, 1] = d[1] / R, -d[0] / R
+    return v, w, np.full(2, R), np.full(2, BALL_MASS), np.ones(2)
+
+
+@pytest.mark.parametrize("slip, ends", [((-2e-5, 1e-5), True), ((-2e-5, 0.0), False),
+                                        ((-2e-4, 1e-4), False)])
+def test_a_grouped_slip_the_contact_turns_ends_at_once_when_tiny(slip, ends):
+    # A slip that friction drives into the contact, partly across it: the contact's force
+    # turns it. Under joined.EPS_TURNED it ends now (the ball rolls on with v - u / 3.5, its
+    # speed into the contact taken out); along the normal (not turned) or larger, it slides
+    # to its exact end. push_many gives push's bits either way.
+    from termpool.physics import joined
+    from termpool.physics.cluster import Rows
+    from termpool.physics.state import ROLLING, SLIDING
+
+    ph = Physics()
+    v, w, radius, m, rate = _pressed_pair(slip)
+    out = joined.push(ph, v, w, radius, m, rate, [(0, 1, np.array([-1.0, 0.0]), 0.0)])
+    assert out[3][0] == (ROLLING if ends else SLIDING)
+    if ends:
+        assert out[0][0].tolist() == [0.0, 0.3 - slip[1] / 3.5]
+    sets = joined.Sets(Rows(np.array([0]), np.array([1]), np.array([[-1.0, 0.0]]), 2),
+                       np.array([0, 0]), np.array([0]), 1)
+    many = joined.push_many(ph, v, w, radius, m, rate, sets, np.zeros(1))
+    assert [np.asarray(x).tobytes() for x in many] == [np.asarray(x).tobytes() for x in out]
+
+
+def test_a_turned_slip_in_a_group_ends_without_a_geometric_tail(monkeypatch):
+    # A ball spun against a frozen neighbour, its slip partly across the contact: the pair
+    # moves as a group whose contact force turns the slip, renewed each joined.TURN of its
+    # turn, in ever shorter pieces as the slip runs out. Ending it under EPS_TURNED cuts that
+    # tail, and the balls end where they end without the cut, to a hundredth of a millimetre.
+    from termpool.physics import joined
+
+    def run() -> Engine:
+        eng = Engine(BIG, Physics(), [(2.0, 5.0), (2.0 + 2 * R, 5.0)], [(0.0, 0.0)] * 2,
+                     [(20.0, 20.0, 0.0), (0.0, 0.0, 0.0)])
+        eng.run_events()
+        return eng
+
+    cut = run()
+    monkeypatch.setattr(joined, "EPS_TURNED", 0.0)
+    whole = run()
+    assert cut.passes < whole.passes
+    assert np.abs(cut.pos - whole.pos).max() < 1e-5
+
+
 @pytest.mark.parametrize("speed", [0.0, 0.3, 5.0])
 def test_a_completed_slip_stays_on_its_slide_at_the_lowest_allowed_friction(speed):
     """A slip under state.EPS_U is completed at once: the ball starts rolling where the slide

@@ -48,6 +48,8 @@ EPS_SLIP = 1e-7  # m/s: a slip this small is completed at once (within 50 ns her
 # pressed ball slides to the end of its slip, unlike state.EPS_U for free balls)
 BLOCKS = 64  # groups whose contact matrices are built at once (bounds the temporaries)
 SETTLE = 1e-3  # s: a rolling ball in a group that would be braked to rest this soon rests
+EPS_TURNED = 3.5e-5  # m/s: a slip the contact forces turn ends at once below this (the
+# completion moves the ball's velocity by u / 3.5, at most 1e-5 m/s)
 
 
 def _renewal(x: np.ndarray, k: np.ndarray, turn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -87,6 +89,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     """
     g = ph.g
     M = len(m)
+    v_in, w_in = v, w
     a_idx = np.array([r[0] for r in rows], dtype=np.int64)
     c_idx = np.array([r[1] for r in rows], dtype=np.int64)
     normal = np.array([r[2] for r in rows], dtype=float).reshape(-1, 2)
@@ -126,12 +129,34 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
         free = np.where(held[:, None], 0.0, free)
         acc = _solve(free, np.where(held, 0.0, inv), J, bend)
     m_ = _motions(ph, v, w, R, u, acc, sliding, rolling, rest, held, safe_u)
+    ends = _ending(m_, sliding, safe_u)
+    if ends.any():  # those slips completed, the group pushed again from the start
+        v_in, w_in = _completed(v_in, w_in, R, ends)
+        return push(ph, v_in, w_in, R, m, rate, rows)
     if m_.turning.any():
         free, spin_acc = _at_middle(ph, R, m_, sliding, free)
         acc = _solve(free, np.where(held, 0.0, inv), J, bend)
         acc = np.where((rest & ~m_.pushed)[:, None], 0.0, acc)
         m_ = m_._replace(acc=acc, spin_acc=spin_acc)
     return _states(m_, rest, sliding, rate, R)
+
+
+def _ending(m_: _Motion, sliding, safe_u) -> np.ndarray:
+    """Sliding balls whose slip the contact forces turn, under EPS_TURNED: renewed each
+    time it turns TURN, such a slip approaches its end in ever shorter pieces (hundreds of
+    renewals in a geometric series); it ends now instead. A slip the forces do not turn
+    runs to its exact end in one piece."""
+    return sliding & m_.turning & (safe_u[:, 0] <= EPS_TURNED)
+
+
+def _completed(v, w, R, ends) -> tuple:
+    """(v, w) with the slips of balls `ends` completed as cloth friction would complete them
+    (v -= u / 3.5, rolling on): copies."""
+    u = v + R[:, None] * _perp(w[:, :2])
+    v = np.where(ends[:, None], v - u / 3.5, v)
+    w = w.copy()
+    w[:, :2] = np.where(ends[:, None], _perp(v) / R[:, None], w[:, :2])
+    return v, w
 
 
 def _trim_slip(ph: Physics, v, w, R) -> tuple:
@@ -399,6 +424,8 @@ def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.nd
                        acc)
         rounds += 1
     m_ = _motions(ph, v, w, R, u, acc, sliding, rolling, rest, held, safe_u)
+    # A group with a slip to end now (`_ending`) is pushed by `push` itself, as above.
+    again |= any_by(_ending(m_, sliding, safe_u), grp, sets.count)
     bent = any_by(m_.turning, grp, sets.count)
     if bent.any():
         free, spin_acc = _at_middle(ph, R, m_, sliding, free)
