@@ -42,7 +42,8 @@ _SIN, _COS, _TAN = _trig(math.sin), _trig(math.cos), _trig(math.tan)
 
 def exp(x) -> np.ndarray:
     """e**x of each element (an array of x's shape)."""
-    return _each(_exp, x)
+    a = np.asarray(x, dtype=float)
+    return _each(math.exp if (a < 709.0).all() else _exp, a)  # (the guard only if needed)
 
 
 def sin(x) -> np.ndarray:
