@@ -69,40 +69,54 @@ class EventLog:
             now = self.balls.state[tabs, i].tolist()
             old = old_state.tolist() if old_state is not None else None
             times = self.tb[tabs].tolist()
-        # (kind, table, time, balls, cushion, feature, pocket), in the order of the pass
-        out: list[tuple] = []
+        # (kind, table, time, balls, cushion, feature, pocket), in the order of the pass;
+        # the light log makes its events at once (it takes no states after them).
+        out: list = []
+        add = out.append
+        light = not self.states
+        tables = self.tables
+        CHECK, TRANSITION, CUSHION = Due.CHECK, Due.TRANSITION, Due.CUSHION
         for n, b in enumerate(tabs_l):
             k = due_l[n]
             t = times[n]
-            if k != Due.CHECK and n not in quiet:
+            if k != CHECK and n not in quiet:
                 ib = i_l[n]
                 cushion = feature = pocket = None
-                if k == Due.TRANSITION:
-                    pair = (old[n], now[n])
-                    what = None if pair[0] == pair[1] else ENDS.get(pair, EventKind.TRANSITION)
-                    balls = [ib]  # (nothing ended when a group's motion was only renewed)
-                elif k == Due.CUSHION:
+                if k == TRANSITION:
+                    was, new = old[n], now[n]
+                    what = None if was == new else ENDS.get((was, new), EventKind.TRANSITION)
+                    balls = (ib,)  # (nothing ended when a group's motion was only renewed)
+                elif k == CUSHION:
                     f, name = cushions[n]
                     if now[n] == POCKETED:
                         what, pocket = EventKind.POCKET, name
                     else:
                         what, cushion, feature = EventKind.CUSHION, f, name
-                    balls = [ib]
+                    balls = (ib,)
                 else:
                     what = EventKind.BALL_BALL
-                    balls = [ib, j_l[n]]
+                    balls = (ib, j_l[n])
                 if what is not None:
-                    balls += extra.get(n, [])
-                    out.append((what, b, t, tuple(balls), cushion, feature, pocket))
-            for x, was, new in also.get(n, ()):
-                out.append((ENDS[(was, new)], b, t, (x,), None, None, None))
+                    if extra and n in extra:
+                        balls += tuple(extra[n])
+                    if light:
+                        tables[b].append(Event(what, t, b, balls, (), cushion, feature, pocket))
+                    else:
+                        add((what, b, t, balls, cushion, feature, pocket))
+            if also and n in also:
+                for x, was, new in also[n]:
+                    if light:
+                        tables[b].append(Event(ENDS[(was, new)], t, b, (x,), ()))
+                    else:
+                        add((ENDS[(was, new)], b, t, (x,), None, None, None))
+        if light:
+            self._unsynced = True
+            return
         if not out:
             return
-        if self.states:
-            states = iter(self._states([(b, x) for _, b, _, balls, *_ in out for x in balls]))
-        tables = self.tables
+        states = iter(self._states([(b, x) for _, b, _, balls, *_ in out for x in balls]))
         for what, b, t, balls, cushion, feature, pocket in out:
-            got = tuple(next(states) for _ in balls) if self.states else ()
+            got = tuple(next(states) for _ in balls)
             tables[b].append(Event(what, t, b, balls, got, cushion, feature, pocket))
         self._unsynced = True
 
