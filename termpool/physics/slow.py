@@ -202,9 +202,9 @@ class SlowContacts:
                 # A group renewed when one of its balls stops may stop the others with it:
                 # each such end is an event of its own.
                 self_ = int(i[n]) if due[n] == Due.TRANSITION else -1  # a transition's ball
-                ends = [(k, int(before[k]), int(self.balls.state[b, k])) for k in members
-                        if k != self_]
-                ends = [e for e in ends if e[1:] in ENDS]
+                was, now = before.tolist(), self.balls.state[b].tolist()
+                ends = [(k, was[k], now[k]) for k in members
+                        if k != self_ and (was[k], now[k]) in ENDS]
                 out.also.setdefault(n, []).extend(ends)
             if due[n] != Due.TRANSITION:  # a transition renews a group: others move by rounding
                 skip = {int(i[n]), int(j[n])} | {k for k, _, _ in ends} | set(out.extra.get(n, ()))
