@@ -131,8 +131,7 @@ def push(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.ndarray
     m_ = _motions(ph, v, w, R, u, acc, sliding, rolling, rest, held, safe_u)
     ends = _ending(m_, sliding, safe_u)
     if ends.any():  # those slips completed, the group pushed again from the start
-        v_in, w_in = _completed(v_in, w_in, R, ends)
-        return push(ph, v_in, w_in, R, m, rate, rows)
+        return push(ph, *_completed(v_in, w_in, R, ends), R, m, rate, rows)
     if m_.turning.any():
         free, spin_acc = _at_middle(ph, R, m_, sliding, free)
         acc = _solve(free, np.where(held, 0.0, inv), J, bend)
@@ -163,12 +162,8 @@ def _trim_slip(ph: Physics, v, w, R) -> tuple:
     """A slip too small to slide on (state.EPS_U) completed at once, as motion.snap does:
     the ball rolls on with the speed the slide would have left it. Returns (v, w, rolled):
     w a copy, rolled the balls rolling after it."""
-    u = v + R[:, None] * _perp(w[:, :2])
-    us = _norm(u)
-    small = ((us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))[:, None]
-    v = np.where(small, v - u / 3.5, v)
-    w = w.copy()
-    w[:, :2] = np.where(small, _perp(v) / R[:, None], w[:, :2])
+    us = _norm(v + R[:, None] * _perp(w[:, :2]))
+    v, w = _completed(v, w, R, (us <= EPS_SLIP) & (us > 0) & (ph.mu_slide > 0))
     return v, w, _norm(v + R[:, None] * _perp(w[:, :2])) <= EPS_SLIP
 
 
