@@ -159,6 +159,16 @@ def test_at_60_columns_practice_keeps_undo_and_rack(level) -> None:
         assert "Esc hold" in bar, bar
 
 
+@pytest.mark.parametrize("level", ["0", "4"])
+def test_at_80_columns_practice_with_a_digit_s_power_keeps_esc_and_pause(level) -> None:
+    app = app_for("practice")
+    app.key(Key(level), 0.1)
+    bar = panel_rows(app, 80, 24)[-1]
+    for key in ("aim", "Space", "Esc hold", "spin", "G aid", "U undo", "R rack", "H help",
+                "P pause", "Q quit"):
+        assert key in bar, bar
+
+
 def test_the_key_bar_is_parts_whole_in_one_of_their_forms() -> None:
     app = app_for("practice")
     bar = panel_rows(app, 80, 24)[-1]

@@ -438,7 +438,8 @@ def hint_lines(s: State) -> list[tuple]:
         return [(ch.label, 0), (f"{k('cancel')} cancel", 0)]
     if s.phase is Phase.AIM:
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
-        cancel = [(f"{k('cancel')} hold", 1)] if ch.preset_level is not None else []
+        preset = ch.preset_level is not None
+        cancel = [(f"{k('cancel')} hold", 1)] if preset else []
         # Practice's own keys rank with the help: a player who never sees U may never
         # take a shot back.
         practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 1),
@@ -447,7 +448,10 @@ def hint_lines(s: State) -> list[tuple]:
         aim, fine = (f"{k('aim_ccw')}{k('aim_cw')}", f"{k('aim_fine_ccw')}{k('aim_fine_cw')}")
         return [((f"{aim} aim", f"{aim} aim", f"{aim}aim"), 0),
                 ((f"{fine} fine", f"{fine} fine", f"{fine}fine"), 5),
-                (power_hint(s), 0), ("1-0 power", 2), *cancel, (f"{spin} spin", 2),
+                # A player who set the power with a digit knows the digits: Esc, which
+                # gives the hold back, takes their place first.
+                (power_hint(s), 0), ("1-0 power", 5 if preset else 2), *cancel,
+                (f"{spin} spin", 2),
                 (f"{k('aim_aid')} aid", 3), *practice, help_, (f"{k('pause')} pause", 4),
                 quit_]
     if s.phase is Phase.OPTION:
