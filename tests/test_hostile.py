@@ -237,6 +237,24 @@ def test_play_with_an_unreadable_config_warns_and_plays(capsys, tmp_path, keys,
     assert err.endswith("; playing with the default keys\n")
 
 
+def test_play_with_a_mistake_in_the_default_config_warns_and_plays(capsys, tmp_path,
+                                                                  monkeypatch) -> None:
+    # A slip in keys.conf, as in settings.conf, keeps the game: the default keys, the
+    # warning said once and shown whole on the first screen.
+    conf = tmp_path / "xdg" / "termpool" / "keys.conf"
+    conf.parent.mkdir(parents=True)
+    conf.write_text("shoot = space\nshot = \x1b[31mx\n")
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "xdg"))
+    rc, out, err = main(capsys, "play", "--headless", "--keys", put(tmp_path, "wait 1", "k.txt"),
+                        "--size", "80x24")
+    assert rc == 0 and "Enter start" in out  # the menu
+    assert err.count("\n") == 1 and err.startswith("termpool: warning: keys.conf line 2: ")
+    assert err.endswith("; playing with the default keys\n") and "\x1b" not in err
+    screen = " ".join(" ".join(out.split()).split("Enter start · Q quit", 1)[1].split())
+    assert screen.startswith("keys: keys.conf line 2: unknown action")
+    assert screen.endswith("playing with the default keys")
+
+
 def test_play_keymap_from_dev_zero(capsys, keys) -> None:
     rc, _, err = main(capsys, *PLAY, "--keys", keys, "--keymap", "/dev/zero")
     one_line(rc, err, "/dev/zero: larger than 64 KiB")

@@ -466,5 +466,6 @@ def test_the_files_warnings_are_on_the_games_first_screen_too() -> None:
     p = play("--size", "100x32", keys="wait 0.1")
     assert p.returncode == 0, p.stderr
     assert "warning: settings.conf line 1: unknown setting 'tabel'" in p.stderr
+    # (wrapped to the menu's width: read as words)
     assert ("settings: 2 warnings (all said after play), the first: settings.conf line 1: "
-            "unknown setting 'tabel'") in p.stdout
+            "unknown setting 'tabel'") in " ".join(p.stdout.split())

@@ -469,6 +469,23 @@ def test_a_config_directory_that_cannot_be_entered_falls_back(tmp_path):
         shutil.rmtree(xdg)
 
 
+@pytest.mark.parametrize("text", ["shoot = space\nshot = x\n", "pause = space\n"])
+def test_a_default_config_with_a_mistake_falls_back_with_a_warning(tmp_path, text):
+    xdg = tmp_path / "xdg"
+    (xdg / "termpool").mkdir(parents=True)
+    (xdg / "termpool" / "keys.conf").write_text("quit = k\n" + text)
+    said = []
+    km = load_keymap(env={"XDG_CONFIG_HOME": str(xdg)}, warn=said.append)
+    # The defaults whole: none of the file's lines, the good ones neither.
+    assert km.action(K("space")) == "shoot" and km.action(K("q")) == "quit"
+    assert km.action(K("k")) is None
+    assert len(said) == 1 and said[0].startswith("keys.conf")
+    assert said[0].endswith("; playing with the default keys")
+    # The same file given explicitly stays an error.
+    with pytest.raises(ValueError, match="^keys.conf"):
+        load_keymap(xdg / "termpool" / "keys.conf")
+
+
 def test_load_keymap_finds_the_config_file(tmp_path):
     xdg = tmp_path / "xdg"
     # missing file: the defaults

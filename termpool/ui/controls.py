@@ -198,22 +198,24 @@ def load_keymap(path: str | os.PathLike[str] | None = None,
                 warn: Callable[[str], None] | None = None) -> KeyMap:
     """The key map: defaults, overridden by the config file.
 
-    Without `path`, the file at `config_path(env)` is read if it exists (missing: defaults;
-    unreadable, e.g. a config directory that cannot be entered: defaults, and `warn` is told
-    why). A `path` given explicitly must be readable. Errors are one-line ValueErrors naming
-    the file.
+    Without `path`, the file at `config_path(env)` is read if it exists (missing: defaults).
+    One that cannot be read (e.g. a config directory that cannot be entered) or has a
+    mistake gives the defaults, and `warn` is told why: a slip in a file written long ago
+    should not keep the game from starting, as the settings file's do not. A `path` given
+    explicitly must be readable and right. Errors are one-line ValueErrors naming the file
+    (and line).
     """
     explicit = path is not None
     p = Path(path) if explicit else config_path(env)
     try:
         text = read_text(p, MAX_CONFIG_BYTES, "key map")
-    except FileError as e:
-        if explicit or not e.unreadable:
+        return parse_keymap(text, _conf_name(p))
+    except (FileError, ValueError) as e:
+        if explicit or (isinstance(e, FileError) and not e.unreadable):
             raise ValueError(str(e)) from None
-        if not e.missing and warn is not None:
+        if not (isinstance(e, FileError) and e.missing) and warn is not None:
             warn(f"{e}; playing with the default keys")
         return KeyMap()
-    return parse_keymap(text, _conf_name(p))
 
 
 # ----------------------------------------------------------------------------- aiming

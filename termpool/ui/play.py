@@ -93,11 +93,19 @@ def _options(args: argparse.Namespace, values: dict):
 
 
 def _keymap(path: str | None):
+    """The key map, and the default file's warning if it has one (said now, and on the
+    game's first screen)."""
     from termpool.text import say
     from termpool.ui.controls import load_keymap
 
+    warnings: list[str] = []
+
+    def warn(message: str) -> None:
+        say(f"warning: {message}")
+        warnings.append(message)
+
     try:
-        return load_keymap(path, warn=lambda m: say(f"warning: {m}"))
+        return load_keymap(path, warn=warn), warnings
     except ValueError as e:
         raise PlayError(str(e)) from None
 
@@ -133,14 +141,17 @@ def run(args: argparse.Namespace) -> int:
     records = Records(args.record, args.force, folder=records_dir())
     files = {"prefs": store, "history": Recorder(), "records": records}
     if args.headless:
-        app, play = _headless(args, opts, _keymap(args.keymap), files)
+        keymap, key_warnings = _keymap(args.keymap)
+        app, play = _headless(args, opts, keymap, files)
     else:
         if not (os.isatty(sys.stdin.fileno()) and os.isatty(sys.stdout.fileno())):
             from termpool.ui.term import no_tty_message
 
             sys.stderr.write(no_tty_message() + "\n")
             return 2
-        app, play = _terminal(args, opts, _keymap(args.keymap), files)
+        keymap, key_warnings = _keymap(args.keymap)
+        app, play = _terminal(args, opts, keymap, files)
+    warn_on_screen(app, key_warnings, "keys")
     try:
         rc = play()
     except BaseException:
@@ -164,15 +175,15 @@ def _leave(app, args: argparse.Namespace) -> int:
     return status
 
 
-def warn_on_screen(app, warnings: list[str]) -> None:
-    """The settings file's warnings, said before the game took the screen, shown on its
-    first screen too (how many, and the first)."""
+def warn_on_screen(app, warnings: list[str], what: str = "settings") -> None:
+    """A file's warnings (`what`: the settings, the keys), said before the game took the
+    screen, shown on its first screen too (how many, and the first)."""
     from dataclasses import replace
 
     if warnings:
         n = len(warnings)
-        head = "settings: " + (f"{n} warnings (all said after play), the first: " if n > 1
-                               else "")
+        head = f"{what}: " + (f"{n} warnings (all said after play), the first: " if n > 1
+                              else "")
         line = (head + warnings[0], "foul")
         app.state = replace(app.state, message=(*app.state.message, line))
 

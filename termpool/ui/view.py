@@ -33,6 +33,7 @@ from termpool.ui.panel import (
     box_clear_of,
     draw_box,
     draw_panel,
+    fit_status,
     message_cells,
     too_small_lines,
     widget_fits,
@@ -466,9 +467,9 @@ def hint_lines(s: State) -> list[tuple]:
     return [(f"{k('fast_forward')} fast forward", 0), (f"{k('pause')} pause", 1), help_, quit_]
 
 
-def _lobby_lines(s: State) -> list[tuple[str, object]]:
+def _lobby_lines(s: State) -> tuple[list[tuple[str, object]], tuple[str, object]]:
     """The lobby's words: who is online (the one chosen marked), the game a challenge is to,
-    a challenge to answer, and what to press."""
+    a challenge to answer; and apart, the line of what to press (the last)."""
     link, part = s.link, s.part
     others, k = lobby_choice(s)
     lines = [("Players online", TURN_C), ("", None)]
@@ -509,13 +510,12 @@ def _lobby_lines(s: State) -> list[tuple[str, object]]:
         keys = "Esc takes the challenge back"
     else:
         keys = "↑↓ choose · ←→ game · Enter challenge · Esc back"
-    lines += _said(s)
-    lines.append((keys, DIM_TEXT_C.rgb))
-    return lines
+    return lines, (keys, DIM_TEXT_C.rgb)
 
 
 def _lobby_cells(s: State, cols: int, rows: int, mono: bool):
-    return _centred(_lobby_lines(s), cols, rows, mono)
+    lines, keys = _lobby_lines(s)
+    return _centred(lines + _said(s, cols, rows - len(lines) - 1) + [keys], cols, rows, mono)
 
 
 def _menu_cells(s: State, cols: int, rows: int, mono: bool):
@@ -526,14 +526,21 @@ def _menu_cells(s: State, cols: int, rows: int, mono: bool):
         lines.append(((f"▶ {digit}. {label}" if sel else f"  {digit}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
     lines += [("", None), ("↑↓ choose · Enter start · Q quit", DIM_TEXT_C.rgb)]
-    # What ended an online match (the other player left), said where the match was left.
-    lines += _said(s)
+    # What ended an online match (the other player left), said where the match was left;
+    # a settings or keys file's warning.
+    lines += _said(s, cols, rows - len(lines))
     return _centred(lines, cols, rows, mono)
 
 
-def _said(s: State) -> list[tuple[str, object]]:
-    """The words on show, as lines of a menu or the lobby (a foul's in its colour)."""
-    return [(text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb) for text, tone in s.message]
+SAID_WIDTH = 64  # at most, so that the menu's block stays in the middle
+
+
+def _said(s: State, cols: int, room: int) -> list[tuple[str, object]]:
+    """The words on show, as lines of a menu or the lobby (a foul's in its colour), wrapped
+    to the screen, in `room` rows at most."""
+    width = max(min(cols - 2, SAID_WIDTH), 1)
+    return [(text, FOUL_C if tone == "foul" else DIM_TEXT_C.rgb)
+            for text, tone in fit_status(s.message, room, width)]
 
 
 def _centred(lines: list[tuple[str, object]], cols: int, rows: int, mono: bool):
