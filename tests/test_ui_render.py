@@ -33,6 +33,8 @@ from termpool.ui.palette import (
     RAIL_C,
     STRIPE_WHITE_C,
     mono_glyph,
+    mono_mark,
+    mono_numbers,
     pack,
 )
 from termpool.ui.table_view import MIN_COLS, MIN_ROWS, layout
@@ -502,7 +504,7 @@ def test_ball_numbers_take_the_ink_that_reads_best_on_their_ball():
 
 # ------------------------------------------------------------ mono: every ball drawn
 
-MONO_BALLS = "●◐◉○"
+MONO_BALLS = "●◐◉○123456789"
 
 
 def _mono_table(ids, pos, cols, rows):
@@ -522,20 +524,45 @@ def test_mono_draws_every_ball_of_a_rack(mode, cols, rows) -> None:
     sc = load_scene({"table": "9ft", "balls": mode})
     view, chars = _mono_table(sc.ids, sc.pos, cols, rows)
     glyphs = [g for g in chars.ravel() if g in MONO_BALLS]
-    want = sorted(mono_glyph(view.style(b, k)) for k, b in enumerate(sc.ids))
+    styles = [view.style(b, k) for k, b in enumerate(sc.ids)]
+    want = sorted(mono_mark(st, mono_numbers(styles)) for st in styles)
     assert sorted(glyphs) == want
     x, y = view.layout.to_pixels(*sc.pos[sc.ids.index("cue")])
     assert chars[int(y) // 2, int(x)] == "○"
 
 
-def test_mono_moves_no_ball_that_has_a_cell_of_its_own() -> None:
-    ids = ["cue", "1", "9", "8"]
-    pos = np.array([[0.5, 0.5], [1.0, 0.3], [1.6, 0.9], [2.2, 0.6]])
+@pytest.mark.parametrize("ids", [["cue", "1", "9", "8"], ["cue", "1", "9", "8", "12"]])
+def test_mono_moves_no_ball_that_has_a_cell_of_its_own(ids) -> None:
+    pos = np.array([[0.5, 0.5], [1.0, 0.3], [1.6, 0.9], [2.2, 0.6], [0.5, 1.0]])[:len(ids)]
     view, chars = _mono_table(ids, pos, 80, 24)
+    numbers = len(ids) == 4  # the 12's number takes two characters: the groups' glyphs
     for k, b in enumerate(ids):
         x, y = view.layout.to_pixels(*pos[k])
-        assert chars[int(y) // 2, int(x)] == mono_glyph(view.style(b, k))
-    assert sum(g in MONO_BALLS for g in chars.ravel()) == 4
+        st = view.style(b, k)
+        want = st.number if numbers and b != "cue" else mono_glyph(st)
+        assert chars[int(y) // 2, int(x)] == want
+    assert sum(g in MONO_BALLS for g in chars.ravel()) == len(ids)
+
+
+@pytest.mark.parametrize(("mode", "numbers"), [("9ball", True), ("8ball", False)])
+def test_mono_draws_9_ball_by_number_and_15_balls_by_group(mode, numbers) -> None:
+    # 9-ball asks for the lowest ball: each is its digit. With 15 balls a ball is its
+    # group's glyph, and it stays so as balls go down (the game's balls decide, not the
+    # table's).
+    sc = load_scene({"table": "9ft", "balls": mode})
+    state = np.zeros(len(sc.ids), dtype=int)
+    state[[k for k, b in enumerate(sc.ids) if b not in ("cue", "1", "2", "3")]] = POCKETED
+    for st in (None, state):
+        view, chars = _mono_table(sc.ids, sc.pos, 120, 40)
+        chars = view.mono(sc.ids, sc.pos, st)
+        shown = "".join(g for g in chars.ravel() if g in MONO_BALLS)
+        if numbers:
+            assert "●" not in shown and "◐" not in shown and "◉" not in shown
+            assert sorted(shown.replace("○", "")) == sorted(
+                b for k, b in enumerate(sc.ids) if b != "cue" and (st is None or not st[k]))
+        else:
+            assert not any(c.isdigit() for c in shown)
+            assert shown.count("○") == 1
 
 
 def test_mono_puts_a_hidden_ball_on_the_nearest_free_cloth() -> None:
@@ -547,8 +574,8 @@ def test_mono_puts_a_hidden_ball_on_the_nearest_free_cloth() -> None:
     lay = layout(80, 24, table)
     c, r = 40, 8
     x0, y0 = lay.to_table(c, r)  # the centre of a cell of cloth
-    ids = ["1", "9"]
-    pos = np.array([[x0, y0], [x0 + 0.2 * BALL_RADIUS, y0]])  # the same cell, the 9 right
-    _, chars = _mono_table(ids, pos, 80, 24)
-    assert chars[r, c] == "●" and chars[r, c + 1] == "◐"
-    assert sum(g in MONO_BALLS for g in chars.ravel()) == 2
+    for ids, marks in ((["1", "12"], "●◐"), (["1", "9"], "19")):  # by group, by number
+        pos = np.array([[x0, y0], [x0 + 0.2 * BALL_RADIUS, y0]])  # the same cell, the 2nd right
+        _, chars = _mono_table(ids, pos, 80, 24)
+        assert chars[r, c] == marks[0] and chars[r, c + 1] == marks[1]
+        assert sum(g in MONO_BALLS for g in chars.ravel()) == 2

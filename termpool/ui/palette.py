@@ -12,6 +12,7 @@ a glyph.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import NamedTuple
 
 # Tags: what a pixel shows. Mono mode draws a cell as the glyph of its higher-priority pixel.
@@ -145,3 +146,17 @@ def mono_glyph(style: BallStyle) -> str:
     if style.colour is CLASSIC_YELLOW_C:
         return MONO_GLYPH[STRIPE]
     return MONO_GLYPH[style.tag]
+
+
+def mono_numbers(styles: Sequence[BallStyle]) -> bool:
+    """Whether a game of these balls is drawn in mono by the balls' numbers: where every
+    object ball's is one character (9-ball), whose rules ask for the lowest, which a glyph
+    by group cannot tell. With 15 balls a ball is the glyph of its group, which 8-ball is
+    about. (Decided by the game's balls, not those left, so that it never changes in play.)"""
+    return all(len(st.number) == 1 for st in styles if st.tag != CUE)
+
+
+def mono_mark(style: BallStyle, numbers: bool) -> str:
+    """A ball's one character on the table in mono: its number (with `numbers`, see
+    `mono_numbers`) or its glyph; the cue ball's glyph either way."""
+    return style.number if numbers and style.tag != CUE else mono_glyph(style)

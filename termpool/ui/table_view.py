@@ -42,7 +42,8 @@ from termpool.ui.palette import (
     STRIPE,
     STRIPE_WHITE_C,
     ball_style,
-    mono_glyph,
+    mono_mark,
+    mono_numbers,
     number_colour,
 )
 
@@ -430,10 +431,11 @@ class TableView:
         if self._felt is None:
             self._felt = mono_tags(self.background) == FELT
         balls = self._balls(ids, pos, state, radius)
+        numbers = mono_numbers([self.style(b, k) for k, b in enumerate(ids)])
         for (c, r), (_x, _y, _rr, style) in zip(mono_spots(balls, self._felt), balls,
                                                 strict=True):
             if c is not None:
-                chars[r, c] = mono_glyph(style)
+                chars[r, c] = mono_mark(style, numbers)
         return chars
 
 
