@@ -7,6 +7,7 @@ A player whose connection drops (without leaving the match) is away: the match w
 them for RESUME_WAIT_S, the others are told (AWAY), and the next game of that name to connect
 is put back in it, given its moves so far to catch up (START), while the others are told it
 is back (BACK). The other player may go on with their turn meanwhile; their moves wait too.
+A match whose end a player's screen has shown (OVER) waits for no one: a drop is a leaving.
 
 Messages are termpool.wire's, one JSON object a line.
 """
@@ -49,6 +50,7 @@ class Table:
     moves: list = field(default_factory=list)
     watchers: set[int] = field(default_factory=set)
     away: set[int] = field(default_factory=set)  # sides (0, 1) whose connection dropped
+    over: bool = False  # a player's screen has seen its end: a drop then is a leaving
     timer: asyncio.TimerHandle | None = None  # when it stops waiting for them
 
 
@@ -145,6 +147,8 @@ class Lobby:
             self._move(seat, msg.get("move"))
         elif kind == wire.AIM and seat.where == "playing":
             self._pass_on(seat.table, seat, wire.AIM, aim=msg.get("aim"))
+        elif kind == wire.OVER and seat.where == "playing":
+            seat.table.over = True
         elif kind == wire.LEAVE:
             self._part(seat)
             self._players()
@@ -300,7 +304,7 @@ class Lobby:
 
     def gone(self, seat: Seat) -> None:
         self._withdraw(seat)
-        if seat.table is not None and seat.where == "playing":
+        if seat.table is not None and seat.where == "playing" and not seat.table.over:
             self._away(seat)
         else:
             self._part(seat)

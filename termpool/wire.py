@@ -4,7 +4,8 @@ bit for bit, so a shot sent is the shot struck on both sides.
 
 Game to server: HELLO (token), WHERE (in the lobby or not), CHALLENGE (to, game), ANSWER (to,
 yes), WATCH (to: a player whose match to watch), MOVE (move), AIM (aim: the stick or the
-ball in hand as the player moves it, for the other screens to show), LEAVE.
+ball in hand as the player moves it, for the other screens to show), OVER (the match has
+ended on this player's screen: a drop from now on is no reason to wait), LEAVE.
 Server to game: PLAYERS (players: id, name, where, with, challenge: {"to": id} or {"from":
 id}), CHALLENGED (by, name, game),
 DECLINED (name), WITHDRAWN (by, name: a challenge to this game is off), START (game, names,
@@ -25,7 +26,7 @@ HELLO, WHERE, CHALLENGE, ANSWER, WATCH, MOVE, AIM, LEAVE = "hello", "where", "ch
     "answer", "watch", "move", "aim", "leave"
 PLAYERS, CHALLENGED, DECLINED, WITHDRAWN, START, LEFT, REFUSED = "players", "challenged", \
     "declined", "withdrawn", "start", "left", "refused"
-AWAY, BACK = "away", "back"
+AWAY, BACK, OVER = "away", "back", "over"
 
 # Why a challenge or a message was refused.
 BUSY = "busy"  # the player challenged is not in the lobby, or has a challenge open

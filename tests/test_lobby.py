@@ -289,6 +289,31 @@ def test_leaving_a_match_that_waits_ends_it_and_a_player_away_on_both_sides_too(
     assert lobby.waiting == []
 
 
+def test_a_drop_after_the_match_is_over_is_a_leaving_with_no_wait(lobby):
+    (ann, bob), _ = matched(lobby, "ann", "bob")
+    bob.next(wire.START)
+    bob.send(wire.OVER)  # bob's screen has shown the match's end (read before his drop:
+    bob.close()  # one connection's lines are read in order)
+    assert ann.next(wire.LEFT)["name"] == "bob"  # at once: no AWAY, no wait
+    assert lobby.waiting == []
+    back = Raw(lobby, "bob")  # bob again: in the menu, not back in a finished match
+    assert where(back.next(wire.PLAYERS)["players"], "bob") == "menu"
+
+
+def test_over_from_a_watcher_changes_nothing(lobby):
+    lobby.resume_wait = 30.0
+    (ann, bob, cy), ids = in_lobby_raw(lobby, "ann", "bob", "cy")
+    ann.send(wire.CHALLENGE, to=ids["bob"], game=GAME)
+    bob.send(wire.ANSWER, to=bob.next(wire.CHALLENGED)["by"], yes=True)
+    ann.next(wire.START)
+    cy.send(wire.WATCH, to=ids["ann"])
+    cy.next(wire.START)
+    cy.send(wire.OVER)  # not cy's match to end
+    bob.close()
+    assert ann.next(wire.AWAY)["name"] == "bob"  # the match waits for bob as before
+    assert len(lobby.waiting) == 1 and not lobby.waiting[0].over
+
+
 def test_a_game_without_a_good_token_or_with_garbage_is_refused(lobby):
     stranger = Raw(lobby, None, token="not-a-token")
     assert stranger.next(wire.REFUSED)["why"] == wire.BAD
@@ -799,6 +824,20 @@ def test_a_match_over_stays_on_show_when_the_other_player_goes(lobby, tmp_path):
     bob.key(Key("m"), time.monotonic())  # bob goes back to the menu
     until([ann, bob], lambda: "bob has left" in screen(ann, 100, 30), "ann told")
     assert ann.state.phase is Phase.OVER  # the end, the W to watch it, stay hers
+
+
+def test_a_screen_that_shows_the_match_over_frees_the_server_from_waiting(lobby, tmp_path):
+    from termpool.ui.phases.turn import start_turn
+
+    ann, bob = online(lobby, tmp_path)
+    for app in (ann, bob):
+        app.state.match.winner = 0  # the match won, on both screens, as a shot ends it
+        app.state = start_turn(app.state)
+        assert app.state.phase is Phase.OVER
+    bob.state.link.close()  # bob's connection drops at the game-over box
+    until([ann], lambda: "bob has left" in screen(ann, 100, 30), "ann told")
+    assert ann.state.phase is Phase.OVER and ann.state.link.away is None
+    assert lobby.waiting == []
 
 
 def test_a_watcher_joining_late_sees_the_table_as_it_is_not_old_shots(lobby, tmp_path):

@@ -36,7 +36,7 @@ from termpool.ui.state import (
     voice,
 )
 from termpool.ui.term import signals_held
-from termpool.wire import LEAVE, MOVE, WHERE
+from termpool.wire import LEAVE, MOVE, OVER, WHERE
 
 
 def set_input_mode(s: State, mode: str) -> State:
@@ -109,6 +109,8 @@ def start_turn(s: State) -> State:
         frame = (words.frame_won(voice(s), won, m.scores, m.shooter), "good")
         s = replace(s, message=(*s.message, frame))  # the news now
     if m.winner is not None:
+        if len(s.remote) == 1:  # a player online: the server need not hold the match now
+            s.link.send(OVER)
         return log_match(replace(s, part=Over()))
     if shooter_is_remote(s):  # their option, ball in hand or shot: it comes over the link
         return replace(s, part=Waiting())
