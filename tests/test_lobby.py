@@ -292,8 +292,14 @@ def test_leaving_a_match_that_waits_ends_it_and_a_player_away_on_both_sides_too(
 def test_a_drop_after_the_match_is_over_is_a_leaving_with_no_wait(lobby):
     (ann, bob), _ = matched(lobby, "ann", "bob")
     bob.next(wire.START)
-    bob.send(wire.OVER)  # bob's screen has shown the match's end (read before his drop:
-    bob.close()  # one connection's lines are read in order)
+    bob.send(wire.OVER)  # bob's screen has shown the match's end
+    # (Read before bob's drop: a socket closed with lines unread in it may reach the
+    # lobby as a reset before the lines it had sent.)
+    end = time.monotonic() + WAIT_S
+    while not any(s.table is not None and s.table.over for s in list(lobby.seats.values())):
+        assert time.monotonic() < end, "the lobby never read OVER"
+        time.sleep(0.005)
+    bob.close()
     assert ann.next(wire.LEFT)["name"] == "bob"  # at once: no AWAY, no wait
     assert lobby.waiting == []
     back = Raw(lobby, "bob")  # bob again: in the menu, not back in a finished match

@@ -109,6 +109,22 @@ def test_a_dim_first_line_gives_way_to_a_verdict_three_rows_long(first) -> None:
     assert " ".join(out) == verdict
 
 
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (60, 20)])
+def test_back_in_a_match_reads_beside_a_warning_and_the_last_verdict(cols, rows) -> None:
+    # A player back in an online match on two fouls: the warning, the news and the last
+    # verdict compete; the news is said once and reads whole.
+    from termpool.ui.phases.remote import back_in
+
+    app = app_for(three_foul=True)
+    m = app.state.match
+    m.state = replace(m.state, fouls=(2, 0))
+    news = back_in(app.state, 0)
+    app.state = replace(app.state, message=(news, (SCRATCH, "foul")))
+    text = joined(panel_rows(app, cols, rows))
+    assert news[0] in text and "two fouls" in text, text
+    assert "Foul: scratch" in text
+
+
 def test_news_before_the_verdict_keeps_its_row_while_the_verdict_wraps() -> None:
     # A player back in an online match: what to do, the news, then the last verdict.
     status = [("bob to shoot · ball in hand anywhere", "turn"),

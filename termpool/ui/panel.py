@@ -37,8 +37,9 @@ FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
 BOX_BG = (28, 32, 40)
 TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "turn": TURN_C, "foul": FOUL_C,
-         "warn": FOUL_C, "good": GOOD_C, "plan": TURN_C}
-# ("warn": what the aim would do, said while aiming; "plan": the computer's plan, a note)
+         "warn": FOUL_C, "good": GOOD_C, "plan": TURN_C, "news": TURN_C}
+# ("warn": what the aim would do, said while aiming; "plan": the computer's plan, a note;
+# "news": of an online match, said once: a player back in it)
 
 
 @dataclass
@@ -118,7 +119,8 @@ def _cut(lines: list[tuple[str, str]], room: int, width: int) -> list[tuple[str,
     return [*lines[:room - 1], (text + "…", tone)]
 
 
-KEPT_TONES = ("plain", "good", "foul", "warn")  # verdicts and warnings: kept longest
+KEPT_TONES = ("plain", "good", "foul", "warn", "news")  # verdicts, warnings, news: kept
+# longest
 
 
 def fit_status(status: Sequence[tuple[str, str]], room: int,

@@ -40,7 +40,7 @@ def check(s: State) -> State:
         kind, name = link.said.popleft()
         if s.match is not None and s.match.winner is None:  # an end on show stays as it is
             line = (f"{name}'s connection dropped: the match waits for them (Q leaves it)",
-                    "foul") if kind == wire.AWAY else (f"{name} is back", "turn")
+                    "foul") if kind == wire.AWAY else (f"{name} is back", "news")
             s = replace(s, message=(line,))
     if link.left is not None:
         name, link.left = link.left, None
@@ -121,7 +121,7 @@ def tick(s: State, t: float) -> State:
 
 def back_in(s: State, seat: int) -> tuple[str, str]:
     """The line that tells a player back in their match (on side `seat`) whom it is with."""
-    return f"back in your match against {shown(s.match.players[1 - seat])[:16]}", "turn"
+    return f"back in your match against {shown(s.match.players[1 - seat])[:16]}", "news"
 
 
 def _make(s: State, move, behind: bool) -> State:
