@@ -267,3 +267,22 @@ def test_a_20x6_window_says_how_big_it_must_be_whole_on_screen() -> None:
     app.key(Key("enter"), 0.0)
     text = screen_text(app.cells(20, 6)[0])
     assert "40x12" in text and "20x6" in text and "small" in text
+
+
+# ------------------------------------------------------------------ a player's balls
+
+@pytest.mark.parametrize("mono", [False, True])
+def test_a_ball_pocketed_stays_in_its_place_dim_and_moves_no_other(mono) -> None:
+    from termpool.ui.palette import DIM_TEXT_C
+    from termpool.ui.panel import PanelInfo, PlayerLine, player_line
+
+    ids = ["cue", *map(str, range(1, 16))]
+    info = PanelInfo("t", [], [], [], ids)
+    stripes = [ids.index(str(n)) for n in range(9, 16)]
+    down = [ids.index(n) for n in ("10", "11", "15")]
+    p = PlayerLine("You", "stripes", [k for k in stripes if k not in down], down)
+    line = player_line(p, info, mono, 80)
+    balls = [(t.strip().lstrip("●◐◉"), fg) for t, fg, _ in line[2:] if t.strip()]
+    assert [b for b, _ in balls] == [str(n) for n in range(9, 16)]  # in order, none moved
+    for b, fg in balls:
+        assert (fg == DIM_TEXT_C.rgb) == (b in ("10", "11", "15"))

@@ -181,8 +181,9 @@ def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
 def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
                 keep_score: bool = False) -> list[tuple] | None:
     """One player's line as (text, fg, bg) pieces within `width` cells: marker and name, then
-    group, frames and fouls, then the balls still to pot (and, dim, those down). Where that is
-    too long it is said more shortly, in turn: without the balls down, without the group's
+    group, frames and fouls, then the group's balls in order, those down dim in their
+    places. Where that is too long it is said more shortly, in turn: without the balls
+    down, without the group's
     word (the balls show it; in mono they lose their glyphs), with the frames and fouls as
     "1/3" and "F2", without them; only a line that still does not fit is cut, at a piece
     (a name too long, within itself), with "…". With `keep_score`, a line that cannot keep
@@ -190,7 +191,11 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
              BACKDROP_C.rgb)]
     todo = ball_tokens(info.ids, p.balls, mono, info.theme)
-    down = [(f"{info.ids[k]:>2}", DIM_TEXT_C.rgb, BACKDROP_C.rgb) for k in p.down]
+    # Every ball of the group in its place, those down dim: a ball pocketed does not move
+    # the others along.
+    mine = dict(zip(p.balls, todo, strict=True))
+    every = [mine.get(k) or (f"{info.ids[k]:>2}", DIM_TEXT_C.rgb, BACKDROP_C.rgb)
+             for k in sorted(p.balls + p.down)]
     long = [x for x in (p.group, p.score and f"frames {p.score}", p.fouls and f"fouls {p.fouls}")
             if x]
     short = [x for x in (p.score, p.fouls and f"F{p.fouls}") if x]
@@ -205,7 +210,7 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
 
     # In mono the short forms give plain numbers: 1-7 and 9-15 tell the groups apart too.
     plain = todo if not mono else [(f"{info.ids[k]:>2}", None, None) for k in p.balls]
-    forms = [build(long, todo + down, "  "), build(long, todo, " "), build(short, plain, " "),
+    forms = [build(long, every, "  "), build(long, todo, " "), build(short, plain, " "),
              build([], plain, " ")]
     for form in forms[:3] if keep_score else forms:
         if sum(len(t) for t, _, _ in form) <= width:
