@@ -435,8 +435,8 @@ def hint_lines(s: State) -> list[tuple]:
         return [(f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move", 0),
                 ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), ("mouse: click", 4), help_,
                 quit_]
-    if s.phase is Phase.AIM and ch.active:
-        return [(ch.label, 0), (f"{k('cancel')} cancel", 0)]
+    if s.phase is Phase.AIM and ch.active:  # what Space does now: the status's first line
+        return [(f"{k('cancel')} cancel", 0)]
     if s.phase is Phase.AIM:
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         preset = ch.preset_level is not None
