@@ -1442,15 +1442,17 @@ def test_power_set_with_a_digit_does_not_carry_into_the_next_game() -> None:
         assert app.state.last_power == 0.5
 
 
-def test_the_aid_names_the_last_shot_only_once_there_was_one() -> None:
+def test_the_aid_takes_the_shooter_s_last_power_and_says_it_in_few_words() -> None:
     app = app_for(mode="8ball", opponent="human")
     run_script(app, "enter")
     text = screen_text(app.cells(120, 40)[0])
-    assert "the last shot's" not in text and "aid at 50% power (until you give one)" in text
-    run_script(app, "space-hold 0.6 wait 20")
+    assert "aid at 50% power · first ball" in text  # half, before any shot
+    run_script(app, "space-hold 0.9 wait 20")
     m = app.state.match
-    for shooter, said in ((0, "aid at 50% power (the last shot's)"),  # the breaker's own
-                          (1, "aid at 50% power (until you give one)")):  # not the other's
+    struck = round(100 * app.state.last_power)
+    assert struck != 50
+    for shooter, said in ((0, f"aid at {struck}% power · "),  # the breaker's own
+                          (1, "aid at 50% power · ")):  # not the other's
         m.state = replace(m.state, shooter=shooter)
         m.ball_in_hand = None
         app.state = start_turn(app.state)

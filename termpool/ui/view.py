@@ -403,9 +403,8 @@ def power_line(s: State) -> str:
     ch = s.controls.charge
     if ch.preset_level is not None:
         line = f"power {round(100 * ch.preset_level)}%"
-    elif aid.level(s) != "off":
-        whose = "the last shot's" if s.shot_power_set else "until you give one"
-        line = f"aid at {round(100 * s.last_power)}% power ({whose})"
+    elif aid.level(s) != "off":  # (the shooter's last shot's power, or half before one)
+        line = f"aid at {round(100 * s.last_power)}% power"
     else:
         line = "power: " + ch.label
     return line + _first_ball(s)
