@@ -1704,7 +1704,7 @@ def test_the_settings_screen_loses_nothing_on_a_small_screen(cols, rows, in_game
         if shown_ < len(SETTINGS):  # a hint that there is more
             assert "↑ more" in text or "↓ more" in text
         if in_game:
-            assert "those marked * from the next game." in said
+            assert "a change marked * applies from the next game." in said
 
 
 def test_the_stats_screen_scrolls_both_ways_and_says_so() -> None:

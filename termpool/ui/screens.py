@@ -21,7 +21,7 @@ GROUPS = (("The game", ("level", "table", "frames", "theme", "colors")),
 USUAL_NAME = {"player1": "You / Player 1", "player2": "Player 2"}
 TITLES = {Settings: "settings", Stats: "stats"}
 
-LATER_NOTE = "Changes apply at once; those marked * from the next game."
+LATER_NOTE = "Changes apply at once; a change marked * applies from the next game."
 SETTINGS_SEEN = 5  # settings always in view (around the one chosen) on a short screen
 BOX_TEXT_COLS = 70  # the Settings box's text width (less on a narrow screen)
 STATS_ROWS = 24  # the screen's height the Stats screen pages by before it is first drawn
