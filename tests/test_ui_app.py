@@ -1590,7 +1590,7 @@ def test_each_player_starts_their_turn_at_their_own_power_never_the_other_s() ->
         charge = app.state.controls.charge
         # Player 2 has not shot: the default power, not the 90% of player 1's break.
         assert charge.preset_level == (0.5 if power == "digits" else None)
-        assert app.state.last_power == 0.5 and not app.state.shot_power_set
+        assert app.state.last_power == 0.5
         assert "90%" not in screen_text(app.cells(120, 40)[0])
         app.key(Key("3"), 50.0)
         app.key(Key("space"), 50.1)  # a soft 30% ...

@@ -332,8 +332,8 @@ class State:
     remote: tuple[int, ...] = ()  # an online match: the players whose moves come over the
     # link (the other player; both, watching)
     stroke: Stroke = Stroke()
-    last_power: float = DEFAULT_POWER  # the last shot's power: the aid's until another
-    shot_power_set: bool = False  # ... once this match has a shot of the keys'
+    last_power: float = DEFAULT_POWER  # the shooter's last shot's power: the aid's until
+    # another
     powers: tuple[Power | None, Power | None] = (None, None)  # each player's, kept for
     # their next turn (None: the default power, before their first shot)
     aid: AidJob = AidJob()

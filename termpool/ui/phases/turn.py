@@ -78,9 +78,9 @@ def begin_match(s: State, opts, names, seed: int, cpu: tuple[bool, bool],
     match = Match(mode, table=opts.table, frames=opts.frames, players=players, seed=seed,
                   theme=opts.theme, three_foul=opts.three_foul and mode == "9ball",
                   eight_break=opts.eight_break)
+    # Power starts afresh: no 20% safety breaks the next game.
     s = replace(s, opts=opts, match=match, cpu=cpu, remote=remote, last_power=DEFAULT_POWER,
-                shot_power_set=False, message=(), stroke=Stroke(),
-                powers=(None, None))  # power starts afresh: no 20% safety breaks the next
+                message=(), stroke=Stroke(), powers=(None, None))
     return start_turn(s)
 
 
@@ -91,9 +91,9 @@ def own_power(s: State) -> State:
     mine = s.powers[s.match.shooter]
     if mine is None:
         s.controls.charge.preset(DEFAULT_POWER if s.opts.power == "digits" else None)
-        return replace(s, last_power=DEFAULT_POWER, shot_power_set=False)
+        return replace(s, last_power=DEFAULT_POWER)
     s.controls.charge.preset(mine.preset)
-    return replace(s, last_power=mine.last, shot_power_set=True)
+    return replace(s, last_power=mine.last)
 
 
 def start_turn(s: State) -> State:
@@ -169,7 +169,7 @@ def shoot_human(s: State, level: float, called: tuple[str, str] | None) -> State
     """The player's strike at power `level` (0 to 1) on the stroke set up."""
     mine = Power(s.controls.charge.preset_level, level)
     powers = tuple(mine if p == s.match.shooter else x for p, x in enumerate(s.powers))
-    s = replace(s, last_power=level, shot_power_set=True, powers=powers)
+    s = replace(s, last_power=level, powers=powers)
     st = s.stroke
     return shoot(s, power_to_speed(level), st.angle, st.side, st.top, called, st.push_out)
 
