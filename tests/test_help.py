@@ -112,6 +112,20 @@ def test_pages_turn_with_the_arrows_and_any_other_key_closes() -> None:
     assert "keys · 1/" in text
 
 
+@pytest.mark.parametrize("mode", [*MODES, None])
+@pytest.mark.parametrize("cols, rows", [(80, 24), (60, 20), (120, 40)])
+def test_every_help_page_is_a_box_of_the_same_size_and_place(mode, cols, rows) -> None:
+    def frame(text: str) -> tuple:
+        lines = text.split("\n")
+        top = next(k for k, x in enumerate(lines) if "┌" in x)
+        bottom = next(k for k, x in enumerate(lines) if "└" in x)
+        return top, bottom, lines[top].index("┌"), lines[top].index("┐")
+
+    screens = help_screens(app_in(mode), cols, rows)
+    assert len(screens) > 1
+    assert len({frame(x) for x in screens}) == 1, [frame(x) for x in screens]
+
+
 def test_a_help_of_one_page_closes_on_any_key() -> None:
     keys = [("Q", "quit")]
     assert page_key("right", 0, 1) == (0, True)

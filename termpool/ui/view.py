@@ -89,6 +89,11 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
     if isinstance(box, Help):
         pages = help_of(s, cols, rows)
         title, lines = pages[min(box.page, len(pages) - 1)]
+        # Every page in a box of the same size and place: turning a page moves nothing.
+        wide = min(max(len(x) for _, page in pages for x in page), cols - 6)
+        tall = max(len(page) for _, page in pages)
+        lines = [*lines[:-1], *[""] * (tall - len(lines)), lines[-1].ljust(wide)]  # (the
+        # last line, how to turn the pages, stays at the foot)
         draw_box(out, lines, title, wrap=False)
     elif isinstance(box, Pause):
         draw_box(out, ["paused", "", "S: settings · any other key to go on"], "pause")
