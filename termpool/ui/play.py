@@ -151,6 +151,7 @@ def run(args: argparse.Namespace) -> int:
             return 2
         keymap, key_warnings = _keymap(args.keymap)
         app, play = _terminal(args, opts, keymap, files)
+    warn_on_screen(app, store.warnings)
     warn_on_screen(app, key_warnings, "keys")
     try:
         rc = play()
@@ -198,7 +199,6 @@ def _terminal(args: argparse.Namespace, opts, keymap, files: dict):
     # Under `termpool serve`, the lobby: playing someone online.
     link = Link.open(lobby_address())
     app = App(opts, keymap, "repeat" if mode == "auto" else mode, **files, link=link)
-    warn_on_screen(app, files["prefs"].warnings)
 
     def play() -> int:
         return term.run(app, app.depth, kitty=args.input in ("auto", "kitty"),
@@ -234,7 +234,6 @@ def _headless(args: argparse.Namespace, opts, keymap, files: dict):
     if mode != "release":  # without the kitty protocol a terminal never reports releases
         events = legacy_events(events)
     app = App(opts, keymap, mode, **files)
-    warn_on_screen(app, files["prefs"].warnings)
 
     def play() -> int:
         try:
