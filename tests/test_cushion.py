@@ -395,7 +395,7 @@ def test_mathavan_on_arrays_steps_all_balls_at_once_as_the_float_form(ph, monkey
     masked. Each ball's rebound is the float form's to the bit either way."""
     masks = []
     real = mathavan._step
-    monkeypatch.setattr(mathavan, "_step", lambda *a: masks.append(a[7] is None) or real(*a))
+    monkeypatch.setattr(mathavan, "_step", lambda *a: masks.append(a[4] is None) or real(*a))
     rng = np.random.default_rng(4)
     k = 40
     v = np.column_stack([rng.uniform(-0.5, 0.5, k), np.full(k, 1.5)])  # 1.5 m/s into it

@@ -66,57 +66,66 @@ FEW = 32  # fewer balls than this are bounced one by one in floats: numpy's per-
 # over the steps outweighs the work (the two forms agree to the bit, so either may run)
 
 
+# The rows of `_step`'s state, a row per quantity and a column per ball: the nose's and the
+# slate's summed friction impulses (fi, fc) either side of the speed into the cushion and the
+# slips, so that each friction impulse updates one run of rows (the nose's fi..b2, the
+# slate's vy..fc2) in one call.
+FI1, FI2, VY, A1, A2, B1, B2, FC1, FC2 = range(9)
+_NOSE_D = [0, 1, 1, 0, 1, 0, 1, 1]  # d's component for each of rows FI1..B2 and `up`
+_SLATE_E = [1, 0, 1, 0, 1, 0, 1]  # e's component for each of rows VY..FC2
+
+
 class _Rows(NamedTuple):
     """What `_step` multiplies by, a row per ball: the slips' responses to friction
-    (`_gains`), for both slips at once (a1, a2, b1, b2), at the nose (3.5, k2, x1, x2: the
-    first two the nose slip's own) and on the slate (x1, x2, 3.5, 3.5); and the constants it
-    takes, 0, 1 and 3.5 (numpy takes an array faster than a Python float, with the same
-    result)."""
+    (`_gains`) as gains of d (nose) or e (slate) component by component, each row's change
+    being -j (gain d) (an added change has its gain negated: x + y is x - (-y), bit for bit);
+    and the constants `_step` takes (numpy takes an array faster than a Python float, with
+    the same result)."""
 
-    nose: np.ndarray
-    slate: np.ndarray
+    s: np.ndarray  # the sine of the nose's angle above the ball's centre
+    mu_w: np.ndarray  # the nose's friction
+    mu_s: np.ndarray  # the slate's friction
+    nose2: np.ndarray  # (2, n) 3.5, k2: the nose slip's own answer to its friction
+    nose: np.ndarray  # (8, n) -1, -1, -s, 3.5, k2, x1, x2 (rows FI1..B2), c (the slate's load)
+    slate: np.ndarray  # (7, n) 1, x1, x2, 3.5, 3.5, -1, -1 (rows VY..FC2)
     zero: np.ndarray
     one: np.ndarray
     three5: np.ndarray
 
 
-def _step(dv, s, c, k: _Rows, mu_w, mu_s, st, go, new) -> tuple:
-    """One impulse step on the rows of `st` = [vy, a1, a2, b1, b2, fi1, fi2, fc1, fc2] where
-    `go` (None: every row): the normal part takes dv off vy, then friction at the nose and
-    on the slate. Returns (the rows after it, room for the next: st and new in some order).
-    k: the slips' responses to friction and the constants (`_Rows`); mu_w, mu_s: the
-    frictions, a row each; new: room for the next rows. The slips (a1, a2, b1, b2) are one
-    array of four rows, and the pairs (fi1, fi2), (fc1, fc2) each one of two: the same
+def _step(dv, c, k: _Rows, st, go, new) -> tuple:
+    """One impulse step on the rows of `st` (FI1..FC2) where `go` (None: every row): the
+    normal part takes dv off vy, then friction at the nose and on the slate. Returns (the
+    rows after it, room for the next: st and new in some order). k: the gains and constants
+    (`_Rows`); new: room for the next rows. The same
     operations, element for element, as `_step_one`, in fewer calls."""
-    nose, slate, zero, one, three5 = k
+    zero, one, three5 = k.zero, k.one, k.three5
+    x = new
+    np.copyto(x, st)
     dp = dv / c
-    vy = st[0] - dv
-    ab = st[1:5].copy()
-    ab[1] += s * dv
-    ab[3] -= dv
-    a = ab[:2]
+    x[VY] -= dv
+    x[A2] += k.s * dv
+    x[B2] -= dv
+    a = x[A1:A2 + 1]
     sq = a * a
     slip = np.sqrt(sq[0] + sq[1])
     live = slip > zero
     d = a / np.where(live, slip, one)
-    sq = nose[:2] * (d * d)
-    j = np.minimum(mu_w * dp, slip / np.where(live, sq[0] + sq[1], one))
-    ab -= j * (nose * np.concatenate((d, d)))
-    vy = vy + j * (s * d[1])
-    np.add(st[5:7], j * d, out=new[5:7])
-    up = np.maximum(s * dp + j * (c * d[1]), zero)
-    b = ab[2:]
+    sq = k.nose2 * (d * d)
+    j = np.minimum(k.mu_w * dp, slip / np.where(live, sq[0] + sq[1], one))
+    change = j * (k.nose * d.take(_NOSE_D, axis=0))
+    x[:B2 + 1] -= change[:-1]
+    up = np.maximum(k.s * dp + change[-1], zero)
+    b = x[B1:B2 + 1]
     sq = b * b
     slip = np.sqrt(sq[0] + sq[1])
     e = b / np.where(slip > zero, slip, one)
-    j = np.minimum(mu_s * up, slip / three5)
-    np.subtract(vy, j * e[1], out=new[0])
-    np.subtract(ab, j * (slate * np.concatenate((e, e))), out=new[1:5])
-    np.add(st[7:9], j * e, out=new[7:9])
+    j = np.minimum(k.mu_s * up, slip / three5)
+    x[VY:] -= j * (k.slate * e.take(_SLATE_E, axis=0))
     if go is None:  # every row: the new rows are the next, st is room for the ones after
-        return new, st
-    np.copyto(st, new, where=go)
-    return st, new
+        return x, st
+    np.copyto(st, x, where=go)
+    return st, x
 
 
 def _step_one(dv, s, c, k, mu_w, mu_s, st) -> tuple:
@@ -184,13 +193,13 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     mu_w, mu_s = ph.mu_cushion, ph.mu_slide
     cdp = c * (vy / (c * STEPS))  # vy's fall in a step of the normal impulse alone
     zero = np.zeros_like(vy)
-    st = np.stack([vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy, vx - r * wy,
-                   vy + r * wx, zero, zero, zero, zero])
+    st = np.array([zero, zero, vy, (vx + r * wy * s) - r * wz * c, r * wx - s * vy,
+                   vx - r * wy, vy + r * wx, zero, zero])  # rows FI1..FC2
     k2, x1, x2 = _gains(s)
-    three5 = np.full_like(s, 3.5)
-    k = _Rows(np.stack([three5, k2, x1, x2]), np.stack([x1, x2, three5, three5]), zero,
-              np.ones_like(s), three5)
-    mu_w, mu_s = np.full_like(s, mu_w), np.full_like(s, mu_s)
+    three5, one = np.full_like(s, 3.5), np.ones_like(s)
+    k = _Rows(s, np.full_like(s, mu_w), np.full_like(s, mu_s),
+              np.array([three5, k2]), np.array([-one, -one, -s, three5, k2, x1, x2, c]),
+              np.array([one, x1, x2, three5, three5, -one, -one]), zero, one, three5)
     half, two = np.full_like(s, 0.5), np.full_like(s, 2.0)
     new = np.empty_like(st)
     work = zero
@@ -198,22 +207,22 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
     # Compression: until a step's normal impulse stops the ball moving into the cushion.
     # (A step of every ball, the usual one, needs no mask.)
     for _ in range(MAX_STEPS):
-        go = ~last & (st[0] > zero)
+        go = ~last & (st[VY] > zero)
         count = np.count_nonzero(go)
         if not count:
             break
         every = count == go.size
-        vy = st[0]
+        vy = st[VY]
         vn = vy - cdp
         last = last | ((vn <= zero) if every else (go & (vn <= zero)))
         vn = np.maximum(vn, zero)
         more = work + half * (vy * vy - vn * vn)
         work = more if every else np.where(go, more, work)
-        st, new = _step(vy - vn, s, c, k, mu_w, mu_s, st, None if every else go, new)
-    vy = st[0]
+        st, new = _step(vy - vn, c, k, st, None if every else go, new)
+    vy = st[VY]
     go = hit & (vy > 0.0)
     work = np.where(go, work + 0.5 * (vy * vy), work)
-    st[0] = np.where(go, 0.0, vy)
+    st[VY] = np.where(go, 0.0, vy)
     # Restitution: until the cushion has given back e^2 of that work.
     rest = ee * ee * work
     for _ in range(MAX_STEPS):
@@ -222,18 +231,18 @@ def bounce_many(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray,
         if not count:
             break
         every = count == go.size
-        vy = st[0]
+        vy = st[VY]
         vn = vy - cdp
         gain = half * (vn * vn - vy * vy)
         end = gain >= rest
         vn = np.where(end, -np.sqrt(vy * vy + two * rest), vn)
         less = np.where(end, zero, rest - gain)
         rest = less if every else np.where(go, less, rest)
-        st, new = _step(vy - vn, s, c, k, mu_w, mu_s, st, None if every else go, new)
-    vy = st[0]
+        st, new = _step(vy - vn, c, k, st, None if every else go, new)
+    vy = st[VY]
     vy = np.minimum(np.where(hit & (rest > 0.0), -np.sqrt(vy * vy + 2.0 * rest), vy), 0.0)
     q = 2.5 / r  # R m / I: spin per unit of friction impulse per unit mass
-    fi1, fi2, fc1, fc2 = st[5:]
+    fi1, fi2, fc1, fc2 = st[FI1], st[FI2], st[FC1], st[FC2]
     vo, wo = from_rail(n, vx - (fi1 + fc1), vy, wx - q * (fi2 + fc2),
                        wy - q * (s * fi1 - fc1), wz + q * (c * fi1))
     return np.where(hit[:, None], vo, v), np.where(hit[:, None], wo, w)
