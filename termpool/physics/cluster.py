@@ -119,9 +119,9 @@ def _solve_array(S: np.ndarray, b: np.ndarray) -> np.ndarray:
             W[:, n] = W[:, j]
             W[:, j] = col
             perm[n], perm[j] = perm[j], perm[n]
-        rows = np.flatnonzero(W[n + 1:, n]) + (n + 1)
+        rows = W[n + 1:, n].nonzero()[0] + (n + 1)
         if rows.size:
-            cols = np.flatnonzero(W[n, n + 1:]) + (n + 1)
+            cols = W[n, n + 1:].nonzero()[0] + (n + 1)
             W[rows[:, None], cols] -= np.multiply.outer(W[rows, n] / pivot, W[n, cols])
         n += 1
     x = np.zeros(k)
@@ -215,7 +215,7 @@ def _inelastic_array(A: np.ndarray, u0: np.ndarray, tol: float) -> np.ndarray:
     for n in range(4 * k + 8):
         bulk = n < 8
         lam[:] = 0.0
-        a = np.flatnonzero(active)
+        a = active.nonzero()[0]
         u = u0
         if a.size:
             sol = solve_psd(A[a[:, None], a], -u0[a])
@@ -232,7 +232,7 @@ def _inelastic_array(A: np.ndarray, u0: np.ndarray, tol: float) -> np.ndarray:
         if bulk:
             active |= bad
         else:
-            idx = np.flatnonzero(bad)
+            idx = bad.nonzero()[0]
             active[idx[np.argmin(u[idx])]] = True
     return lam
 

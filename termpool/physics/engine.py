@@ -65,8 +65,8 @@ def _split(due: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]
         k = int(due[0])
         return (_ONE if k == Due.TRANSITION else _NONE, _ONE if k == Due.CUSHION else _NONE,
                 _ONE if k == Due.PAIR else _NONE)
-    return (np.flatnonzero(due == Due.TRANSITION), np.flatnonzero(due == Due.CUSHION),
-            np.flatnonzero(due == Due.PAIR))
+    return ((due == Due.TRANSITION).nonzero()[0], (due == Due.CUSHION).nonzero()[0],
+            (due == Due.PAIR).nonzero()[0])
 
 
 class Engine:
@@ -155,7 +155,7 @@ class Engine:
                     break
                 tabs = _ONE
             else:
-                tabs = np.nonzero((self.t_next <= t_end) & (self.t_next < math.inf))[0]
+                tabs = ((self.t_next <= t_end) & (self.t_next < math.inf)).nonzero()[0]
                 if tabs.size == 0:
                     break
             self._spend(PASS_WORK)

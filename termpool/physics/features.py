@@ -54,7 +54,7 @@ class Features:
         array whose first S columns are inf, the times are written there and it is
         returned."""
         M, S = q.shape[1], self.nseg
-        m, k = np.nonzero(np.ones((M, S), dtype=bool) if near is None else near)
+        m, k = (np.ones((M, S), dtype=bool) if near is None else near).nonzero()
         px, py, vx, vy, ax, ay = q.take(m, axis=1)
         nx, ny, dx, dy, off, start, length, _, _ = g = self.seg_rows.take(k, axis=1)
         # (each dot product the two products added in the order `dots` adds them)
@@ -65,7 +65,7 @@ class Features:
                                 horizon.take(m), beside)
         # The contact must fall on the segment itself; its ends are the jaw-tip points.
         # Worked out only where a time was found (few of the pairs), as `lines_one` does.
-        f = np.flatnonzero(tl < np.inf)  # (never a nan)
+        f = (tl < np.inf).nonzero()[0]  # (never a nan)
         if out is None:
             out = np.full((M, S), np.inf)
         if f.size:
@@ -76,7 +76,7 @@ class Features:
             qx = (px + vx * t + 0.5 * ax * tt) - ex
             qy = (py + vy * t + 0.5 * ay * tt) - ey
             along = qx * dx + qy * dy
-            on = np.flatnonzero((along >= 0) & (along <= length))
+            on = ((along >= 0) & (along <= length)).nonzero()[0]
             out.ravel()[(m * out.shape[1] + k).take(f.take(on))] = t.take(on)
         return out
 

@@ -338,7 +338,7 @@ class Sets:
         each group's contact forces found on its own (other balls: anything). The groups'
         few contacts are solved in plain floats, as `solve_inelastic` does."""
         J = self.J
-        q_list = np.flatnonzero(chosen).tolist()
+        q_list = chosen.nonzero()[0].tolist()
         b = (J.speeds(free) + bend).tolist()
         lam = [0.0] * len(J)
         for q, (live, A) in zip(q_list, self.matrices(k, q_list), strict=True):
@@ -368,7 +368,7 @@ class Sets:
         need = any_by(np.abs(u) > EPS_V, self.row_group, self.count)
         if not need.any():
             return v
-        q_list = np.flatnonzero(need)
+        q_list = need.nonzero()[0]
         lam = np.zeros(len(J))
         for q, A in zip(q_list.tolist(), blocks(J, self.starts[q_list], self.counts[q_list], k),
                         strict=True):
@@ -430,8 +430,8 @@ def push_many(ph: Physics, v: np.ndarray, w: np.ndarray, R: np.ndarray, m: np.nd
         m_ = m_._replace(acc=acc, spin_acc=spin_acc)
     v, acc, alpha, state, duration, w = _states(m_, rest, sliding, rate, R)
     out = [v, acc, alpha, state, duration, w]
-    for q in np.flatnonzero(again).tolist():  # push's second round: push itself
-        balls = np.flatnonzero(grp == q)
+    for q in again.nonzero()[0].tolist():  # push's second round: push itself
+        balls = (grp == q).nonzero()[0]
         rows = sets.rows(q)
         first = int(balls[0])
         one = [(int(a) - first, int(c) - first if c >= 0 else -1, n, bb) for a, c, n, bb in
@@ -495,14 +495,14 @@ class Groups:
         g = int(self.label[b, i])
         if g < 0:
             return [i]
-        return np.flatnonzero(self.label[b] == g).tolist()
+        return (self.label[b] == g).nonzero()[0].tolist()
 
     def break_up(self, tabs, i, j, due, involved) -> tuple[list, list]:
         """A fast contact or bounce of a grouped ball breaks its group: the others move freely
         again (those still pressed together are joined again as their predictions find them:
         a cheap step where a break's impacts cross a group). Returns the balls set moving
         anew, (tables, balls) arrays, for their predictions."""
-        sel = np.flatnonzero(involved & (due >= Due.CUSHION))
+        sel = (involved & (due >= Due.CUSHION)).nonzero()[0]
         if not sel.size:
             return [], []
         tb = tabs[sel]
@@ -521,7 +521,7 @@ class Groups:
         label = np.where(members, -1, label)
         self.label[tb] = label
         self.count[tb] = (label >= 0).sum(axis=1)
-        row, ball = np.nonzero(members & ~own)
+        row, ball = (members & ~own).nonzero()
         if not row.size:
             return [], []
         bb = tb[row]

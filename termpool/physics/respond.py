@@ -63,7 +63,7 @@ class Responses:
         p, v, w = balls.eval(b, i, t)
         hole = f >= feat.first_hole
         ref, n = feat.points(f), feat.normals(f, p)  # of the rails, jaws and tips met
-        bounce = np.nonzero(~hole)[0]
+        bounce = (~hole).nonzero()[0]
         if bounce.size:
             bb, ib = b[bounce], i[bounce]
             nb = n[bounce]
@@ -71,7 +71,7 @@ class Responses:
                                                        balls.radius[bb, ib], balls.mass[bb, ib], ph)
             pb = sink.lift(p[bounce], ref[bounce], nb, balls.rc[bb, ib])
             balls.set(bb, ib, t[bounce], pb, vb, wb)
-        hl = np.nonzero(hole)[0]
+        hl = hole.nonzero()[0]
         if hl.size:
             bh, ih = b[hl], i[hl]
             k = f[hl] - feat.first_hole

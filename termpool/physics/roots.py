@@ -66,7 +66,7 @@ def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
     ax, ay (the candidates that pass a cull are one take of it)."""
     px, py, vx, vy, ax, ay = rel
     pv, r0, vr, touching, now = meeting_now(px, py, vx, vy, dist)
-    rest = np.flatnonzero(touching & ~now & (pv <= vr)) if pressed else ()
+    rest = (touching & ~now & (pv <= vr)).nonzero()[0] if pressed else ()
     if len(rest):
         # The distance's second derivative, (v.v + p.a) / r - (p.v)^2 / r^3.
         px_, py_, vx_, vy_, ax_, ay_ = rel.take(rest, axis=1)
@@ -84,7 +84,7 @@ def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
     tv = np.where(an > 0, np.minimum(np.maximum(-vn / an, 0.0), horizon), horizon)
     proj = np.minimum(r0 + (vn + 0.5 * an * tv) * tv, r0)
     keep = ((proj <= target) | ~(r0 > 0)) & ~now & (horizon > 0)  # (r0 = 0: keep, no divide)
-    idx = np.flatnonzero(keep)
+    idx = keep.nonzero()[0]
     if idx.size == 0:
         return out
     # Second cull, on what is left: the window in PIECES straight pieces, each widened by the
@@ -108,7 +108,7 @@ def first_contact_rows(rel: np.ndarray, dist: np.ndarray, horizon: np.ndarray,
     cx, cy = qx + wx * ts, qy + wy * ts
     reach = tg + 0.5 * np.sqrt(aa) * h * h
     close = (cx * cx + cy * cy <= reach * reach).any(axis=0) & ((vv > 0) | (aa > 0))
-    sel = np.flatnonzero(close)
+    sel = close.nonzero()[0]
     if sel.size == 0:
         return out
     idx = idx[sel]
@@ -250,7 +250,7 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
     C4, C3, C2, C1 = c4 * T2 * T2, c3 * T2 * T, c2 * T2, c1 * T
     quartic = C4 > 1e-13 * (np.abs(C2) + np.abs(C1) + np.abs(c0))
     s = np.full(T.size, np.inf)
-    q = np.flatnonzero(quartic)
+    q = quartic.nonzero()[0]
     if q.size:
         comp = np.zeros((q.size, 4, 4))
         top = comp[:, 0]
@@ -265,7 +265,7 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
         slope = ((4 * C4[q, None] * re + 3 * C3[q, None]) * re + 2 * C2[q, None]) * re + C1[q, None]
         ok = (np.abs(roots.imag) <= 1e-6 * (1.0 + np.abs(re))) & (re >= -1e-9) & (re <= 1 + 1e-9)
         s[q] = np.where(ok & (slope <= 0), re, np.inf).min(axis=1)
-    d = np.flatnonzero(~quartic)
+    d = (~quartic).nonzero()[0]
     if d.size:
         # Negligible curvature: the quadratic part gives the root, Newton below corrects it.
         A, B, C = C2[d], C1[d], c0[d]
@@ -289,7 +289,7 @@ def solve(px, py, vx, vy, ax, ay, T, tg, pv, r0, vv, aa) -> np.ndarray:
     band = 2 * tg * TOUCH  # f is about 2 tg times the gap
     clear = (np.abs(f) <= band) & (df < -2 * tg * V_MIN) & ((d2 <= 0) | (df * df > 8 * d2 * band))
     t = np.minimum(np.maximum(t - np.where(clear, f / df, 0.0), 0.0), T)
-    for k in np.flatnonzero(hit & ~clear).tolist():
+    for k in (hit & ~clear).nonzero()[0].tolist():
         t[k] = _first_crossing(float(c4[k]), float(c3[k]), float(c2[k]), float(c1[k]),
                                float(c0[k]), float(T[k]), float(tg[k]))
     return np.where(hit, t, np.inf)

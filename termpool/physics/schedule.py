@@ -182,7 +182,7 @@ class Schedule:
         self.t_pair[b, :, i] = np.inf
         live = st != POCKETED
         if not live.all():
-            m = np.flatnonzero(live)
+            m = live.nonzero()[0]
             if m.size == 0:
                 return
             b, i, t, end, moving, key = b[m], i[m], t[m], end[m], moving[m], key[m]
@@ -231,7 +231,7 @@ class Schedule:
             lo, hi = swept(Q[0:2], Q[2:4], Q[4:6],
                            np.maximum(np.minimum(end_k - tbt, 2.0 * self.horizon), 0.0).ravel())
             valid &= self._overlap(lo, hi, radius, u, ui)
-        mi, kk = np.nonzero(valid)
+        mi, kk = valid.nonzero()
         k = u.take(mi) * N + kk
         rel = Q.take(k, axis=1)
         rel -= q.take(mi, axis=1)
@@ -257,7 +257,7 @@ class Schedule:
             if wait.any():
                 self._wait(b[wait], i[wait])
                 near &= ~wait
-        mv = np.flatnonzero(moving & near)
+        mv = (moving & near).nonzero()[0]
         nc, S = len(feat.circles), feat.nseg
         qm, rcm, Tm = q.take(mv, axis=1), rc.take(mv), T.take(mv)
         if CULL and mv.size:  # the features the moving balls' boxes come within reach of
@@ -268,7 +268,7 @@ class Schedule:
             D[:, :feat.npt] = rcm[:, None]
             D[:, feat.npt:] = feat.table.hole_r
             if CULL:
-                mr, cc = np.nonzero(near_f[:, S:])
+                mr, cc = near_f[:, S:].nonzero()
             else:
                 mr, cc = np.divmod(np.arange(mv.size * nc), nc)
             m = qm.take(mr, axis=1)
@@ -326,7 +326,7 @@ class Schedule:
             return None, hot
         rows = mi[late]
         self._wait(b.take(rows), i.take(rows))
-        return np.flatnonzero(~late), hot
+        return (~late).nonzero()[0], hot
 
     def _wait(self, b, i) -> None:
         """Balls (b, i) have predictions left for later (`complete`)."""
@@ -345,8 +345,8 @@ class Schedule:
             dx, dy = x - hx, y - hy
             # hypot(dx, dy) >= max(|dx|, |dy|): a ball that far from every hole is near none,
             # and hypot (slow) is worked out only for the others.
-            c = np.flatnonzero(((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
-                               & ~near)
+            c = (((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
+                               & ~near).nonzero()[0]
             if c.size:
                 near[c] = ((np.hypot(dx[:, c], dy[:, c]) - hr) < reach.take(c)).any(axis=0)
         return near
@@ -355,11 +355,11 @@ class Schedule:
         """Predict the pairs `_later` left, of every table whose next event is no longer at
         its clock (with `force`, of every table): its balls with pairs waiting are renewed
         in full, which gives the pairs that did not wait the same times again."""
-        due = np.flatnonzero(self._late_tables)
+        due = self._late_tables.nonzero()[0]
         if not force:
             due = due[self.t_next.take(due) != self.tb.take(due)]
         if due.size:
-            b, i = np.nonzero(self._late[due])
+            b, i = self._late[due].nonzero()
             b = due.take(b)
             self._late[due] = False
             self._late_tables[due] = False
@@ -376,7 +376,7 @@ class Schedule:
         each b's place among them (marks in an array of B, no sort)."""
         place = self._place
         place[b] = 1
-        tabs = np.flatnonzero(place)
+        tabs = place.nonzero()[0]
         place[tabs] = np.arange(tabs.size)
         u = place.take(b)
         place[tabs] = 0

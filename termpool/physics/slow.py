@@ -96,7 +96,7 @@ class SlowContacts:
         if crowd.any():
             # A cluster's solve leaves out a contact sunk deeper than CLUSTER_GAP, and the
             # ball would meet it again at once, for ever: it bounces (and is lifted).
-            k = np.flatnonzero(crowd)
+            k = crowd.nonzero()[0]
             crowd[k] = ~self._sunk(tabs[cu[k]], i[cu[k]])
         for n in cu[crowd].tolist():
             clusters.append(Cluster(n, [int(i[n])], bool(busy[n]), True))
@@ -141,7 +141,7 @@ class SlowContacts:
         if fast.any():
             self.respond.collide(b[fast], i[fast], j[fast], *(x[fast] for x in states))
         calm = slow if busy is None else slow & ~busy
-        sl = np.flatnonzero(calm)
+        sl = calm.nonzero()[0]
         if sl.size:
             # A pair alone, neither ball grouped: settled here, unless it stays pressed
             # together, which the cluster's solve makes a group.
@@ -155,7 +155,7 @@ class SlowContacts:
                 quiet.update(int(pr[k]) for k in a[~changed & ~pressed].tolist())
                 alone[alone] = ~pressed
             sl = sl[~alone]
-        late = sl.tolist() + (np.flatnonzero(busy).tolist() if busy is not None else [])
+        late = sl.tolist() + (busy.nonzero()[0].tolist() if busy is not None else [])
         for k in late:
             every = busy is not None and bool(busy[k])
             clusters.append(Cluster(int(pr[k]), [int(i[k]), int(j[k])], every, True))
@@ -331,13 +331,13 @@ class SlowContacts:
         near &= live[:, :, None] & live[:, None, :]
         k = np.arange(N)
         near[:, k, k] = False
-        f = np.flatnonzero(near)
+        f = near.reshape(-1).nonzero()[0]
         ga, c = np.divmod(f, N)  # ga = q N + a
         q, a = np.divmod(ga, N)
         gc = ga - a + c
         R = R.reshape(-1)
         dist = np.hypot(dx.take(f), dy.take(f))
-        keep = np.flatnonzero(dist - (R.take(ga) + R.take(gc)) < CLUSTER_GAP)
+        keep = (dist - (R.take(ga) + R.take(gc)) < CLUSTER_GAP).nonzero()[0]
         q, a, c, ga, gc, dist = (x.take(keep) for x in (q, a, c, ga, gc, dist))
         P, V = p.reshape(-1, 2), v.reshape(-1, 2)
         d = P.take(gc, axis=0) - P.take(ga, axis=0)
@@ -376,7 +376,7 @@ class SlowContacts:
         place = np.full(N, -1)
         place[mem] = np.arange(mem.size)
         pa, pc = place[a_], place[c_]
-        k = np.flatnonzero((pa >= 0) & (pa < pc))
+        k = ((pa >= 0) & (pa < pc)).nonzero()[0]
         k = k[np.lexsort((pc[k], pa[k]))]
         a, c = a_[k], c_[k]
         ra, rc_, rn, rg = [a], [c], [-d_[k] / dist_[k][:, None]], [np.zeros(a.size)]
@@ -392,10 +392,10 @@ class SlowContacts:
 
         seg_gap, beside, tip_gap, tip_dir = self.features.gaps(pm, rcm)
         slow = dots(v[mem], tab.seg_n) >= -cap
-        x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
+        x, f = ((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow).nonzero()
         cushion_rows(x, tab.seg_n[f], seg_gap[x, f], 1)
         slow = (v[mem][:, None] * tip_dir).sum(axis=2) >= -cap
-        x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
+        x, f = ((tip_gap < CLUSTER_GAP) & slow).nonzero()
         cushion_rows(x, tip_dir[x, f], tip_gap[x, f], 2)
         ra, rc_, rn, rg, rkind = (np.concatenate(z) for z in (ra, rc_, rn, rg, rkind))
         nc = len(ra)

@@ -69,7 +69,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     place = np.full((C, N), -1)
     place[mq, mb] = np.arange(mq.size) - np.repeat(np.cumsum(sizes) - sizes, sizes)
     ia, ic = place[pq, pa], place[pq, pc]
-    k = np.flatnonzero((ia >= 0) & (ia < ic))
+    k = ((ia >= 0) & (ia < ic)).nonzero()[0]
     k = k[np.lexsort((ic[k], ia[k], pq[k]))]
     bq, a, c = pq[k], pa[k], pc[k]
     rq, ra, rc_ = [bq], [a], [c]
@@ -77,18 +77,18 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
     rkind = [np.zeros(a.size, dtype=np.int64)]
     # Only members by the rails can touch a rail, jaw or tip (the rest of a rack pays nothing).
     pm, rcm = P[gm], balls.rc[tarr[mq], mb]
-    by = np.flatnonzero(by_rails(features, pm, rcm))
+    by = by_rails(features, pm, rcm).nonzero()[0]
     if by.size:
         seg_gap, beside, tip_gap, tip_dir = features.gaps(pm[by], rcm[by])
         mq_, mb_, vm = mq[by], mb[by], V[gm[by]]
         capm = cap[mq_][:, None]
         slow = dots(vm, tab.seg_n) >= -capm
-        x, f = np.nonzero((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow)
+        x, f = ((np.abs(seg_gap) < CLUSTER_GAP) & beside & slow).nonzero()
         for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)),
                        (rn, tab.seg_n[f]), (rg, seg_gap[x, f]), (rkind, np.full(x.size, 1))):
             z.append(val)
         slow = (vm[:, None] * tip_dir).sum(axis=2) >= -capm
-        x, f = np.nonzero((tip_gap < CLUSTER_GAP) & slow)
+        x, f = ((tip_gap < CLUSTER_GAP) & slow).nonzero()
         for z, val in ((rq, mq_[x]), (ra, mb_[x]), (rc_, np.full(x.size, -1)),
                        (rn, tip_dir[x, f]), (rg, tip_gap[x, f]), (rkind, np.full(x.size, 2))):
             z.append(val)
@@ -116,7 +116,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         if not live.any():
             break
         if not cols:  # the clusters live now are all that may be later
-            qs = np.flatnonzero(live)
+            qs = live.nonzero()[0]
             cols = {q: Columns(M) for q, M in zip(
                 qs.tolist(), blocks(J, starts[qs], counts[qs],
                                     np.where(snaps, 5.0 / 7.0, 1.0) / mf), strict=True)}
@@ -135,7 +135,7 @@ def solve_clusters(ph: Physics, balls: Balls, features: Features, groups: Groups
         live &= any_by(gaps < -1e-12, rq_, C)
         if not live.any():
             break
-        qs = np.flatnonzero(live)
+        qs = live.nonzero()[0]
         mats = {q: Columns(M) for q, M in
                 zip(qs.tolist(), blocks(J, starts[qs], counts[qs], inv_m), strict=True)}
         lam = _solved(mats, np.minimum(gaps, 0.0), live, first, ends)
@@ -190,7 +190,7 @@ def _solved(mats, u0: np.ndarray, live: np.ndarray, starts: list, ends: list) ->
     others), the small problems in plain floats from one list of u0."""
     lam = [0.0] * len(u0)
     u = u0.tolist()
-    for q in np.flatnonzero(live).tolist():
+    for q in live.nonzero()[0].tolist():
         s, e = starts[q], ends[q]
         if e - s > PLAIN:
             lam[s:e] = solve_inelastic(mats[q].A, u0[s:e]).tolist()
@@ -215,7 +215,7 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
     if free.size:
         bt, bi = tarr[free // N], free % N
         balls.set(bt, bi, tb[bt], P[free], V[free], W[free])
-    hb = np.flatnonzero(held)  # global numbers: cluster by cluster, ball by ball
+    hb = held.nonzero()[0]  # global numbers: cluster by cluster, ball by ball
     if hb.size:
         where = np.full(C * N + 1, -1)
         where[hb] = np.arange(hb.size)
@@ -231,6 +231,6 @@ def _join(ph: Physics, balls: Balls, groups: Groups, tb: np.ndarray, tarr: np.nd
         balls.motion[bt, bi, :Col.RATE] = np.concatenate(
             [t[:, None], P[hb], vj, acc, wj, alpha], axis=1)
         # Each group labelled by its first ball (the tables are distinct).
-        first = np.flatnonzero(np.diff(hq, prepend=-1))
+        first = np.diff(hq, prepend=-1).nonzero()[0]
         groups.label[bt, bi] = np.repeat(bi[first], np.diff(first, append=hb.size))
     groups.count[tarr] = (groups.label[tarr] >= 0).sum(axis=1)

@@ -17,6 +17,12 @@ def norm(v: np.ndarray) -> np.ndarray:
     return np.hypot(v[..., 0], v[..., 1])
 
 
+def length(v: np.ndarray) -> np.ndarray:
+    """Lengths of rows v (K, C): np.linalg.norm(v, axis=1)'s operations (the squares summed
+    along the row, then the root), without its Python."""
+    return np.sqrt((v * v).sum(axis=1))
+
+
 def dots(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """(M, K) dot products of rows p (M, 2) with rows q (K, 2)."""
     return p[:, 0, None] * q[None, :, 0] + p[:, 1, None] * q[None, :, 1]
@@ -37,7 +43,7 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise a x b of (K, 3) arrays."""
     ax, ay, az = a[:, 0], a[:, 1], a[:, 2]
     bx, by, bz = b[:, 0], b[:, 1], b[:, 2]
-    return np.stack([ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx], axis=1)
+    return np.array([ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx]).T.copy()
 
 
 def cross_one(a: list, b: list) -> list:

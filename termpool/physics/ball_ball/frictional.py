@@ -12,7 +12,7 @@ import numpy as np
 
 from termpool.physics import libm
 from termpool.physics.ball_ball.frictionless import impulse, impulse_one
-from termpool.physics.vec import cross, cross_one, min_one, to3
+from termpool.physics.vec import cross, cross_one, length, min_one, to3
 
 
 def collide(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
@@ -23,7 +23,7 @@ def collide(pi, pj, vi, vj, wi, wj, ri, rj, mi, mj, ph) -> tuple:
     arm_j = -rj[:, None] * n3
     slip = (to3(vi) + cross(wi, arm_i)) - (to3(vj) + cross(wj, arm_j))
     slip_t = slip - np.einsum("ij,ij->i", slip, n3)[:, None] * n3
-    speed = np.linalg.norm(slip_t, axis=1)
+    speed = length(slip_t)
     mu = 0.00995 + 0.108 * libm.exp(-1.088 * speed)
     k = 3.5 * inv  # 1/mi + 1/mj + R^2/I terms of two solid spheres
     jt = np.minimum(mu * jn, speed / k)

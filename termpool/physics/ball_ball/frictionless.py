@@ -7,14 +7,14 @@ import math
 
 import numpy as np
 
-from termpool.physics.vec import max_one
+from termpool.physics.vec import length, max_one
 
 
 def impulse(pi, pj, vi, vj, mi, mj, e: float, v_inelastic: float) -> tuple:
     """The normal impulse of contacts (arrays over K): returns (n, jn, inv, vi, vj), n the unit
     normal from i to j, jn the impulse, inv = 1/mi + 1/mj, and the velocities after it."""
     d = pj - pi
-    n = d / np.linalg.norm(d, axis=1)[:, None]
+    n = d / length(d)[:, None]
     closing = np.einsum("ij,ij->i", vi - vj, n)
     ee = np.where(closing > v_inelastic, e, 0.0)
     inv = 1.0 / mi + 1.0 / mj

@@ -38,8 +38,8 @@ def to_rail(n, v, w) -> tuple[np.ndarray, ...]:
 def from_rail(n, vx, vy, wx, wy, wz) -> tuple[np.ndarray, np.ndarray]:
     """The table frame's v (K, 2) and w (K, 3) from rail-frame components."""
     n0, n1 = n[:, 0], n[:, 1]
-    v = np.stack([-(vx * n1) - vy * n0, vx * n0 - vy * n1], axis=1)
-    w = np.stack([-(wx * n1) - wy * n0, wx * n0 - wy * n1, wz], axis=1)
+    v = np.array([-(vx * n1) - vy * n0, vx * n0 - vy * n1]).T.copy()
+    w = np.array([-(wx * n1) - wy * n0, wx * n0 - wy * n1, wz]).T.copy()
     return v, w
 
 

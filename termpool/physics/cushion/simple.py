@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from termpool.physics.cushion.model import CushionPhysics
-from termpool.physics.vec import cross, cross_one, max_one, min_one, to3
+from termpool.physics.vec import cross, cross_one, length, max_one, min_one, to3
 
 # Restitution and nose friction when a scene gives none: the game's cushion from the start
 # (the nominal values pooltool uses too).
@@ -41,7 +41,7 @@ def bounce(n: np.ndarray, v: np.ndarray, w: np.ndarray, r: np.ndarray, m: np.nda
     normal = -arm / r[:, None]
     slip = to3(v) + cross(w, arm)
     slip_t = slip - np.einsum("ij,ij->i", slip, normal)[:, None] * normal
-    speed = np.linalg.norm(slip_t, axis=1)
+    speed = length(slip_t)
     jt = np.minimum(mu * p_h / cos_t, speed * m / 3.5)
     with np.errstate(invalid="ignore", divide="ignore"):  # 0/0 where there is no slip
         dirn = np.where(speed[:, None] > 0, slip_t / speed[:, None], 0.0)
