@@ -233,6 +233,34 @@ def test_ball_in_hand_refuses_a_spot_on_another_ball() -> None:
     assert "Can't place the cue ball there" in text
 
 
+def test_ball_in_hand_esc_leaves_the_cue_ball_where_it_lies() -> None:
+    """Moved about, then Esc: the ball is put down where it lay (not at the cursor), and the
+    key bar offers it."""
+    app = app_for()
+    m = app.state.match
+    c = m.ids.index("cue")
+    here = tuple(float(v) for v in m.pos[c])
+    assert "Esc leave it" in screen_text(app.cells(120, 40)[0])
+    run_script(app, "up*5 left*3")
+    assert app.state.part.cursor != here
+    app.key(Key("esc"), 10.0)
+    assert app.state.phase is Phase.AIM
+    assert tuple(float(v) for v in m.pos[c]) == here
+
+
+def test_ball_in_hand_after_a_scratch_esc_asks_for_a_spot() -> None:
+    """A cue ball off the table (pocketed) has nowhere to be left: Esc says to place it, and
+    the key bar does not offer it."""
+    app = app_for()
+    m = app.state.match
+    c = m.ids.index("cue")
+    m.on_table[c] = False
+    assert "leave it" not in screen_text(app.cells(120, 40)[0])
+    app.key(Key("esc"), 0.0)
+    assert app.state.phase is Phase.PLACE
+    assert "put it down with Enter" in screen_text(app.cells(120, 40)[0])
+
+
 def test_ball_in_hand_arrows_move_the_cue_ball() -> None:
     app = app_for()
     x0, y0 = app.state.part.cursor

@@ -43,7 +43,7 @@ ACTIONS: dict[str, str] = {
     "spin_reset": "cue tip to the center",
     "place": "ball in hand: place the cue ball (arrows move it)",
     "confirm": "confirm",
-    "cancel": "cancel",
+    "cancel": "cancel a charge; ball in hand: leave it where it lies",
     "help": "this help",
     "pause": "pause",
     "quit": "quit",

@@ -352,6 +352,17 @@ def cue_index(s: State) -> int:
     return s.match.ids.index("cue")
 
 
+def lies_playable(s: State) -> tuple[float, float] | None:
+    """Where the cue ball lies, when it is on the table where it could be put down (Esc
+    then leaves it there); else None (after a scratch it must be placed)."""
+    m = s.match
+    c = cue_index(s)
+    if not m.on_table[c]:
+        return None
+    x, y = (float(v) for v in m.pos[c])
+    return None if m.placement_error(x, y) else (x, y)
+
+
 def shooter_is_cpu(s: State) -> bool:
     return s.cpu[s.match.shooter]
 

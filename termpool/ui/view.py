@@ -57,6 +57,7 @@ from termpool.ui.state import (
     concedes,
     cue_index,
     help_of,
+    lies_playable,
     lobby_choice,
     menu_entries,
     voice,
@@ -436,9 +437,11 @@ def hint_lines(s: State) -> list[tuple]:
     quit_, help_ = (f"{k('quit')} quit", 0), (f"{k('help')} help", 1)
     ch = s.controls.charge
     if s.phase is Phase.PLACE:
+        leave = ([((f"{k('cancel')} leave it", f"{k('cancel')} leave"), 2)]
+                 if lies_playable(s) else [])
         return [(f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move", 0),
-                ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), ("mouse: click", 4), help_,
-                quit_]
+                ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), *leave, ("mouse: click", 4),
+                help_, quit_]
     if s.phase is Phase.AIM and ch.active:  # what Space does now: the status's first line
         return [(f"{k('cancel')} cancel", 0)]
     if s.phase is Phase.AIM:
