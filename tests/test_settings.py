@@ -308,8 +308,12 @@ def test_a_name_is_typed_and_plays_under_it() -> None:
 
 def test_a_name_stops_at_its_length_and_esc_leaves_it_as_it_was() -> None:
     app = app_at_menu()
-    keys(app, menu_item("Settings"), *["down"] * KEYS.index("player2"), "enter",
-         *["x"] * (MAX_NAME + 5), "enter")
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("player2"), "enter", "x")
+    assert f"up to {MAX_NAME} characters" in screen_text(app.cells(100, 32)[0])
+    keys(app, *["x"] * (MAX_NAME + 4))
+    # Typing stopped: the screen says why.
+    assert f"{MAX_NAME} characters: a name's most" in screen_text(app.cells(100, 32)[0])
+    keys(app, "enter")
     assert app.state.opts.player2 == "x" * MAX_NAME
     keys(app, "enter", "y", "esc")
     assert app.state.opts.player2 == "x" * MAX_NAME

@@ -11,7 +11,7 @@ from typing import Any
 
 from termpool.text import shown
 from termpool.ui.help import BOX_EDGE
-from termpool.ui.settings import SETTINGS
+from termpool.ui.settings import MAX_NAME, SETTINGS
 from termpool.ui.state import Settings, State, Stats
 
 GROUPS = (("The game", ("level", "table", "frames", "theme", "colors")),
@@ -70,7 +70,11 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
             headed.append(line)
     setting = SETTINGS[box.index]
     if box.editing is not None:
-        help_ = "type the name · Enter keeps it · Esc leaves it as it was"
+        # Said before the limit is met, and again when typing stops there.
+        full = len(box.editing) >= MAX_NAME
+        typing = (f"{MAX_NAME} characters: a name's most" if full
+                  else f"type the name (up to {MAX_NAME} characters)")
+        help_ = f"{typing} · Enter keeps it · Esc leaves it as it was"
     elif setting.kind == "name":
         help_ = f"{setting.help} · Enter: type it"
     else:
