@@ -293,6 +293,19 @@ def test_the_stats_text_fits_the_box_and_names_every_opponent() -> None:
     assert stats_lines(h.summary([])) == [stats_lines(h.summary([]))[0]]
 
 
+def test_the_chart_s_key_names_only_the_marks_it_shows() -> None:
+    """Games against the computer alone: no word of online games or a second player; an
+    online one added: its mark is explained."""
+    against = [line(level=lv, date=(WHEN + timedelta(days=k)).isoformat())
+               for k, lv in enumerate(["easy", "hard", "easy"])]
+    body = " ".join(stats_lines(h.summary(against)))  # (the key may wrap)
+    assert "e h: the computer's level)" in body
+    assert "online" not in body and "second player" not in body
+    online = line(level=None, online=True, date=(WHEN + timedelta(days=9)).isoformat())
+    body = " ".join(stats_lines(h.summary([*against, online])))
+    assert "e h: the computer's level, o: online)" in body
+
+
 # --------------------------------------------------------------------- the command, the game
 
 def stats_cli(*args: str, env: dict | None = None) -> subprocess.CompletedProcess:

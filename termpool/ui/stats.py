@@ -23,6 +23,22 @@ BLOCKS = " ▁▂▃▄▅▆▇█"
 GAMES = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}
 
 
+# What the chart's marks mean, for the groups it shows (in GROUP_MARK's order).
+LEGEND = (({"easy", "normal", "hard", "pro"}, "the computer's level"),
+          ({"player"}, "a second player"), ({"online"}, "online"), ({"practice"}, "practice"))
+
+
+def legend(groups: set[str]) -> str:
+    """The chart's key for the marks of `groups` only: a chart of games against the computer
+    has no word for online ones."""
+    parts = []
+    for members, words in LEGEND:
+        marks = " ".join(GROUP_MARK[g] for g in GROUP_MARK if g in members and g in groups)
+        if marks:
+            parts.append(f"{marks}: {words}")
+    return ", ".join(parts)
+
+
 def pct(rate: float) -> str:
     return f"{round(100 * rate)}%"
 
@@ -93,7 +109,7 @@ def stats_lines(summary: dict[str, Any]) -> list[str]:
         out.append(_totals_row(GROUP_WORDS[group], t, group == "practice"))
     last = summary["last"]
     chart_head = (f"Pot rate, the last {_plural(len(last), 'match', 'matches')} (oldest left; "
-                  "e n h P: the computer's level, p: a second player, o: online, · practice)")
+                  f"{legend({group_of(line) for line in last})})")
     out += ["", *textwrap.wrap(chart_head, WIDTH)]
     out += chart_lines([line["pot_rate"] for line in last],
                        [GROUP_MARK[group_of(line)] for line in last])
