@@ -1057,6 +1057,42 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
     assert app.state.stroke.angle == pytest.approx(0.0)
 
 
+def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> None:
+    """Solids to shoot, the cue ball in the middle: Tab aims at each solid's centre in turn
+    going clockwise (as → turns the aim), never at a stripe or the 8; Shift+Tab retraces."""
+    from dataclasses import replace
+
+    app = app_for(mode="8ball", opponent="human")
+    m = app.state.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    m.on_table[:] = False
+    place = {"cue": (1.27, 0.635), "1": (2.0, 0.635), "2": (1.27, 1.1), "3": (0.5, 0.2),
+             "9": (1.27, 0.2), "8": (0.5, 1.0)}
+    for b, p in place.items():
+        m.pos[m.ids.index(b)] = p
+        m.on_table[m.ids.index(b)] = True
+    app.state = start_turn(app.state)
+    cue = np.array(place["cue"])
+
+    def at(b: str) -> float:
+        d = np.array(place[b]) - cue
+        return math.degrees(math.atan2(d[1], d[0])) % 360.0
+
+    put(app, stroke=replace(app.state.stroke, angle=at("1")))
+    seen = []
+    for _ in range(3):
+        app.key(Key("tab"), 1.0)
+        seen.append(app.state.stroke.angle)
+    assert seen == pytest.approx([at("3"), at("2"), at("1")])  # clockwise: angles falling
+    back = []
+    for _ in range(3):
+        app.key(Key("tab", shift=True), 2.0)
+        back.append(app.state.stroke.angle)
+    assert back == pytest.approx([at("2"), at("3"), at("1")])
+    assert "Tab next ball" in screen_text(app.cells(120, 40)[0])
+
+
 # -------------------------------------------------------------------- the computer's turn
 
 def cpu_to_shoot(monkeypatch, note="3 in the left foot corner pocket"):

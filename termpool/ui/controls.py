@@ -41,6 +41,8 @@ ACTIONS: dict[str, str] = {
     "spin_left": "cue tip left (left english)",
     "spin_right": "cue tip right (right english)",
     "spin_reset": "cue tip to the center",
+    "next_ball": "aim at the next ball you may hit, going ↻",
+    "previous_ball": "aim at the next ball you may hit, going ↺",
     "place": "ball in hand: place the cue ball (arrows move it)",
     "confirm": "confirm",
     "cancel": "cancel a charge; ball in hand: leave it where it lies",
@@ -84,6 +86,7 @@ class KeyMap:
     DEFAULTS: ClassVar[dict[str, list[str]]] = {
         "aim_ccw": ["left"], "aim_cw": ["right"],
         "aim_fine_ccw": ["up", "shift+left"], "aim_fine_cw": ["down", "shift+right"],
+        "next_ball": ["tab"], "previous_ball": ["shift+tab"],
         "shoot": ["space"],
         "spin_up": ["w"], "spin_down": ["s"], "spin_left": ["a"], "spin_right": ["d"],
         "spin_reset": ["x"], "place": ["b"], "confirm": ["enter"], "cancel": ["esc"],

@@ -348,13 +348,23 @@ def _side(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono
         put_text(cells, end, c0, s, DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
+SPARE = 9  # a key help part of this rank shows only where every part fits in its long form
+
+
 def fit_hint(parts: Sequence[tuple], width: int) -> str:
     """The key help for a line of `width` cells: every part in its long form if they fit
     (two spaces apart, else one), then in each shorter form in turn (a part gives one to
     three: long, short, tight), then without the highest ranks, one rank at a time. Parts
     are never cut; only the rank-0 parts' tightest forms, should even they not fit, are cut
-    at the end."""
-    forms = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
+    at the end. Parts of rank SPARE are the first to go: they never shorten the others."""
+    everything = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
+    spare = [f[0] for f, r in everything if r >= SPARE]
+    if spare:
+        for sep in ("  ", " "):
+            line = sep.join(f[0] for f, _ in everything)
+            if len(line) <= width:
+                return line
+    forms = [(f, r) for f, r in everything if r < SPARE]
     limits = [math.inf, *sorted({r for _, r in forms if r > 0}, reverse=True)]
     depth = max((len(f) for f, _ in forms), default=1)
     for limit in limits:

@@ -416,18 +416,47 @@ def trace(s: State) -> Trace | None:
     return aim_trace(m.table, m.pos, m.radius, m.on_table, c, s.stroke.angle)
 
 
+def targets(s: State) -> list[int]:
+    """The balls (indices) the shooter may hit first: every object ball on an 8-ball break,
+    and every one when the rules name none; none when the cue ball is off the table."""
+    m = s.match
+    if not m.on_table[cue_index(s)]:
+        return []
+    on = [b for b, here in zip(m.ids, m.on_table, strict=True) if here]
+    objects = [b for b in on if b != "cue"]
+    st = m.state
+    legal = objects if st.is_break and st.mode == "8ball" else legal_targets(st, on)
+    return [m.ids.index(b) for b in legal or objects]
+
+
+def next_ball_angle(s: State, clockwise: bool) -> float:
+    """The aim at the centre of the next ball the shooter may hit, turning from the aim as it
+    is (clockwise: as the aim's clockwise key turns it); the aim as it is when there is none
+    (a ball straight along the aim is not the next: the key moves on)."""
+    m = s.match
+    t = targets(s)
+    d = m.pos[t] - m.pos[cue_index(s)]
+    now = s.stroke.angle
+    best = None
+    for dx, dy in d.tolist():
+        angle = math.degrees(math.atan2(dy, dx)) % 360.0
+        turn = ((now - angle) if clockwise else (angle - now)) % 360.0
+        if turn > SAME_AIM and (best is None or turn < best[0]):
+            best = (turn, angle)
+    return now if best is None else best[1]
+
+
+SAME_AIM = 1e-6  # degrees: an aim this close to a ball's centre is at it already
+
+
 def nearest_angle(s: State) -> float:
     """The aim at the nearest ball the shooter may hit first whose path from the cue ball is
     clear (the straight line meets that ball before any other); the nearest one if none is
     clear; the aim as it is when there is no ball to aim at."""
     m = s.match
     c = cue_index(s)
-    on = [b for b, here in zip(m.ids, m.on_table, strict=True) if here]
-    objects = [b for b in on if b != "cue"]
-    st = m.state
-    legal = objects if st.is_break and st.mode == "8ball" else legal_targets(st, on)
-    t = [m.ids.index(b) for b in legal or objects]
-    if not t or not m.on_table[c]:
+    t = targets(s)
+    if not t:
         return s.stroke.angle
     d = m.pos[t] - m.pos[c]
     order = np.argsort(np.hypot(d[:, 0], d[:, 1]), kind="stable")

@@ -26,6 +26,7 @@ from termpool.ui.help import pretty
 from termpool.ui.palette import DIM_TEXT_C, TEXT_C
 from termpool.ui.panel import (
     FOUL_C,
+    SPARE,
     TURN_C,
     PanelInfo,
     PlayerLine,
@@ -448,6 +449,8 @@ def hint_lines(s: State) -> list[tuple]:
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         preset = ch.preset_level is not None
         cancel = [(f"{k('cancel')} hold", 1)] if preset else []
+        # Where there is room to spare (it never shortens the rest).
+        ball = [(f"{k('next_ball')} next ball", SPARE)]
         # Practice's own keys rank with the help: a player who never sees U may never
         # take a shot back.
         practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 1),
@@ -456,6 +459,7 @@ def hint_lines(s: State) -> list[tuple]:
         aim, fine = (f"{k('aim_ccw')}{k('aim_cw')}", f"{k('aim_fine_ccw')}{k('aim_fine_cw')}")
         return [((f"{aim} aim", f"{aim} aim", f"{aim}aim"), 0),
                 ((f"{fine} fine", f"{fine} fine", f"{fine}fine"), 5),
+                *ball,
                 # A player who set the power with a digit knows the digits: Esc, which
                 # gives the hold back, takes their place first.
                 (power_hint(s), 0), ("1-0 power", 5 if preset else 2), *cancel,

@@ -11,7 +11,7 @@ from termpool.physics.table import POCKET_NAMES
 from termpool.ui import aid
 from termpool.ui.phases.turn import shoot_human, start_turn
 from termpool.ui.predict import LEVELS
-from termpool.ui.state import Place, State, cue_index, say
+from termpool.ui.state import Place, State, cue_index, next_ball_angle, say
 
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 SPIN_KEYS = {"spin_up": (0, 1), "spin_down": (0, -1), "spin_left": (-1, 0), "spin_right": (1, 0)}
@@ -60,6 +60,8 @@ def key(s: State, key, action: str | None, t: float) -> State:
         # A pocket picked with C stays called as the aim moves (the aid warns of an 8
         # heading elsewhere); until then the call follows the aim.
         return replace(s, stroke=replace(st, angle=angle))
+    if action in ("next_ball", "previous_ball"):
+        return replace(s, stroke=replace(st, angle=next_ball_angle(s, action == "next_ball")))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
         # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue limit
