@@ -286,3 +286,17 @@ def test_a_ball_pocketed_stays_in_its_place_dim_and_moves_no_other(mono) -> None
     assert [b for b, _ in balls] == [str(n) for n in range(9, 16)]  # in order, none moved
     for b, fg in balls:
         assert (fg == DIM_TEXT_C.rgb) == (b in ("10", "11", "15"))
+
+
+def test_a_spare_key_hint_shows_only_where_every_part_fits_whole():
+    """A part of rank SPARE is there when the whole line fits in long forms, and gone,
+    leaving the rest exactly as without it, when it does not."""
+    from termpool.ui.panel import SPARE, fit_hint
+
+    parts = [(("Space: hold, let go", "Space:hold"), 0), ("G aid", 2), ("Q quit", 0)]
+    with_spare = [*parts[:1], ("Tab next ball", SPARE), *parts[1:]]
+    wide = fit_hint(with_spare, 80)
+    assert wide == "Space: hold, let go  Tab next ball  G aid  Q quit"
+    for width in (40, 30, 20, 12):
+        assert fit_hint(with_spare, width) == fit_hint(parts, width)
+        assert "Tab" not in fit_hint(with_spare, width)
