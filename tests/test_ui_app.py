@@ -1059,7 +1059,8 @@ def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> Non
 
 def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> None:
     """Solids to shoot, the cue ball in the middle: Tab aims at each solid's centre in turn
-    going clockwise (as → turns the aim), never at a stripe or the 8; Shift+Tab retraces."""
+    going clockwise (as → turns the aim), never at a stripe or the 8; Shift+Tab retraces. A
+    solid behind another ball is passed by."""
     from dataclasses import replace
 
     app = app_for(mode="8ball", opponent="human")
@@ -1091,6 +1092,13 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
         back.append(app.state.stroke.angle)
     assert back == pytest.approx([at("2"), at("3"), at("1")])
     assert "Tab next ball" in screen_text(app.cells(120, 40)[0])
+    # A stripe between the cue ball and the 2: the 2 cannot be hit first, and is passed by.
+    m.pos[m.ids.index("9")] = (1.27, 0.9)
+    seen = []
+    for _ in range(2):
+        app.key(Key("tab"), 3.0)
+        seen.append(app.state.stroke.angle)
+    assert seen == pytest.approx([at("3"), at("1")])
 
 
 # -------------------------------------------------------------------- the computer's turn

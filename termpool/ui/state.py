@@ -430,20 +430,31 @@ def targets(s: State) -> list[int]:
 
 
 def next_ball_angle(s: State, clockwise: bool) -> float:
-    """The aim at the centre of the next ball the shooter may hit, turning from the aim as it
-    is (clockwise: as the aim's clockwise key turns it); the aim as it is when there is none
-    (a ball straight along the aim is not the next: the key moves on)."""
+    """The aim at the centre of the next ball the shooter may hit with a clear path (the
+    straight line meets it first; any of them when none is clear), turning from the aim as
+    it is (clockwise: as the aim's clockwise key turns it); the aim as it is when there is
+    none (a ball straight along the aim is not the next: the key moves on)."""
     m = s.match
+    c = cue_index(s)
     t = targets(s)
-    d = m.pos[t] - m.pos[cue_index(s)]
+    d = m.pos[t] - m.pos[c]
+    angles = [math.degrees(math.atan2(dy, dx)) % 360.0 for dx, dy in d.tolist()]
+    clear = [a for a, k in zip(angles, t, strict=True)
+             if _first_hit(s, c, a) == k]
     now = s.stroke.angle
     best = None
-    for dx, dy in d.tolist():
-        angle = math.degrees(math.atan2(dy, dx)) % 360.0
+    for angle in clear or angles:
         turn = ((now - angle) if clockwise else (angle - now)) % 360.0
         if turn > SAME_AIM and (best is None or turn < best[0]):
             best = (turn, angle)
     return now if best is None else best[1]
+
+
+def _first_hit(s: State, c: int, angle: float) -> int | None:
+    """The ball the cue ball's straight line at `angle` meets first (None: a cushion)."""
+    m = s.match
+    a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, angle)
+    return a.ball if a.hit == "ball" else None
 
 
 SAME_AIM = 1e-6  # degrees: an aim this close to a ball's centre is at it already
@@ -462,8 +473,7 @@ def nearest_angle(s: State) -> float:
     order = np.argsort(np.hypot(d[:, 0], d[:, 1]), kind="stable")
     angles = [math.degrees(math.atan2(d[k, 1], d[k, 0])) % 360.0 for k in order]
     for k, angle in zip(order, angles, strict=True):
-        a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, angle)
-        if a.hit == "ball" and a.ball == t[k]:
+        if _first_hit(s, c, angle) == t[k]:
             return angle
     return angles[0]
 
