@@ -1036,20 +1036,25 @@ def test_headless_repeat_input_is_a_legacy_terminal_with_the_script_s_repeat(tmp
     assert p.returncode == 2 and "repeat needs" in p.stderr
 
 
-def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> None:
-    from dataclasses import replace
-
+def solids_to_shoot(place: dict) -> App:
+    """An 8-ball table after the break, the first player on solids, only the balls of
+    `place` (id: position) on it, the first player's turn begun."""
     app = app_for(mode="8ball", opponent="human")
     m = app.state.match
     m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
     m.ball_in_hand = None
     m.on_table[:] = False
-    place = {"cue": (0.5, 0.6), "1": (1.0, 0.6), "9": (0.75, 0.6), "2": (1.1, 1.0),
-             "8": (2.2, 0.3)}
     for b, p in place.items():
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
     app.state = start_turn(app.state)
+    return app
+
+
+def test_the_opening_aim_is_at_the_nearest_legal_ball_with_a_clear_path() -> None:
+    app = solids_to_shoot({"cue": (0.5, 0.6), "1": (1.0, 0.6), "9": (0.75, 0.6),
+                           "2": (1.1, 1.0), "8": (2.2, 0.3)})
+    m = app.state.match
     # The 1 is nearer, but the 9 (not the shooter's) is in its way: the aim goes to the 2.
     assert app.state.stroke.angle == pytest.approx(math.degrees(math.atan2(0.4, 0.6)))
     m.pos[m.ids.index("9")] = (0.75, 0.2)  # out of the way: the nearest again
@@ -1061,19 +1066,10 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
     """Solids to shoot, the cue ball in the middle: Tab aims at each solid's centre in turn
     going clockwise (as → turns the aim), never at a stripe or the 8; Shift+Tab retraces. A
     solid behind another ball is passed by."""
-    from dataclasses import replace
-
-    app = app_for(mode="8ball", opponent="human")
-    m = app.state.match
-    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
-    m.ball_in_hand = None
-    m.on_table[:] = False
     place = {"cue": (1.27, 0.635), "1": (2.0, 0.635), "2": (1.27, 1.1), "3": (0.5, 0.2),
              "9": (1.27, 0.2), "8": (0.5, 1.0)}
-    for b, p in place.items():
-        m.pos[m.ids.index(b)] = p
-        m.on_table[m.ids.index(b)] = True
-    app.state = start_turn(app.state)
+    app = solids_to_shoot(place)
+    m = app.state.match
     cue = np.array(place["cue"])
 
     def at(b: str) -> float:
