@@ -9,6 +9,7 @@ in a string ("\\x1b", "\\n", "\\u202e"), so the text is printed as it is, never 
 from __future__ import annotations
 
 import sys
+import unicodedata
 
 PROG = "termpool"  # the command's name, first on every line it says
 
@@ -23,6 +24,14 @@ _TABLE = {c: _NAMED.get(chr(c)) or (f"\\x{c:02x}" if c < 0x100 else f"\\u{c:04x}
 def shown(text: object) -> str:
     """`text` (made a string) with every control character written as an escape."""
     return str(text).translate(_TABLE)
+
+
+def one_column(ch: str) -> bool:
+    """Whether a printable character takes one column of a terminal: not a wide one (CJK,
+    most emoji), which takes two, nor a combining mark or variation selector, which takes
+    none. (The screen is drawn a character a cell.)"""
+    return (unicodedata.east_asian_width(ch) not in ("W", "F")
+            and unicodedata.category(ch) not in ("Mn", "Me"))
 
 
 def say(message: object) -> None:

@@ -124,6 +124,8 @@ def test_a_save_keeps_what_the_file_had_and_adds_the_changes() -> None:
     ("bell = yes", 1, "bell", "must be on or off, not 'yes'"),
     ("player1 = " + "x" * (MAX_NAME + 1), 1, "player1", f"at most {MAX_NAME} characters"),
     ("player2 = a\x1bb", 1, "player2", "printable"),
+    ("player2 = Zoë 🎱", 1, "player2", "one column wide"),
+    ("player1 = 王小明", 1, "player1", "one column wide"),
     ("# ok\nlevle = hard", 2, "levle", "unknown setting 'levle'"),
     ("level = hard\nlevel = easy", 2, "level", "already set on line 1"),
     ("aid", 1, "aid", "expected 'key = value'"),
@@ -222,6 +224,7 @@ def test_on_off_settings_have_both_flags() -> None:
 @pytest.mark.parametrize(("args", "says"), [
     (["--player1", "x" * 40], f"--player1: at most {MAX_NAME} characters"),
     (["--player2", " Bo"], "--player2: must not start or end with a space"),
+    (["--player2", "Bo\u0301b"], "--player2: only characters one column wide"),
     (["--frames", "0"], "--frames: must be a whole number from 1 to 1000"),
     (["--power", "turbo"], "--power: invalid choice"),
     (["--fast", "yes"], "--fast: invalid choice"),
@@ -309,14 +312,30 @@ def test_a_name_is_typed_and_plays_under_it() -> None:
 def test_a_name_stops_at_its_length_and_esc_leaves_it_as_it_was() -> None:
     app = app_at_menu()
     keys(app, menu_item("Settings"), *["down"] * KEYS.index("player2"), "enter", "x")
-    assert f"up to {MAX_NAME} characters" in screen_text(app.cells(100, 32)[0])
+    text = screen_text(app.cells(100, 32)[0])
+    assert f"up to {MAX_NAME} characters" in text
+    assert "Enter keeps it · Esc leaves it as it was" in text and "Esc done" not in text
     keys(app, *["x"] * (MAX_NAME + 4))
     # Typing stopped: the screen says why.
-    assert f"{MAX_NAME} characters: a name's most" in screen_text(app.cells(100, 32)[0])
+    assert f"a name holds {MAX_NAME} characters at most" in screen_text(app.cells(100, 32)[0])
     keys(app, "enter")
     assert app.state.opts.player2 == "x" * MAX_NAME
     keys(app, "enter", "y", "esc")
     assert app.state.opts.player2 == "x" * MAX_NAME
+
+
+def test_a_wide_character_is_not_typed_into_a_name_and_the_screen_says_why() -> None:
+    """An emoji takes two columns, and the screen is drawn a character a cell: it is left
+    out of the name (the rest is typed), the box keeps its shape, and the line says why."""
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("player2"), "enter", "Z", "o")
+    app.key(Key("🎱"), 1.0)
+    text = screen_text(app.cells(100, 32)[0])
+    assert "not typed: only characters one column wide" in text and "🎱" not in text
+    keys(app, "e", "enter")
+    assert app.state.opts.player2 == "Zoe"
+    rows = [r for r in screen_text(app.cells(100, 32)[0]).splitlines() if "│" in r]
+    assert len({r.rindex("│") for r in rows}) == 1  # every row's border in one column
 
 
 def test_from_pause_match_settings_wait_for_the_next_game() -> None:

@@ -579,3 +579,12 @@ def test_mono_puts_a_hidden_ball_on_the_nearest_free_cloth() -> None:
         _, chars = _mono_table(ids, pos, 80, 24)
         assert chars[r, c] == marks[0] and chars[r, c + 1] == marks[1]
         assert sum(g in MONO_BALLS for g in chars.ravel()) == 2
+
+
+def test_put_text_keeps_one_character_a_cell_whatever_the_text():
+    """A wide character (an emoji, CJK) takes two columns and a combining mark none: either
+    would shift the rest of the row on the terminal, so each is drawn as "?"; the game's
+    own symbols (arrows, balls, blocks) are kept."""
+    chars = np.full((1, 12), " ", dtype="<U1")
+    put_text((chars, None, None), 0, 0, "Zoë🎱王b\u0301 ●←▀")
+    assert "".join(chars[0]) == "Zoë??b? ●←▀ "

@@ -8,8 +8,11 @@ on the background colour when both pixels are equal (fewer bytes, and no colour 
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
+from termpool.text import one_column
 from termpool.ui.palette import BACKDROP, BACKDROP_C, MONO_GLYPH, MONO_PRIORITY
 
 UPPER_HALF = "▀"
@@ -86,6 +89,11 @@ def mono_cells(canvas) -> np.ndarray:
     return _GLYPH[mono_tags(canvas)]
 
 
+@functools.lru_cache(maxsize=1024)
+def _fits_cell(c: str) -> bool:
+    return one_column(c)
+
+
 def put_text(cells, row: int, col: int, text: str, fg=None, bg=None) -> None:
     """Write text into (chars, fg, bg) cells in place, clipped to the grid (one cell a char).
     fg and bg are RGB triples; they are ignored when the cells carry no colour (mono)."""
@@ -98,6 +106,8 @@ def put_text(cells, row: int, col: int, text: str, fg=None, bg=None) -> None:
     text = text[: cols - col]
     if not text:
         return
+    if not text.isascii():  # a wide or zero-width character would shift the rest of the row
+        text = "".join(c if _fits_cell(c) else "?" for c in text)
     n = len(text)
     chars[row, col : col + n] = list(text)
     if fga is not None and fg is not None:

@@ -69,18 +69,15 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
             body.append(line)
             headed.append(line)
     setting = SETTINGS[box.index]
-    if box.editing is not None:
-        # Said before the limit is met, and again when typing stops there.
-        full = len(box.editing) >= MAX_NAME
-        typing = (f"{MAX_NAME} characters: a name's most" if full
-                  else f"type the name (up to {MAX_NAME} characters)")
-        help_ = f"{typing} · Enter keeps it · Esc leaves it as it was"
+    if box.editing is not None:  # what was not typed, and why, until the next key
+        help_ = box.refused or f"type the name (up to {MAX_NAME} characters)"
     elif setting.kind == "name":
         help_ = f"{setting.help} · Enter: type it"
     else:
         help_ = f"{setting.allowed()} · {setting.help}"
     about = textwrap.wrap(help_, width)
-    keys = "↑↓ choose · ←→ change · Esc done"
+    keys = ("Enter keeps it · Esc leaves it as it was" if box.editing is not None
+            else "↑↓ choose · ←→ change · Esc done")
     prefs = s.files.prefs
     files = []
     if prefs is not None:

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from termpool.files import KEEP_RECORDS, MAX_CONFIG_BYTES, FileError, read_text, write_atomic
+from termpool.text import one_column
 from termpool.ui.controls import config_path
 
 FILE_NAME = "settings.conf"
@@ -87,6 +88,10 @@ class Setting:
         return f"--{self.key.replace('_', '-')}"
 
 
+# (The screen is drawn a character a cell: a wide one would push the rest of its line along.)
+ONE_COLUMN = "only characters one column wide (no emoji or wide characters)"
+
+
 def check_name(text: str) -> str:
     """A player's name: at most MAX_NAME printable characters, no spaces at either end (an
     empty name means the usual one). ValueError says what is wrong."""
@@ -96,6 +101,8 @@ def check_name(text: str) -> str:
         raise ValueError(f"at most {MAX_NAME} characters, not {len(text)}")
     if not text.isprintable():
         raise ValueError("must be printable (no control characters)")
+    if not all(one_column(c) for c in text):
+        raise ValueError(ONE_COLUMN)
     return text
 
 

@@ -230,6 +230,7 @@ class Settings:
     back: Pause | None = None  # the box it goes back to
     index: int = 0
     editing: str | None = None
+    refused: str | None = None  # why the last key typed into the name was not taken
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ from dataclasses import replace
 from typing import Any
 
 from termpool.game.history import history_path, read_history, summary
-from termpool.text import shown
+from termpool.text import one_column, shown
 from termpool.ui.help import page_key
 from termpool.ui.output import resolve_depth
 from termpool.ui.phases.turn import (
@@ -27,7 +27,7 @@ from termpool.ui.screens import (
     stats_top,
     stats_width,
 )
-from termpool.ui.settings import BY_KEY, MAX_NAME, SETTINGS, check_name
+from termpool.ui.settings import BY_KEY, MAX_NAME, ONE_COLUMN, SETTINGS, check_name
 from termpool.ui.state import Help, Pause, Quit, Seen, Settings, State, Stats, help_of
 from termpool.ui.stats import stats_lines
 
@@ -98,7 +98,7 @@ def _typed(key) -> str | None:
         return None
     if key.name == "space":
         return " "
-    if len(key.name) == 1 and key.name.isprintable():
+    if len(key.name) == 1 and key.name.isprintable() and one_column(key.name):
         return key.name.upper() if key.shift and key.name.isalpha() else key.name
     return None
 
@@ -124,17 +124,22 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
 
 
 def _type(s: State, box: Settings, key) -> State:
+    box = replace(box, refused=None)
     if key.name == "esc":
         return replace(s, box=replace(box, editing=None))
-    if key.name == "enter":  # only printable characters can be typed (see _typed)
+    if key.name == "enter":  # only what check_name takes can be typed (see _typed)
         s = set_value(s, SETTINGS[box.index].key, check_name(box.editing.strip()))
         return replace(s, box=replace(box, editing=None))
     if key.name == "backspace":
         return replace(s, box=replace(box, editing=box.editing[:-1]))
     ch = _typed(key)
-    if ch is not None and len(box.editing) < MAX_NAME:
-        return replace(s, box=replace(box, editing=box.editing + ch))
-    return s
+    if ch is None:
+        if len(key.name) == 1 and not (key.ctrl or key.alt):  # a character, refused
+            return replace(s, box=replace(box, refused=f"not typed: {ONE_COLUMN}"))
+        return replace(s, box=box)
+    if len(box.editing) >= MAX_NAME:
+        return replace(s, box=replace(box, refused=f"a name holds {MAX_NAME} characters at most"))
+    return replace(s, box=replace(box, editing=box.editing + ch))
 
 
 def _close(s: State, box: Settings) -> State:
