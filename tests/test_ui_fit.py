@@ -300,3 +300,21 @@ def test_a_spare_key_hint_shows_only_where_every_part_fits_whole():
     for width in (40, 30, 20, 12):
         assert fit_hint(with_spare, width) == fit_hint(parts, width)
         assert "Tab" not in fit_hint(with_spare, width)
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (100, 32), (120, 40)])
+def test_both_players_lines_show_their_balls_down_alike(cols, rows):
+    """Groups taken and two balls of each down: where one player's line has room for its
+    balls down (dim, in their places) and the other's has not, neither shows them."""
+    from termpool.ui.phases.turn import start_turn
+
+    app = App(Options(mode="8ball", opponent="cpu", colors="mono", seed=1))
+    m = app.state.match
+    m.state = replace(m.state, is_break=False, groups={0: "solids", 1: "stripes"})
+    m.ball_in_hand = None
+    for b in ("3", "5", "12", "15"):
+        m.on_table[m.ids.index(b)] = False
+    app.state = start_turn(app.state)
+    (line,) = [x for x in screen_text(app.cells(cols, rows)[0]).splitlines() if "solids" in x]
+    you, cpu = line.split("Computer")
+    assert ("3" in you.split("solids")[1]) == ("12" in cpu)

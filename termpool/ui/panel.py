@@ -179,7 +179,7 @@ def _clear(cells, col: int, row: int, ncols: int, nrows: int) -> None:
 
 
 def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
-                keep_score: bool = False) -> list[tuple] | None:
+                keep_score: bool = False, start: int = 0) -> list[tuple] | None:
     """One player's line as (text, fg, bg) pieces within `width` cells: marker and name, then
     group, frames and fouls, then the group's balls in order, those down dim in their
     places. Where that is too long it is said more shortly, in turn: without the balls
@@ -187,7 +187,7 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     word (the balls show it; in mono they lose their glyphs), with the frames and fouls as
     "1/3" and "F2", without them; only a line that still does not fit is cut, at a piece
     (a name too long, within itself), with "…". With `keep_score`, a line that cannot keep
-    the frames and fouls is None instead."""
+    the frames and fouls is None instead. `start`: the first of those forms to try (`form`)."""
     name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
              BACKDROP_C.rgb)]
     todo = ball_tokens(info.ids, p.balls, mono, info.theme)
@@ -212,7 +212,7 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
     plain = todo if not mono else [(f"{info.ids[k]:>2}", None, None) for k in p.balls]
     forms = [build(long, every, "  "), build(long, todo, " "), build(short, plain, " "),
              build([], plain, " ")]
-    for form in forms[:3] if keep_score else forms:
+    for form in (forms[:3] if keep_score else forms)[start:]:
         if sum(len(t) for t, _, _ in form) <= width:
             return form
     if keep_score:
@@ -227,6 +227,14 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
         out.append((t, fg, bg))
         used += len(t)
     return out
+
+
+def _form(p: PlayerLine, info: PanelInfo, mono: bool, line: list[tuple]) -> int:
+    """Which of `player_line`'s forms `line` is (0: the longest)."""
+    for k in range(4):
+        if player_line(p, info, mono, 10 ** 6, start=k) == line:
+            return k
+    return 3
 
 
 def _put_line(cells, r: int, c: int, pieces: list[tuple]) -> int:
@@ -290,6 +298,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     # up now: the second player's name stays put from ball in hand to aim to charge.
     half = min(w, _widgets_left(width, nrows, info.most_widgets or info.widgets) - 1) // 2
     shared = [player_line(p, info, mono, half - 1, keep_score=nrows >= 5) for p in players]
+    if len(players) > 1 and all(x is not None for x in shared):
+        # Where one line drops its balls down, the other does too (the rest of each line
+        # is said as shortly as it needs).
+        start = min(1, max(_form(p, info, mono, x) for p, x in zip(players, shared, strict=True)))
+        shared = [player_line(p, info, mono, half - 1, keep_score=nrows >= 5, start=start)
+                  for p in players]
     if len(players) > 1 and all(x is not None for x in shared):
         # Both players on one row when they fit whole (in short panels always: the status
         # keeps its rows).
