@@ -1024,6 +1024,22 @@ def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() ->
     assert shots(app)[0]["speed"] == power_to_speed(1.0)
 
 
+def test_esc_s_note_goes_when_the_charge_begins_and_the_verdict_stays() -> None:
+    """A digit set, then Esc: "power: hold space again" says it; Space then begins a charge,
+    and the note, answered, goes (it would sit under the running meter saying the opposite).
+    The last shot's verdict is not a note: it stays."""
+    app = app_for(input_mode="repeat")
+    run_script(app, "enter wait 0.2 3", legacy=True)
+    app.key(Key("esc"), 1.0)
+    verdict = ("the 3 pocketed: you continue", "good")
+    app.state = replace(app.state, message=(verdict, *app.state.message))
+    assert "power: hold space again" in screen_text(app.cells(120, 40)[0])
+    app.key(Key("space"), 2.0)
+    assert app.state.controls.charge.active
+    text = screen_text(app.cells(120, 40)[0])
+    assert "hold space again" not in text and verdict[0] in text
+
+
 def test_headless_repeat_input_is_a_legacy_terminal_with_the_script_s_repeat(tmp_path) -> None:
     rec = tmp_path / "m.json"
     p = cli("play", "--headless", "--mode", "practice", "--input", "repeat", "--keys", "-",

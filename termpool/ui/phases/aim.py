@@ -51,7 +51,13 @@ def key(s: State, key, action: str | None, t: float) -> State:
     charge = s.controls.charge
     if action == "shoot":
         level = charge.key(key, t)
-        return s if level is None else strike(s, level)
+        if level is not None:
+            return strike(s, level)
+        if charge.active and any(tone == "dim" for _, tone in s.message):
+            # A note answers the key before it ("power: hold space again"): the charge
+            # has taken its place (the verdicts stay).
+            s = replace(s, message=tuple(m for m in s.message if m[1] != "dim"))
+        return s
     if key.kind == "release":
         return s
     m, st = s.match, s.stroke
