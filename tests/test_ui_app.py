@@ -1684,10 +1684,10 @@ def test_each_player_starts_their_turn_at_their_own_power_never_the_other_s() ->
             t += 1 / 30
             app.tick(t)
         assert shots(app)[-1]["speed"] == power_to_speed(0.3)
-        m.state = replace(m.state, shooter=0)  # ... and player 1's turn again: their 90%
-        m.ball_in_hand = None
-        app.state = start_turn(app.state)
-        assert app.state.controls.charge.preset_level == 0.9
+        m.state = replace(m.state, shooter=0)  # ... and player 1's turn again: their 90%,
+        m.ball_in_hand = None  # (a break's power set with a digit is the break's: holding,
+        app.state = start_turn(app.state)  # unless digits are the only way)
+        assert app.state.controls.charge.preset_level == (0.9 if power == "digits" else None)
         assert app.state.last_power == 0.9
         m.state = replace(m.state, shooter=1)  # player 2's 30% is theirs
         app.state = start_turn(app.state)
