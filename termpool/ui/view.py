@@ -353,7 +353,8 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         what = "break" if m.state.is_break else "shoot"
         out.append((f"{name} to {what} · ball in hand {where}", "turn"))
     elif isinstance(s.part, Run):
-        out.append(("fast ×4 (F)" if s.part.fast else "F: fast forward", "dim"))
+        # (F is on the keys' line: said here once pressed)
+        out.append((f"{name}'s shot" + (" · fast ×4 (F)" if s.part.fast else ""), "dim"))
     elif s.phase is Phase.CPU:
         plan = s.part.plan if isinstance(s.part, Aiming) else None
         if plan is None:  # deciding (a shot, or the answer to an option)
