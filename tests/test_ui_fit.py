@@ -98,7 +98,7 @@ def test_a_warning_of_the_shot_aimed_reads_whole_beside_the_last_verdict(cols, r
     assert "legal break: 10 object balls" in text  # the older verdict: its first row at least
 
 
-@pytest.mark.parametrize("first", ["F: fast forward", "Computer is aiming at the 2"])
+@pytest.mark.parametrize("first", ["Your shot", "Computer is aiming at the 2"])
 def test_a_dim_first_line_gives_way_to_a_verdict_three_rows_long(first) -> None:
     # At 60x20 while the balls run or the computer aims: the key bar says F and "any key",
     # the players' row whose turn it is; the verdict reads whole.
