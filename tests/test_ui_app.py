@@ -1147,8 +1147,8 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
         assert "Computer's plan: 3 in the left foot corner pocket" in shown
         app.tick(t)
         t += 1 / 60
-    # ... and when it is over, beside the verdict, until the next shot
-    assert app.state.message[0][0] == "Computer's plan: 3 in the left foot corner pocket"
+    # ... and when it is over, after the verdict, until the next shot
+    assert app.state.message[1][0] == "Computer's plan: 3 in the left foot corner pocket"
     assert len(app.state.message) == 2
     assert "Computer's plan: 3 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
 
@@ -1159,7 +1159,7 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
     while app.state.phase in (Phase.CPU, Phase.RUN):
         app.tick(t)
         t += 1 / 60
-    verdict = app.state.message[-1]
+    verdict = app.state.message[0]
     m = app.state.match
     m.state = replace(m.state, shooter=1)
     m.ball_in_hand = None
@@ -1572,11 +1572,35 @@ def _computer_turns(app: App, script: str):
         app.tick(t)
         s = app.state
         if before is Phase.RUN and s.phase is not Phase.RUN:  # a shot judged: its verdict
-            last = s.message[-1]
+            last = s.message[0]
         if s.phase in (Phase.AIM, Phase.PLACE, Phase.OVER, Phase.OPTION):
             return
         if isinstance(s.part, Aiming) or (s.phase is Phase.RUN and shooter_is_cpu(s)):
             yield s.part, last, screen_text(app.cells(80, 24)[0])
+
+
+def test_through_the_computers_run_its_last_verdict_keeps_its_row_above_its_plan() -> None:
+    """A pro computer running balls: from thinking to aiming to the next shot, the verdict
+    on its last shot stays on one row of the panel, its plan (old, then new) below it."""
+    app = app_for(mode="8ball", opponent="cpu", level="pro", seed=1)
+    for key in parse_script("enter 0 space"):
+        app.key(key[1], key[0])
+    t, rows, seen = 0.0, {}, 0
+    while t < 300 and app.state.phase not in (Phase.AIM, Phase.PLACE, Phase.OVER):
+        t += 1 / 30
+        app.tick(t)
+        s = app.state
+        if s.phase is not Phase.CPU or not shooter_is_cpu(s):
+            continue
+        lines = screen_text(app.cells(120, 40)[0]).splitlines()
+        verdict = s.message[0][0][:40]
+        at = [k for k, line in enumerate(lines) if verdict in line]
+        plan = [k for k, line in enumerate(lines) if "Computer's plan" in line]
+        if at and plan:
+            assert at[0] < plan[0], lines[-8:]
+            rows.setdefault(verdict, set()).add(at[0])
+            seen += 1
+    assert seen and all(len(r) == 1 for r in rows.values()), rows
 
 
 def test_the_verdict_in_view_through_the_computers_turn_is_the_last_shots() -> None:

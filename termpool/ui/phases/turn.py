@@ -187,7 +187,9 @@ def finish_shot(s: State) -> State:
     with signals_held():  # judged and recorded whole, whatever interrupts
         out = s.part.shot.finish()
     verdict = words.verdict(out, voice(s))
-    s = replace(s, message=(*s.shot_note, verdict))
+    # The verdict first, the plan it answers after: where the computer's next plan takes
+    # the old one's place, the verdict does not move.
+    s = replace(s, message=(verdict, *s.shot_note))
     if s.files.records is not None:  # on disk after every shot, whatever comes next
         s.files.records.keep(m, on=s.opts.records)
     if s.opts.bell and (out.foul or int(m.on_table.sum()) < before):
