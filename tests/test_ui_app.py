@@ -385,9 +385,13 @@ def test_panel_names_players_and_fouls_in_words() -> None:
     # A feeble break that does not reach the rack: a foul, and the turn passes.
     run_script(app, "enter space wait 20")
     text = screen_text(app.cells(120, 40)[0])
-    assert "Foul" in text
+    assert "Player 1's foul:" in text  # whose foul, by name, before what it was
     assert "player 0" not in text and "player 1" not in text
     assert app.state.match.shooter == 1
+    out = app.state.match.last_outcome
+    v = words.Voice(players=("You", "Computer"), plain=False)
+    assert words.verdict(out, v, 0)[0].startswith("Your foul: ")
+    assert words.verdict(out, v, 1)[0].startswith("Computer's foul: ")
 
 
 @pytest.mark.parametrize("three_foul", [False, True])

@@ -240,13 +240,15 @@ def reason(said: Sequence[Said], v: Voice = RECORD) -> str:
     return _start("; ".join(CLAUSES[s.why](v, s) for s in said))
 
 
-def verdict(outcome, v: Voice) -> tuple[str, str]:
-    """An outcome as the panel says it: (text, tone), the tone "foul", "good" (the shooter
+def verdict(outcome, v: Voice, shooter: int) -> tuple[str, str]:
+    """An outcome of `shooter`'s shot as the panel says it: (text, tone), the tone "foul"
+    ("Your foul: ...", "Bob's foul: ...": whose, before what it was), "good" (the shooter
     goes on, or won) or "plain"."""
     text = reason(outcome.said, v)
     if outcome.foul:
-        return f"Foul: {text}", "foul"
-    return text, "good" if outcome.continue_turn else "plain"
+        whose = "Your" if v.spoken_to(shooter) else v.whose(shooter)
+        return f"{whose} foul: {text}", "foul"
+    return text, "good" if outcome.continue_turn or outcome.winner == shooter else "plain"
 
 
 def aid_warning(outcome, v: Voice, shooter: int) -> str | None:

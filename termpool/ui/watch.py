@@ -356,12 +356,7 @@ class Watch:
         lines = []
         out = self._verdict(i)
         if out is not None:
-            reason = words.reason(out.said, self.voice())
-            if out.foul:
-                lines.append((f"Foul: {reason}", "foul"))
-            else:
-                lines.append((reason, "good" if out.continue_turn or
-                              out.winner is not None else "plain"))
+            lines.append(words.verdict(out, self.voice(), self.shots[i]["player"]))
         for c in self.choices.get(i + 1, []):
             lines.append((words.chose(self.players[c["player"]], Choice(c["choice"])), "dim"))
         return lines

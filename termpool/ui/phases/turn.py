@@ -184,9 +184,10 @@ def finish_shot(s: State) -> State:
     """The shot's last frame is on show: it is judged and recorded, and the turn goes on."""
     m = s.match
     before = int(m.on_table.sum())
+    shooter = m.shooter
     with signals_held():  # judged and recorded whole, whatever interrupts
         out = s.part.shot.finish()
-    verdict = words.verdict(out, voice(s))
+    verdict = words.verdict(out, voice(s), shooter)
     # The verdict first, the plan it answers after: where the computer's next plan takes
     # the old one's place, the verdict does not move.
     s = replace(s, message=(verdict, *s.shot_note))
