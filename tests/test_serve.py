@@ -311,8 +311,8 @@ def test_two_players_meet_in_the_lobby_and_play_one_match_on_two_screens(served)
             await asyncio.sleep(0.2)
             p1.stdin.write(b" ")  # ... struck at once
             # The same verdict on both screens, each at its own size.
-            # (Any break: the match's seed is drawn afresh, and a scratch's verdict begins
-            # "Foul: ".)
+            # (Any break: the match's seed is drawn afresh, and a scratch's verdict is "Your
+            # foul: ..." on one screen and "ann's foul: ..." on the other: read from "foul".)
             verdict = re.compile(r"(legal break|illegal break|foul)[^\n]*", re.IGNORECASE)
             await ann.until(lambda v: verdict.search(v.text()) is not None)
             await bob.until(lambda v: verdict.search(v.text()) is not None)
