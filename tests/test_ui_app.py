@@ -1115,6 +1115,12 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
         app.key(Key("tab"), 3.0)
         seen.append(app.state.stroke.angle)
     assert seen == pytest.approx([at("3"), at("1")])
+    # The 2 and the 3 down: the 1 alone, already aimed at. Tab says so, and leaves the aim.
+    for b in ("2", "3"):
+        m.on_table[m.ids.index(b)] = False
+    app.key(Key("tab"), 4.0)
+    assert app.state.stroke.angle == pytest.approx(at("1"))
+    assert "no other ball to aim at" in screen_text(app.cells(120, 40)[0])
 
 
 # -------------------------------------------------------------------- the computer's turn

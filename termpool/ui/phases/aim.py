@@ -67,7 +67,10 @@ def key(s: State, key, action: str | None, t: float) -> State:
         # heading elsewhere); until then the call follows the aim.
         return replace(s, stroke=replace(st, angle=angle))
     if action in ("next_ball", "previous_ball"):
-        return replace(s, stroke=replace(st, angle=next_ball_angle(s, action == "next_ball")))
+        angle = next_ball_angle(s, action == "next_ball")
+        if angle == st.angle:  # (9-ball: the one ball on, already aimed at)
+            return say(s, "no other ball to aim at: the aim is at the only one you may hit")
+        return replace(s, stroke=replace(st, angle=angle))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
         # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue limit
