@@ -1121,6 +1121,8 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
     app.key(Key("tab"), 4.0)
     assert app.state.stroke.angle == pytest.approx(at("1"))
     assert "no other ball to aim at" in screen_text(app.cells(120, 40)[0])
+    app.key(Key("right"), 5.0)  # the aim moved: the note, answered, goes
+    assert "no other ball to aim at" not in screen_text(app.cells(120, 40)[0])
 
 
 # -------------------------------------------------------------------- the computer's turn

@@ -36,10 +36,11 @@ SIDE_WIDGET_ROWS = 24  # a side panel this tall has room for them below its text
 FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
 BOX_BG = (28, 32, 40)
-TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "turn": TURN_C, "foul": FOUL_C,
-         "warn": FOUL_C, "good": GOOD_C, "plan": TURN_C, "news": TURN_C}
-# ("warn": what the aim would do, said while aiming; "plan": the computer's plan, a note;
-# "news": of an online match, said once: a player back in it)
+TONES = {"plain": TEXT_C.rgb, "dim": DIM_TEXT_C.rgb, "note": DIM_TEXT_C.rgb, "turn": TURN_C,
+         "foul": FOUL_C, "warn": FOUL_C, "good": GOOD_C, "plan": TURN_C, "news": TURN_C}
+# ("note": a key's answer, gone once the aim or a charge moves on (ui.state.say); "warn":
+# what the aim would do, said while aiming; "plan": the computer's plan, a note; "news": of
+# an online match, said once: a player back in it)
 
 
 @dataclass
@@ -153,9 +154,9 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
 
 def _leading(status: Sequence[tuple[str, str]], kept: list[int]) -> list[int]:
     """The lines before the first verdict or warning (the first line, if none) that are not
-    notes ("dim", "plan")."""
+    notes ("dim", "note", "plan")."""
     end = kept[0] if kept else min(len(status), 1)
-    return [k for k in range(end) if status[k][1] not in ("dim", "plan")]
+    return [k for k in range(end) if status[k][1] not in ("dim", "note", "plan")]
 
 
 def status_rows_needed(status: Sequence[tuple[str, str]], width: int) -> int:

@@ -76,8 +76,11 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
     else:
         help_ = f"{setting.allowed()} · {setting.help}"
     about = textwrap.wrap(help_, width)
-    keys = ("Enter keeps it · Esc leaves it as it was" if box.editing is not None
+    keys = ("Backspace deletes · Enter keeps it · Esc leaves it as it was"
+            if box.editing is not None
             else "↑↓ choose · ←→ change · Esc done")
+    if len(keys) > width:  # (a narrow screen: the short form)
+        keys = "Backspace · Enter keeps · Esc leaves it" if box.editing is not None else keys
     prefs = s.files.prefs
     files = []
     if prefs is not None:

@@ -230,7 +230,7 @@ class Settings:
     back: Pause | None = None  # the box it goes back to
     index: int = 0
     editing: str | None = None
-    refused: str | None = None  # why the last key typed into the name was not taken
+    refused: str | None = None  # why a key typed into the name was not taken
 
 
 @dataclass(frozen=True)
@@ -403,8 +403,8 @@ def shot_clock(s: State) -> float:
     return s.part.shown * DT if isinstance(s.part, Run) else 0.0
 
 
-def say(s: State, text: str, tone: str = "dim") -> State:
-    """The state with one line of words in the panel."""
+def say(s: State, text: str, tone: str = "note") -> State:
+    """The state with one line of words in the panel (a note: the answer to a key)."""
     return replace(s, message=((text, tone),))
 
 

@@ -56,7 +56,7 @@ def key(s: State, key, t: float, seen: Seen | None = None) -> State:
     if action == "bell" and press:
         bell = not s.opts.bell
         return replace(s, opts=replace(s.opts, bell=bell),
-                       message=(("bell on" if bell else "bell off", "dim"),))
+                       message=(("bell on" if bell else "bell off", "note"),))
     return KEYS[s.phase](s, key, action, t)
 
 

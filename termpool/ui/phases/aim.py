@@ -37,6 +37,14 @@ def strike(s: State, level: float) -> State:
     return shoot_human(s, level, called)
 
 
+def answered(s: State) -> State:
+    """The notes that answered the keys before ("power: hold space again", "no other ball
+    to aim at") gone, now that the aim or the charge has moved on; the verdicts stay."""
+    if any(tone == "note" for _, tone in s.message):
+        return replace(s, message=tuple(m for m in s.message if m[1] != "note"))
+    return s
+
+
 def key(s: State, key, action: str | None, t: float) -> State:
     swallow = s.controls.swallow
     if swallow is not None and key.name == swallow[0]:
@@ -53,11 +61,7 @@ def key(s: State, key, action: str | None, t: float) -> State:
         level = charge.key(key, t)
         if level is not None:
             return strike(s, level)
-        if charge.active and any(tone == "dim" for _, tone in s.message):
-            # A note answers the key before it ("power: hold space again"): the charge
-            # has taken its place (the verdicts stay).
-            s = replace(s, message=tuple(m for m in s.message if m[1] != "dim"))
-        return s
+        return answered(s) if charge.active else s
     if key.kind == "release":
         return s
     m, st = s.match, s.stroke
@@ -65,12 +69,12 @@ def key(s: State, key, action: str | None, t: float) -> State:
         angle = (st.angle + s.controls.aim.step(key, t)) % 360.0
         # A pocket picked with C stays called as the aim moves (the aid warns of an 8
         # heading elsewhere); until then the call follows the aim.
-        return replace(s, stroke=replace(st, angle=angle))
+        return replace(answered(s), stroke=replace(st, angle=angle))
     if action in ("next_ball", "previous_ball"):
         angle = next_ball_angle(s, action == "next_ball")
         if angle == st.angle:  # (9-ball: the one ball on, already aimed at)
             return say(s, "no other ball to aim at: the aim is at the only one you may hit")
-        return replace(s, stroke=replace(st, angle=angle))
+        return replace(answered(s), stroke=replace(st, angle=angle))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
         # Rounded so that ten steps make 1.0, then kept on the ball: past the miscue limit

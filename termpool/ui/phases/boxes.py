@@ -124,12 +124,12 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
 
 
 def _type(s: State, box: Settings, key) -> State:
-    box = replace(box, refused=None)
+    # (A refusal stays said until the name is done: keys typed after it would hide it.)
     if key.name == "esc":
-        return replace(s, box=replace(box, editing=None))
+        return replace(s, box=replace(box, editing=None, refused=None))
     if key.name == "enter":  # only what check_name takes can be typed (see _typed)
         s = set_value(s, SETTINGS[box.index].key, check_name(box.editing.strip()))
-        return replace(s, box=replace(box, editing=None))
+        return replace(s, box=replace(box, editing=None, refused=None))
     if key.name == "backspace":
         return replace(s, box=replace(box, editing=box.editing[:-1]))
     ch = _typed(key)
