@@ -1042,6 +1042,13 @@ def test_esc_s_note_goes_when_the_charge_begins_and_the_verdict_stays() -> None:
     assert app.state.controls.charge.active
     text = screen_text(app.cells(120, 40)[0])
     assert "hold space again" not in text and verdict[0] in text
+    # An option's answer is news, not a note: a charge leaves it (as the aim's moves do).
+    app.key(Key("esc"), 3.0)  # the charge cancelled
+    chose = ("Player 1 chose to pass the shot back", "dim")
+    app.state = replace(app.state, message=(chose,))
+    app.key(Key("right"), 4.0)
+    app.key(Key("space"), 5.0)
+    assert app.state.controls.charge.active and chose[0] in screen_text(app.cells(120, 40)[0])
 
 
 def test_headless_repeat_input_is_a_legacy_terminal_with_the_script_s_repeat(tmp_path) -> None:
