@@ -28,7 +28,7 @@ from termpool.physics.state import (
     SPINNING,
     STATIONARY,
 )
-from termpool.physics.vec import max_one, perp
+from termpool.physics.vec import columns, max_one, perp
 
 _hypot = np.hypot
 INF = math.inf
@@ -86,7 +86,7 @@ def _snap(ph: Physics, p, v, w, R, rate, u: tuple, only, move: bool) -> tuple:
     ts = np.where(small, us / (3.5 * ph.mu_slide * ph.g), 0.0)
     if not small.any():
         return p, v, w, ts, False
-    u = np.array([ux, uy]).T.copy()
+    u = columns(ux, uy)
     s = small[:, None]
     if move:
         uhat = u / np.where(us > 0, us, 1.0)[:, None]

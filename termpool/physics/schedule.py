@@ -346,7 +346,7 @@ class Schedule:
             # hypot(dx, dy) >= max(|dx|, |dy|): a ball that far from every hole is near none,
             # and hypot (slow) is worked out only for the others.
             c = (((np.maximum(np.abs(dx), np.abs(dy)) - hr) < reach).any(axis=0)
-                               & ~near).nonzero()[0]
+                 & ~near).nonzero()[0]
             if c.size:
                 near[c] = ((np.hypot(dx[:, c], dy[:, c]) - hr) < reach.take(c)).any(axis=0)
         return near

@@ -17,6 +17,12 @@ def norm(v: np.ndarray) -> np.ndarray:
     return np.hypot(v[..., 0], v[..., 1])
 
 
+def columns(*rows: np.ndarray) -> np.ndarray:
+    """(K, len(rows)) with the rows (K,) as its columns, C-ordered: np.stack(rows, axis=1)
+    without its Python (a third of the time on small arrays)."""
+    return np.array(rows).T.copy()
+
+
 def length(v: np.ndarray) -> np.ndarray:
     """Lengths of rows v (K, C): np.linalg.norm(v, axis=1)'s operations (the squares summed
     along the row, then the root), without its Python."""
@@ -43,7 +49,7 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Row-wise a x b of (K, 3) arrays."""
     ax, ay, az = a[:, 0], a[:, 1], a[:, 2]
     bx, by, bz = b[:, 0], b[:, 1], b[:, 2]
-    return np.array([ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx]).T.copy()
+    return columns(ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx)
 
 
 def cross_one(a: list, b: list) -> list:

@@ -97,8 +97,8 @@ def _step(dv, c, k: _Rows, st, go, new) -> tuple:
     """One impulse step on the rows of `st` (FI1..FC2) where `go` (None: every row): the
     normal part takes dv off vy, then friction at the nose and on the slate. Returns (the
     rows after it, room for the next: st and new in some order). k: the gains and constants
-    (`_Rows`); new: room for the next rows. The same
-    operations, element for element, as `_step_one`, in fewer calls."""
+    (`_Rows`); new: room for the next rows. The same operations, element for element, as
+    `_step_one`, in fewer calls."""
     zero, one, three5 = k.zero, k.one, k.three5
     x = new
     np.copyto(x, st)

@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 
+from termpool.physics.vec import columns
+
 
 def nose(r, height: float) -> tuple[np.ndarray, np.ndarray]:
     """(sin t, cos t) of the nose contact for balls of radii r (an array)."""
@@ -38,8 +40,8 @@ def to_rail(n, v, w) -> tuple[np.ndarray, ...]:
 def from_rail(n, vx, vy, wx, wy, wz) -> tuple[np.ndarray, np.ndarray]:
     """The table frame's v (K, 2) and w (K, 3) from rail-frame components."""
     n0, n1 = n[:, 0], n[:, 1]
-    v = np.array([-(vx * n1) - vy * n0, vx * n0 - vy * n1]).T.copy()
-    w = np.array([-(wx * n1) - wy * n0, wx * n0 - wy * n1, wz]).T.copy()
+    v = columns(-(vx * n1) - vy * n0, vx * n0 - vy * n1)
+    w = columns(-(wx * n1) - wy * n0, wx * n0 - wy * n1, wz)
     return v, w
 
 
