@@ -63,6 +63,10 @@ class Voice:
     def whose(self, p: int) -> str:
         return "your" if self.spoken_to(p) else f"{self.players[p]}'s"
 
+    def whose_first(self, p: int) -> str:
+        """`whose` opening a line: "Your", "bob's" (a name keeps its case)."""
+        return "Your" if self.spoken_to(p) else self.whose(p)
+
 
 RECORD = Voice()
 
@@ -246,8 +250,7 @@ def verdict(outcome, v: Voice, shooter: int) -> tuple[str, str]:
     goes on, or won) or "plain"."""
     text = reason(outcome.said, v)
     if outcome.foul:
-        whose = "Your" if v.spoken_to(shooter) else v.whose(shooter)
-        return f"{whose} foul: {text}", "foul"
+        return f"{v.whose_first(shooter)} foul: {text}", "foul"
     return text, "good" if outcome.continue_turn or outcome.winner == shooter else "plain"
 
 

@@ -183,12 +183,47 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
                 keep_score: bool = False, start: int = 0) -> list[tuple] | None:
     """One player's line as (text, fg, bg) pieces within `width` cells: marker and name, then
     group, frames and fouls, then the group's balls in order, those down dim in their
-    places. Where that is too long it is said more shortly, in turn: without the balls
-    down, without the group's
-    word (the balls show it; in mono they lose their glyphs), with the frames and fouls as
-    "1/3" and "F2", without them; only a line that still does not fit is cut, at a piece
-    (a name too long, within itself), with "…". With `keep_score`, a line that cannot keep
-    the frames and fouls is None instead. `start`: the first of those forms to try (`form`)."""
+    places. Where that is too long it is said more shortly, in turn (`_forms`): without the
+    balls down, without the group's word (the balls show it; in mono they lose their
+    glyphs), with the frames and fouls as "1/3" and "F2", without them; only a line that
+    still does not fit is cut, at a piece (a name too long, within itself), with "…". With
+    `keep_score`, a line that cannot keep the frames and fouls is None instead. `start`: the
+    first of those forms to try."""
+    return _line(_forms(p, info, mono), width, keep_score, start)
+
+
+def _line(forms: list[list[tuple]], width: int, keep_score: bool,
+          start: int = 0) -> list[tuple] | None:
+    """`player_line` from its forms (`_forms`)."""
+    k = _first_fit(forms, width, keep_score, start)
+    if k is not None:
+        return forms[k]
+    if keep_score:
+        return None
+    out, used = [], 0
+    for t, fg, bg in forms[-1]:
+        if used + len(t) > width - 1:
+            if not out:  # a name too long for the line: as much of it as fits
+                out.append((t[:max(width - 1, 0)], fg, bg))
+            out.append(("…", DIM_TEXT_C.rgb, BACKDROP_C.rgb))
+            break
+        out.append((t, fg, bg))
+        used += len(t)
+    return out
+
+
+def _first_fit(forms: list[list[tuple]], width: int, keep_score: bool,
+               start: int = 0) -> int | None:
+    """The first of `forms` from `start` on that fits `width` (with `keep_score`, of the
+    three that keep the frames and fouls), or None."""
+    for k in range(start, 3 if keep_score else len(forms)):
+        if sum(len(t) for t, _, _ in forms[k]) <= width:
+            return k
+    return None
+
+
+def _forms(p: PlayerLine, info: PanelInfo, mono: bool) -> list[list[tuple]]:
+    """`player_line`'s forms of a player's line, the longest first."""
     name = [(("▶ " if p.turn else "  ") + p.name, TURN_C if p.turn else TEXT_C.rgb,
              BACKDROP_C.rgb)]
     todo = ball_tokens(info.ids, p.balls, mono, info.theme)
@@ -211,31 +246,8 @@ def player_line(p: PlayerLine, info: PanelInfo, mono: bool, width: int,
 
     # In mono the short forms give plain numbers: 1-7 and 9-15 tell the groups apart too.
     plain = todo if not mono else [(f"{info.ids[k]:>2}", None, None) for k in p.balls]
-    forms = [build(long, every, "  "), build(long, todo, " "), build(short, plain, " "),
-             build([], plain, " ")]
-    for form in (forms[:3] if keep_score else forms)[start:]:
-        if sum(len(t) for t, _, _ in form) <= width:
-            return form
-    if keep_score:
-        return None
-    out, used = [], 0
-    for t, fg, bg in forms[-1]:
-        if used + len(t) > width - 1:
-            if not out:  # a name too long for the line: as much of it as fits
-                out.append((t[:max(width - 1, 0)], fg, bg))
-            out.append(("…", DIM_TEXT_C.rgb, BACKDROP_C.rgb))
-            break
-        out.append((t, fg, bg))
-        used += len(t)
-    return out
-
-
-def _form(p: PlayerLine, info: PanelInfo, mono: bool, line: list[tuple]) -> int:
-    """Which of `player_line`'s forms `line` is (0: the longest)."""
-    for k in range(4):
-        if player_line(p, info, mono, 10 ** 6, start=k) == line:
-            return k
-    return 3
+    return [build(long, every, "  "), build(long, todo, " "), build(short, plain, " "),
+            build([], plain, " ")]
 
 
 def _put_line(cells, r: int, c: int, pieces: list[tuple]) -> int:
@@ -298,13 +310,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
     # The players share the width left by the most widgets the match shows, whichever are
     # up now: the second player's name stays put from ball in hand to aim to charge.
     half = min(w, _widgets_left(width, nrows, info.most_widgets or info.widgets) - 1) // 2
-    shared = [player_line(p, info, mono, half - 1, keep_score=nrows >= 5) for p in players]
-    if len(players) > 1 and all(x is not None for x in shared):
-        # Where one line drops its balls down, the other does too (the rest of each line
-        # is said as shortly as it needs).
-        start = min(1, max(_form(p, info, mono, x) for p, x in zip(players, shared, strict=True)))
-        shared = [player_line(p, info, mono, half - 1, keep_score=nrows >= 5, start=start)
-                  for p in players]
+    keep = nrows >= 5
+    forms = [_forms(p, info, mono) for p in players]
+    # Where one line has no room for its balls down, the other leaves them out too (the
+    # rest of each line is said as shortly as it needs).
+    start = 0 if all(_first_fit(f, half - 1, keep) == 0 for f in forms) else 1
+    shared = [_line(f, half - 1, keep, start) for f in forms]
     if len(players) > 1 and all(x is not None for x in shared):
         # Both players on one row when they fit whole (in short panels always: the status
         # keeps its rows).
@@ -373,8 +384,7 @@ def fit_hint(parts: Sequence[tuple], width: int) -> str:
     are never cut; only the rank-0 parts' tightest forms, should even they not fit, are cut
     at the end. Parts of rank SPARE are the first to go: they never shorten the others."""
     everything = [((t,) if isinstance(t, str) else tuple(t), r) for t, r in parts]
-    spare = [f[0] for f, r in everything if r >= SPARE]
-    if spare:
+    if any(r >= SPARE for _, r in everything):
         for sep in ("  ", " "):
             line = sep.join(f[0] for f, _ in everything)
             if len(line) <= width:

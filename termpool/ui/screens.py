@@ -69,7 +69,7 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
             body.append(line)
             headed.append(line)
     setting = SETTINGS[box.index]
-    if box.editing is not None:  # what was not typed, and why, until the next key
+    if box.editing is not None:  # what was not typed, and why, until the name is done
         help_ = box.refused or f"type the name (up to {MAX_NAME} characters)"
     elif setting.kind == "name":
         help_ = f"{setting.help} · Enter: type it"

@@ -430,6 +430,9 @@ def targets(s: State) -> list[int]:
     return [m.ids.index(b) for b in legal or objects]
 
 
+SAME_AIM = 1e-6  # degrees: an aim this close to a ball's centre is at it already
+
+
 def next_ball_angle(s: State, clockwise: bool) -> float:
     """The aim at the centre of the next ball the shooter may hit with a clear path (the
     straight line meets it first; any of them when none is clear), turning from the aim as
@@ -456,9 +459,6 @@ def _first_hit(s: State, c: int, angle: float) -> int | None:
     m = s.match
     a = aim_trace(m.table, m.pos, m.radius, m.on_table, c, angle)
     return a.ball if a.hit == "ball" else None
-
-
-SAME_AIM = 1e-6  # degrees: an aim this close to a ball's centre is at it already
 
 
 def nearest_angle(s: State) -> float:

@@ -354,8 +354,8 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
         out.append((f"{name} to {what} · ball in hand {where}", "turn"))
     elif isinstance(s.part, Run):
         # (F is on the keys' line: said here once pressed)
-        whose = "Your" if voice(s).spoken_to(m.shooter) else voice(s).whose(m.shooter)
-        out.append((f"{whose} shot" + (" · fast ×4 (F)" if s.part.fast else ""), "dim"))
+        out.append((f"{voice(s).whose_first(m.shooter)} shot"
+                    + (" · fast ×4 (F)" if s.part.fast else ""), "dim"))
     elif s.phase is Phase.CPU:
         plan = s.part.plan if isinstance(s.part, Aiming) else None
         if plan is None:  # deciding (a shot, or the answer to an option)

@@ -136,7 +136,7 @@ def _type(s: State, box: Settings, key) -> State:
     if ch is None:
         if len(key.name) == 1 and not (key.ctrl or key.alt):  # a character, refused
             return replace(s, box=replace(box, refused=f"not typed: {ONE_COLUMN}"))
-        return replace(s, box=box)
+        return s
     if len(box.editing) >= MAX_NAME:
         return replace(s, box=replace(box, refused=f"a name holds {MAX_NAME} characters at most"))
     return replace(s, box=replace(box, editing=box.editing + ch))
