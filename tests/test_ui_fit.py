@@ -318,3 +318,29 @@ def test_both_players_lines_show_their_balls_down_alike(cols, rows):
     (line,) = [x for x in screen_text(app.cells(cols, rows)[0]).splitlines() if "solids" in x]
     you, cpu = line.split("Computer")
     assert ("3" in you.split("solids")[1]) == ("12" in cpu)
+
+
+def test_the_status_keeps_two_blank_columns_before_the_spin_face():
+    """Status lines wrapped at every offset (a word of each length before them) never read
+    on into the spin face's words: the two columns before them are blank on every row, and
+    some row's text comes right up to them."""
+    from termpool.ui.panel import blank_cells, draw_panel
+    from termpool.ui.view import panel_info
+
+    app = app_for(colors="truecolor")
+    lay = layout(120, 40, app.state.match.table)
+    info = panel_info(app.state, lay)
+    assert [name for _, name in info.widgets] == ["spin"]
+    reached = False
+    for pad in range(12):
+        text = "x" * (pad + 1) + " " + LONG_FOUL + " " + LONG_BREAK
+        cells = blank_cells(120, 40, False)
+        draw_panel(cells, lay, replace(info, status=[(text, "warn"), (text, "foul")]))
+        rows = screen_text(cells[0]).splitlines()
+        readout = [r for r in rows if "side " in r or "top  " in r]
+        assert len(readout) == 2
+        for row in readout:
+            col = row.index("side ") if "side " in row else row.index("top  ")
+            assert row[col - 2:col] == "  ", row
+            reached |= row[col - 3] != " "
+    assert reached

@@ -32,6 +32,7 @@ from termpool.ui.table_view import MIN_COLS, MIN_ROWS, Layout
 BLACK = (0, 0, 0)
 TURN_C = (250, 214, 90)
 TEXT_MIN_COLS = 70  # a bottom panel keeps this much room for text before it shows widgets
+WIDGET_GAP = 2  # blank columns between a bottom panel's text and its widgets
 SIDE_WIDGET_ROWS = 24  # a side panel this tall has room for them below its text
 FOUL_C = (240, 110, 90)
 GOOD_C = (130, 220, 130)
@@ -285,14 +286,16 @@ def _room(width: int, nrows: int, block) -> bool:
     return width - w - 1 >= TEXT_MIN_COLS and h <= nrows
 
 
-def _widgets_left(width: int, nrows: int, blocks) -> int:
+def _text_cols(width: int, nrows: int, blocks) -> int:
     """Columns of a bottom panel `width` wide left to text once these widgets take the
-    right end (those that fit)."""
+    right end (those that fit), less the blank columns before them."""
     right = width
     for block, _where in blocks:
         if _room(right, nrows, block):
             right -= block[0].shape[1] + 1
-    return right
+    # Two blank columns before a widget: with one, a line cut to fit reads on into the
+    # spin face's words ("... hit no top 0.0").
+    return right - (WIDGET_GAP if right < width else 1)
 
 
 def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
@@ -304,12 +307,12 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
             continue
         right -= bw + 1
         _paste(cells, block, r0, right)
-    w = right - c0 - 1
+    w = _text_cols(width, nrows, info.widgets)
     r = r0
     players = info.players[:2]
     # The players share the width left by the most widgets the match shows, whichever are
     # up now: the second player's name stays put from ball in hand to aim to charge.
-    half = min(w, _widgets_left(width, nrows, info.most_widgets or info.widgets) - 1) // 2
+    half = min(w, _text_cols(width, nrows, info.most_widgets or info.widgets)) // 2
     keep = nrows >= 5
     forms = [_forms(p, info, mono) for p in players]
     # Where one line has no room for its balls down, the other leaves them out too (the
