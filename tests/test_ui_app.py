@@ -831,6 +831,40 @@ def test_take_back_works_with_the_ball_in_hand_in_practice():
     assert m.history == [] and app.state.message[0][0] == "took the last shot back"
 
 
+def test_a_shot_taken_back_leaves_the_stick_as_it_was_for_it():
+    """Practice's U: the layout comes back, and so do the shot's aim and tip, to play it
+    again or nudge it; from ball in hand once the ball goes down where it lay, and not
+    when it is put down elsewhere."""
+    app = app_for(mode="practice")
+    run_script(app, "enter")  # ball in hand put down: aiming
+    stroke = replace(app.state.stroke, angle=123.25, side=0.2, top=-0.3)
+    app.state = replace(app.state, stroke=stroke)
+    run_script(app, "space-hold 1.0 wait 20")
+    assert app.state.phase is Phase.PLACE  # practice's first shot was from ball in hand
+    run_script(app, "u")
+    assert app.state.phase is Phase.PLACE and app.state.match.history == []
+    run_script(app, "enter")
+    s = app.state.stroke
+    assert app.state.phase is Phase.AIM and (s.angle, s.side, s.top) == (123.25, 0.2, -0.3)
+    # From the aim (no ball in hand after it): at once.
+    run_script(app, "space-hold 1.0 wait 20")
+    app.state.match.ball_in_hand = None
+    app.state = start_turn(app.state)
+    app.state = replace(app.state, stroke=replace(app.state.stroke, angle=10.0))
+    run_script(app, "space-hold 1.0 wait 20")
+    app.state.match.ball_in_hand = None
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.AIM
+    run_script(app, "u")
+    s = app.state.stroke
+    assert app.state.phase is Phase.AIM and (s.angle, s.side, s.top) == (10.0, 0.0, 0.0)
+    # Moved before it goes down: aimed afresh.
+    run_script(app, "u u")
+    assert app.state.phase is Phase.PLACE
+    run_script(app, "left enter")
+    assert app.state.stroke.angle != 123.25
+
+
 def test_the_bell_is_called_the_bell_in_the_help_the_settings_and_its_key():
     from termpool.ui.controls import ACTIONS
     from termpool.ui.settings import BY_KEY

@@ -113,10 +113,13 @@ class Aim:
 
 @dataclass(frozen=True)
 class Place:
-    """Ball in hand: where the cue ball would go (drawn there)."""
+    """Ball in hand: where the cue ball would go (drawn there); `again`, the stroke (angle,
+    side, top) of a shot taken back, which the stick takes again if the ball goes down
+    where it was."""
 
     phase: ClassVar[Phase] = Phase.PLACE
     cursor: tuple[float, float]
+    again: tuple[float, float, float] | None = None
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ from termpool.physics.table import POCKET_NAMES
 from termpool.ui import aid
 from termpool.ui.phases.turn import shoot_human, start_turn
 from termpool.ui.predict import LEVELS
-from termpool.ui.state import Place, State, cue_index, next_ball_angle, say
+from termpool.ui.state import Phase, Place, State, cue_index, next_ball_angle, say
 
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 SPIN_KEYS = {"spin_up": (0, 1), "spin_down": (0, -1), "spin_left": (-1, 0), "spin_right": (1, 0)}
@@ -129,16 +129,31 @@ def practice(s: State, action: str | None) -> State:
     if action in ("undo", "rerack") and m.state.mode != "practice":
         return say(s, "take back and re-rack are for practice")
     if action == "undo":
+        shot = m.history[-1]["shot"] if m.history else None
         try:
             m.take_back()
             s = say(s, "took the last shot back")
         except ValueError:
-            s = say(s, "nothing to take back")
-        return start_turn(s)
+            return start_turn(say(s, "nothing to take back"))
+        s = start_turn(s)
+        if shot is None:
+            return s
+        # The stick as it was for that shot (aim and tip), to play it again or nudge it;
+        # from ball in hand, once the ball goes down where it was.
+        again = (shot["angle"] % 360.0, shot["side"], shot["top"])
+        if s.phase is Phase.PLACE:
+            return replace(s, part=replace(s.part, again=again))
+        return take_stroke(s, again) if s.phase is Phase.AIM else s
     if action == "rerack":
         m.rerack()
         return start_turn(say(s, "re-racked"))
     return s
+
+
+def take_stroke(s: State, stroke: tuple[float, float, float]) -> State:
+    """Aim with the stick at (angle, side, top)."""
+    angle, side, top = stroke
+    return replace(s, stroke=replace(s.stroke, angle=angle, side=side, top=top))
 
 
 def tick(s: State, t: float) -> State:

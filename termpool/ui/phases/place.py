@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from termpool.game.layout import head_string
-from termpool.ui.phases.aim import NO_PUSH_OUT, practice
+from termpool.ui.phases.aim import NO_PUSH_OUT, practice, take_stroke
 from termpool.ui.phases.turn import own_move, tell
 from termpool.ui.state import (
     Aim,
@@ -67,7 +67,10 @@ def put_down(s: State, x: float, y: float, name: str, t: float, held: bool) -> S
     # Held, the key that put the ball down keeps coming (repeats; on terminals without
     # releases, as presses): none of it may start a shot.
     swallow = (name, t, False) if held else None
+    again = s.part.again if isinstance(s.part, Place) and s.part.cursor == (x, y) else None
     s = replace(s, message=(), part=Aim(), controls=replace(s.controls, swallow=swallow))
+    if again is not None:
+        return take_stroke(s, again)
     return replace(s, stroke=replace(s.stroke, angle=nearest_angle(s)))
 
 
