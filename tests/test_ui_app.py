@@ -1983,3 +1983,31 @@ def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
     put(app, last_power=0.5)
     assert "As aimed" not in aid_done(app)
     assert m.ids[aid.prediction(app.state).ball] == "3"
+
+
+def test_the_aid_says_when_it_sees_no_ball_within_its_cushions() -> None:
+    # The same table: aimed along the long side past the 8, hard, the cue ball runs rail to
+    # rail through the aid's cushions without meeting a ball. Nothing sure to judge (it may
+    # meet one later), so no warning; the power line says what the aid saw.
+    from termpool.ui.predict import MAX_CUSHIONS
+
+    app = app_for(mode="8ball", opponent="human")
+    app.key(Key("enter"), 0.0)
+    eight_on_the_8(app)
+    m = app.state.match
+    m.on_table[:] = False
+    for b, p in {"cue": (0.3, 0.3), "3": (1.8, 0.9), "8": (2.0, 0.4)}.items():
+        m.pos[m.index(b)] = p
+        m.on_table[m.index(b)] = True
+    m.state = replace(m.state, groups={0: "solids", 1: "stripes"},
+                      pocketed=tuple(b for b in m.ids[1:] if b not in ("3", "8")))
+    put(app, last_power=1.0)
+    stroke(app, angle=0.0)
+    text = aid_done(app)
+    pred = aid.prediction(app.state)
+    assert pred.ball is None and pred.cue.end == "cushion"
+    assert f"no ball within {MAX_CUSHIONS} cushions" in text, text
+    assert "As aimed" not in text
+    angle = math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3))
+    stroke(app, angle=angle)  # at the 3: its name instead
+    assert "no ball within" not in aid_done(app)

@@ -39,6 +39,7 @@ from termpool.ui.panel import (
     too_small_lines,
     widget_fits,
 )
+from termpool.ui.predict import MAX_CUSHIONS
 from termpool.ui.screens import TITLES, box_lines
 from termpool.ui.state import (
     LOBBY_GAMES,
@@ -420,8 +421,12 @@ def power_line(s: State) -> str:
 
 
 def _first_ball(s: State) -> str:
-    """The first ball the aid sees hit, and its pocket if it goes in ("" if none)."""
+    """The first ball the aid sees hit, and its pocket if it goes in; that it follows the cue
+    ball through its cushions and sees none ("" while it runs, and where the cue ball stops
+    or drops first: the warning says that)."""
     pred = aid.prediction(s)
+    if pred is not None and pred.ball is None and pred.cue.end == "cushion":
+        return f" · no ball within {MAX_CUSHIONS} cushions"
     if pred is None or pred.ball is None:
         return ""
     line = f" · first ball: the {s.match.ids[pred.ball]}"
