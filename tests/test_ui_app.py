@@ -1200,10 +1200,13 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
         assert "Computer's plan: 3 in the left foot corner pocket" in shown
         app.tick(t)
         t += 1 / 60
-    # ... and when it is over, after the verdict, until the next shot
-    assert app.state.message[1][0] == "Computer's plan: 3 in the left foot corner pocket"
+    # ... and when it is over, after the verdict, until the next shot: in the past, so that
+    # on your turn it does not read as a shot still to come
+    assert app.state.message[1][0] == "Computer's plan was: 3 in the left foot corner pocket"
     assert len(app.state.message) == 2
-    assert "Computer's plan: 3 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
+    shown = screen_text(app.cells(120, 40)[0])
+    assert "Computer's plan was: 3 in the left foot corner pocket" in shown
+    assert "Computer's plan: " not in shown
 
 
 def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monkeypatch):

@@ -310,6 +310,13 @@ def option_lines(option: Option) -> list[str]:
             *(f"{CHOICE_KEYS[c]}: {CHOICE_OFFERS[c]}" for c in option.choices)]
 
 
+def computer_plan(note: str, done: bool = False) -> str:
+    """The computer's plan ("3 in the left foot corner pocket") as the panel says it: while
+    it aims and shoots, then (`done`) once the shot is over, beside the verdict on it, where
+    the present tense would read as a shot still to come."""
+    return f"Computer's plan{' was' if done else ''}: {note}"
+
+
 def chose(name: str, choice: Choice) -> str:
     """"Bob chose to accept the table"."""
     return f"{name} chose to {CHOICE_WORDS[choice]}"

@@ -188,9 +188,10 @@ def finish_shot(s: State) -> State:
     with signals_held():  # judged and recorded whole, whatever interrupts
         out = s.part.shot.finish()
     verdict = words.verdict(out, voice(s), shooter)
-    # The verdict first, the plan it answers after: where the computer's next plan takes
-    # the old one's place, the verdict does not move.
-    s = replace(s, message=(verdict, *s.shot_note))
+    # The verdict first, the plan it answers after (now in the past: "plan was"): where the
+    # computer's next plan takes the old one's place, the verdict does not move.
+    plan = ((words.computer_plan(s.cpu_plan, done=True), "turn"),) if s.shot_note else ()
+    s = replace(s, message=(verdict, *plan), shot_note=plan)
     if s.files.records is not None:  # on disk after every shot, whatever comes next
         s.files.records.keep(m, on=s.opts.records)
     if s.opts.bell and (out.foul or int(m.on_table.sum()) < before):
