@@ -86,7 +86,7 @@ def test_straight_in_on_an_empty_table_goes_in():
     assert not summary.scratch
     assert out.continue_turn
     assert (plan.kind, plan.ball, plan.pocket, plan.sees) == ("pot", "1", "foot_left", "pot")
-    assert plan.note == "1 in the left foot corner pocket"  # for people: the pocket in words
+    assert plan.note == "1 in the top-right corner pocket"  # for people: the pocket in words
 
 
 def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -> float:
@@ -252,7 +252,7 @@ def test_risky_pots_rank_below_safe_ones():
     plans = ai.score_shots(*lay.args(), state)
     # The pots the batch saw drop where they were sent.
     one = [p.score for p in plans if (p.kind, p.ball, p.pocket, p.sees, p.note) ==
-           ("pot", "1", "head_right", "pot", "1 in the right head corner pocket")]
+           ("pot", "1", "head_right", "pot", "1 in the bottom-left corner pocket")]
     two = [p.score for p in plans if (p.kind, p.ball, p.sees) == ("pot", "2", "pot")]
     assert one and two
     assert min(one) > max(two)

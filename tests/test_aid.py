@@ -394,7 +394,7 @@ def test_the_status_line_names_the_pocket_the_aid_shows():
     turn_to(app, math.degrees(math.atan2(*(obj - cue)[::-1])) % 360)
     app.key(Key("4"), 1.0)
     assert FullAid.pocket(app, o, None) == pocket
-    said = words.spoken_pocket(pocket)  # as people say it: "left foot corner"
+    said = words.spoken_pocket(pocket)  # as people say it: "top-right corner"
     assert power_line(app.state).endswith(f"the 3, into the {said} pocket")
     turn_to(app, app.state.stroke.angle + 20.0)  # off the 3: it names no pocket
     finish(app)

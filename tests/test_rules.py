@@ -701,19 +701,21 @@ def test_every_verdict_reads_right_in_every_voice(data) -> None:
     # The people's words are the record's with the names, pockets and groups changed.
     ann = words.reason(out.said, words.voice(("Ann", "Bob")))
     plain = record.replace("player 0", "Ann").replace("player 1", "Bob")
-    spoken = re.sub(r"side_(left|right)", r"\1 side", plain)
-    assert ann == re.sub(r"(head|foot)_(left|right)", r"\2 \1 corner", spoken)
+    assert ann == re.sub(r"(head|foot|side)_(left|right)", lambda m: ON_SCREEN[m.group(0)], plain)
+
+
+# The pockets where the screen shows them (the head on the left, its left pockets at the top).
+ON_SCREEN = {"head_left": "top-left corner", "head_right": "bottom-left corner",
+             "foot_left": "top-right corner", "foot_right": "bottom-right corner",
+             "side_left": "top side", "side_right": "bottom side"}
 
 
 def test_every_pocket_is_named_as_people_say_it() -> None:
     from termpool.physics.table import POCKET_NAMES
 
     v = words.voice(("Ann", "Bob"))
-    assert {p: f"the {v.pocket(p)} pocket" for p in POCKET_NAMES} == {
-        "head_right": "the right head corner pocket", "head_left": "the left head corner pocket",
-        "side_right": "the right side pocket", "side_left": "the left side pocket",
-        "foot_right": "the right foot corner pocket", "foot_left": "the left foot corner pocket"}
-    assert words.calling(v, "8", "side_right") == "calling the 8 in the right side pocket"
+    assert {p: v.pocket(p) for p in POCKET_NAMES} == ON_SCREEN
+    assert words.calling(v, "8", "side_right") == "calling the 8 in the bottom side pocket"
     assert words.RECORD.pocket("side_right") == "side_right"  # records keep the table's names
 
 

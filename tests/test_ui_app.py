@@ -594,7 +594,7 @@ def test_referee_words_get_the_players_names() -> None:
         "the table is open and you continue"
     assert reason([Said(Why.POTTED_CONTINUES, balls=("3",), player=0),
                    Said(Why.SCRATCH, pocket="foot_left")], voice(app.state)) == \
-        ("the 3 pocketed: you continue; scratch: the cue ball went into the left foot corner "
+        ("the 3 pocketed: you continue; scratch: the cue ball went into the top-right corner "
          "pocket")
     assert reason([Said(Why.IN_HAND, player=0)], voice(app.state)) == \
         "You have ball in hand"
@@ -902,7 +902,7 @@ def test_the_8_is_called_in_the_pocket_the_aim_sends_it_to_until_one_is_picked()
     app.key(Key("enter"), 0.0)
     eight_on_the_8(app)
     assert aid.called(app.state) == ("8", "foot_left")
-    assert "calling the 8 in the left foot corner pocket" in screen_text(app.cells(120, 40)[0])
+    assert "calling the 8 in the top-right corner pocket" in screen_text(app.cells(120, 40)[0])
     app.key(Key("left"), 0.5)  # unpicked, the call follows the aim
     app.key(Key("left", kind="release"), 0.51)
     assert aid.called(app.state) == ("8", POCKET_NAMES[aid.aimed_pocket(app.state)])
@@ -949,9 +949,9 @@ def test_refusals_name_pockets_in_words_and_clicks_off_the_table_are_ignored():
     from termpool.ui.keys import Mouse
 
     app = app_for(mode="practice")
-    put(app, part=Place((0.03, 0.03)))  # the right head corner's mouth
+    put(app, part=Place((0.03, 0.03)))  # the bottom-left corner's mouth
     app.key(Key("enter"), 0.0)
-    assert "right head corner pocket" in app.state.message[0][0]
+    assert "bottom-left corner pocket" in app.state.message[0][0]
     app.cells(100, 32)
     before = app.state.part.cursor
     app.mouse(Mouse(50, 31, "press"), 1.0)  # the panel's last row
@@ -984,7 +984,7 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
     def plan(*a, **k):
         return ai.Plan(2.0, 10.0, 0.0, 0.0, None, 1.0,
-                       "the 9 went into the right head corner pocket on a legal shot: "
+                       "the 9 went into the bottom-left corner pocket on a legal shot: "
                        "player 1 wins",
                        "pot", "9", "head_right", "win")
 
@@ -1168,7 +1168,7 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
 
 # -------------------------------------------------------------------- the computer's turn
 
-def cpu_to_shoot(monkeypatch, note="3 in the left foot corner pocket"):
+def cpu_to_shoot(monkeypatch, note="3 in the top-right corner pocket"):
     """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
     from termpool import ai
 
@@ -1189,7 +1189,7 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
         app.tick(t)
         screen = screen_text(app.cells(120, 40)[0])
         if isinstance(app.state.part, Aiming):
-            assert "Computer's plan: 3 in the left foot corner pocket" in screen
+            assert "Computer's plan: 3 in the top-right corner pocket" in screen
             assert aid.prediction(app.state) is not None and "o" in screen  # its ghost ball
             if aimed is None and app.state.stroke.angle == plan.angle:
                 aimed = t
@@ -1197,15 +1197,15 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
     assert aimed is not None and app.state.part.struck_at - aimed >= 1.2
     while app.state.phase is Phase.RUN:  # its words stay up while the shot runs ...
         shown = screen_text(app.cells(120, 40)[0])
-        assert "Computer's plan: 3 in the left foot corner pocket" in shown
+        assert "Computer's plan: 3 in the top-right corner pocket" in shown
         app.tick(t)
         t += 1 / 60
     # ... and when it is over, after the verdict, until the next shot: in the past, so that
     # on your turn it does not read as a shot still to come
-    assert app.state.message[1][0] == "Computer's plan was: 3 in the left foot corner pocket"
+    assert app.state.message[1][0] == "Computer's plan was: 3 in the top-right corner pocket"
     assert len(app.state.message) == 2
     shown = screen_text(app.cells(120, 40)[0])
-    assert "Computer's plan was: 3 in the left foot corner pocket" in shown
+    assert "Computer's plan was: 3 in the top-right corner pocket" in shown
     assert "Computer's plan: " not in shown
 
 
@@ -1470,7 +1470,7 @@ def test_at_200x60_the_spin_readout_shows() -> None:
     for colors, want in (("truecolor", ("side +0.3", "top -0.1")),
                          ("mono", ("tip: side +0.3, top -0.1",))):
         app = grouped(app_for(mode="8ball", opponent="cpu", colors=colors))
-        put(app, message=(("Computer: 12 in the right head corner pocket", "dim"),
+        put(app, message=(("Computer: 12 in the bottom-left corner pocket", "dim"),
                           ("legal break: the 6 and the 7 pocketed; the table is open",
                            "plain")))
         stroke(app, side=0.3, top=-0.1)
@@ -1501,7 +1501,7 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
 def test_game_over_says_you_win_and_q_quits_at_once() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     app.state.match.winner = 0
-    put(app, message=(("the 8 went into the left foot corner pocket: You win", "good"),))
+    put(app, message=(("the 8 went into the top-right corner pocket: You win", "good"),))
     app.state = start_turn(app.state)
     assert app.state.phase is Phase.OVER
     text = screen_text(app.cells(120, 40)[0])
@@ -1688,7 +1688,7 @@ def test_the_players_turn_shows_the_power_line_before_the_computers_plan() -> No
     app = app_for(mode="8ball", opponent="cpu", seed=4)
     app.key(Key("enter"), 0.0)
     run_script(app, "")
-    note = (("Computer: 3 in the right side pocket", "turn"),)
+    note = (("Computer: 3 in the bottom side pocket", "turn"),)
     put(app, shot_note=note, message=(*note, ("nothing pocketed: your turn", "plain")))
     assert app.state.phase in (Phase.AIM, Phase.PLACE)
     put(app, part=Aim())
@@ -1824,7 +1824,7 @@ def test_the_aid_warns_of_a_shot_that_loses_the_game_or_fouls() -> None:
     assert aid.foreseen(app.state).winner == 0
     app.key(Key("c"), 1.0)  # another pocket called: the 8 in this one loses
     text = aid_done(app)
-    assert "As aimed: the 8 went into the left head corner pocket, not the called" in text
+    assert "As aimed: the 8 went into the top-left corner pocket, not the called" in text
     m.on_table[m.index("1")] = True  # a solid still on: the 8 is not the shooter's ball
     m.state = replace(m.state, pocketed=tuple("234567"))
     m.pos[m.index("1")] = (1.2, 0.3)

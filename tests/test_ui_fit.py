@@ -104,7 +104,7 @@ def test_a_dim_first_line_gives_way_to_a_verdict_three_rows_long(first) -> None:
     # the players' row whose turn it is; the verdict reads whole.
     verdict = ("Foul: the cue ball hit the 4 first, not the lowest ball, the 1; the 8 pocketed "
                "on a foul; Computer has ball in hand")
-    status = [(first, "dim"), (verdict, "foul"), ("Computer: 1 in the left foot corner", "dim")]
+    status = [(first, "dim"), (verdict, "foul"), ("Computer: 1 in the top-right corner", "dim")]
     out = [t for t, _ in fit_status(status, 3, 57)]
     assert " ".join(out) == verdict
 
@@ -143,8 +143,8 @@ def test_the_computer_s_plan_gives_its_row_to_the_foul_it_led_to(cols, rows) -> 
     # says them; the verdict reads whole, the plan waits.
     app = App(Options(mode="9ball", opponent="cpu", colors="mono", seed=3),
               input_mode="release")
-    note = (("Computer: 5 in the right foot corner pocket", "turn"),)
-    verdict = "Foul: scratch: the cue ball went into the left foot corner pocket; you have " \
+    note = (("Computer: 5 in the bottom-right corner pocket", "turn"),)
+    verdict = "Foul: scratch: the cue ball went into the top-right corner pocket; you have " \
         "ball in hand"
     app.state = replace(app.state, shot_note=note, message=(*note, (verdict, "foul")))
     assert app.state.phase is Phase.PLACE
@@ -344,3 +344,24 @@ def test_the_status_keeps_two_blank_columns_before_the_spin_face():
             assert row[col - 2:col] == "  ", row
             reached |= row[col - 3] != " "
     assert reached
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (120, 40), (60, 20)])
+def test_each_pocket_s_words_say_where_the_screen_draws_it(cols, rows):
+    """"top"/"bottom" and "left"/"right" in a pocket's spoken name are where its hole is
+    drawn on screen (a side pocket is midway along)."""
+    from termpool.rules.words import spoken_pocket
+
+    app = app_for()
+    table = app.state.match.table
+    lay = layout(cols, rows, table)
+    px, py = lay.to_pixels(table.hole_c[:, 0], table.hole_c[:, 1])
+    mid_x, mid_y = px.mean(), py.mean()
+    for k, name in enumerate(table.hole_names):
+        words = spoken_pocket(name)
+        assert ("top" in words) == (py[k] < mid_y), (name, words)  # pixel rows grow down
+        assert ("bottom" in words) == (py[k] > mid_y), (name, words)
+        if "side" in words:
+            assert abs(px[k] - mid_x) < 2, (name, words)
+        else:
+            assert ("left" in words) == (px[k] < mid_x), (name, words)

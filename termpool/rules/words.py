@@ -5,7 +5,7 @@ A `Voice` says how players, pockets and groups are named. `RECORD` is the record
 "player 0" and "player 1", the rules' names of pockets ("foot_left") and groups ("solids");
 records and `termpool sim` keep verdicts in it. `voice(players, theme)` is a person's: the
 players' names (a player called "You" is spoken to: "you continue", "your turn"), pockets as
-people say them ("the left foot corner pocket", "the right side pocket") and the theme's
+people say them ("the top-right corner pocket", "the bottom side pocket") and the theme's
 groups ("reds" for solids in the classic theme).
 """
 
@@ -39,8 +39,8 @@ class Voice:
     plain: bool = True  # pockets as the table names them ("foot_left"), else in words
 
     def pocket(self, name: str) -> str:
-        """A pocket's name before the word "pocket": "foot_left" in the record's voice, "left
-        foot corner" in a person's ("side_right": "right side")."""
+        """A pocket's name before the word "pocket": "foot_left" in the record's voice,
+        "top-right corner" in a person's ("side_right": "bottom side"; `spoken_pocket`)."""
         return name if self.plain else spoken_pocket(name)
 
     def group(self, group: str) -> str:
@@ -71,18 +71,25 @@ class Voice:
 RECORD = Voice()
 
 
+# Where each pocket is on screen, which draws the table from above with the head on the left:
+# the pockets on the left as seen from the head are along the top.
+_ACROSS = {"left": "top", "right": "bottom"}
+_ALONG = {"head": "left", "foot": "right"}
+
+
 def spoken_pocket(name: str) -> str:
     """A table's pocket name ("end_side", as `physics.table.POCKET_NAMES`) as people say it
-    before "pocket": "left side", "right foot corner", "left head corner". A name of another
-    form is said with its underscores as spaces."""
+    before "pocket": where the screen shows it ("top side", "bottom-right corner",
+    "top-left corner"; the record's "foot_right" is the right foot corner as seen from the
+    head). A name of another form is said with its underscores as spaces."""
     end, _, side = name.partition("_")
-    if side not in ("left", "right"):
+    if side not in _ACROSS or end not in (*_ALONG, "side"):
         return name.replace("_", " ")
-    return f"{side} side" if end == "side" else f"{side} {end} corner"
+    return f"{_ACROSS[side]} side" if end == "side" else f"{_ACROSS[side]}-{_ALONG[end]} corner"
 
 
 def calling(v: Voice, ball: str, pocket: str) -> str:
-    """The call of a shot: "calling the 8 in the right side pocket"."""
+    """The call of a shot: "calling the 8 in the bottom side pocket"."""
     return f"calling the {ball} in the {v.pocket(pocket)} pocket"
 
 
@@ -311,7 +318,7 @@ def option_lines(option: Option) -> list[str]:
 
 
 def computer_plan(note: str, done: bool = False) -> str:
-    """The computer's plan ("3 in the left foot corner pocket") as the panel says it: while
+    """The computer's plan ("3 in the top-right corner pocket") as the panel says it: while
     it aims and shoots, then (`done`) once the shot is over, beside the verdict on it, where
     the present tense would read as a shot still to come."""
     return f"Computer's plan{' was' if done else ''}: {note}"
@@ -338,14 +345,13 @@ def rules_page(mode: str, *, three_foul: bool | None = None, eight_break: str | 
     return [*page, POCKETS]
 
 
-# The pockets' names, as verdicts and the computer's plans say them ("the left foot corner
-# pocket", "the right side pocket").
-POCKETS = ("Pockets", "the head is the end you break from (the left end on screen), the foot "
-                      "the far end, where the balls are racked; the four corner pockets are "
-                      "named by their end (\"the left foot corner\"), and the two side "
-                      "pockets are halfway along. Left and right are as seen from the head: "
-                      "the left pockets are along the top of the screen, the right ones along "
-                      "the bottom.")
+# The pockets' names, as verdicts and the computer's plans say them ("the top-right corner
+# pocket", "the bottom side pocket").
+POCKETS = ("Pockets", "named where the screen shows them: the four corners "
+                      "(\"the top-left corner\") and the two side pockets halfway along the top "
+                      "and bottom rails (\"the bottom side\"). The head is the end you break "
+                      "from (the left end on screen), the foot the far end, where the balls are "
+                      "racked.")
 
 
 def _fouls(after: str) -> str:

@@ -344,7 +344,7 @@ class State:
     # the words on show
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
     cpu_note: tuple[Line, ...] = ()  # the computer's plan, in words
-    cpu_plan: str = ""  # ... its words alone ("3 in the left foot corner pocket")
+    cpu_plan: str = ""  # ... its words alone ("3 in the top-right corner pocket")
     shot_note: tuple[Line, ...] = ()  # ... kept for the shot it is playing
 
     @property

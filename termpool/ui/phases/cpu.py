@@ -69,7 +69,7 @@ def plan(s: State) -> tuple[State, Plan | Choice]:
     decision = player.shot(m)
     foresees = decision.sees in ("win", "loss", "foul")
     note = ((words.computer_plan(decision.note), "turn"),) if decision.note and not foresees \
-        else ()  # a plan ("3 in the left foot corner pocket"), not the result it simulated
+        else ()  # a plan ("3 in the top-right corner pocket"), not the result it simulated
     # The verdict on the shot just played stays in view (the player's, or its own last one),
     # or, after an option, the answer given; not the plan of the shot it was about.
     last = tuple(x for x in s.message if x not in s.shot_note)[:2]
