@@ -107,6 +107,9 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
         if concedes(s):
             other = shown(s.match.players[s.remote[0]])[:16]
             lines[1:1] = ["", f"leaving gives {other} the match"]
+        elif s.match is not None and s.match.winner is None and len(s.remote) < 2:
+            # (M too: a game left for the menu does not wait there to be taken up again)
+            lines[1:1] = ["", "the game in play ends either way"]
         draw_box(out, lines, "quit")
     return out, Seen(cols, rows, lay, table)
 
