@@ -1975,9 +1975,9 @@ def test_the_aid_s_warning_leaves_the_last_verdict_in_view(cols, rows) -> None:
     assert "Computer potted the 3" in text, text
 
 
-def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
-    # The cue ball alone in a corner of the table with the 3 and the 8 far off: aimed along
-    # the head cushion softly it stops short of every ball, a foul; aimed at the 3, no warning.
+def cue_in_a_corner() -> App:
+    """8-ball, solids to shoot: the cue ball alone in a corner of the table, the 3 and the 8
+    far off."""
     app = app_for(mode="8ball", opponent="human")
     app.key(Key("enter"), 0.0)
     eight_on_the_8(app)
@@ -1988,6 +1988,14 @@ def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
         m.on_table[m.index(b)] = True
     m.state = replace(m.state, groups={0: "solids", 1: "stripes"},
                       pocketed=tuple(b for b in m.ids[1:] if b not in ("3", "8")))
+    return app
+
+
+def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
+    # The cue ball alone in a corner of the table with the 3 and the 8 far off: aimed along
+    # the head cushion softly it stops short of every ball, a foul; aimed at the 3, no warning.
+    app = cue_in_a_corner()
+    m = app.state.match
     put(app, last_power=0.1)
     stroke(app, angle=90.0)  # up the screen's short side, softly
     text = aid_done(app)
@@ -2007,16 +2015,7 @@ def test_the_aid_says_when_it_sees_no_ball_within_its_cushions() -> None:
     # meet one later), so no warning; the power line says what the aid saw.
     from termpool.ui.predict import MAX_CUSHIONS
 
-    app = app_for(mode="8ball", opponent="human")
-    app.key(Key("enter"), 0.0)
-    eight_on_the_8(app)
-    m = app.state.match
-    m.on_table[:] = False
-    for b, p in {"cue": (0.3, 0.3), "3": (1.8, 0.9), "8": (2.0, 0.4)}.items():
-        m.pos[m.index(b)] = p
-        m.on_table[m.index(b)] = True
-    m.state = replace(m.state, groups={0: "solids", 1: "stripes"},
-                      pocketed=tuple(b for b in m.ids[1:] if b not in ("3", "8")))
+    app = cue_in_a_corner()
     put(app, last_power=1.0)
     stroke(app, angle=0.0)
     text = aid_done(app)
