@@ -1600,8 +1600,9 @@ def test_the_aid_takes_the_shooter_s_last_power_and_says_it_in_few_words() -> No
     run_script(app, "enter")
     text = screen_text(app.cells(120, 40)[0])
     assert "aid at 50% power · first ball" in text  # half, before any shot
-    run_script(app, "space-hold 0.9 wait 20")
     m = app.state.match
+    m.state = replace(m.state, is_break=False)  # (a break's power is the break's alone)
+    run_script(app, "space-hold 0.9 wait 20")
     struck = round(100 * app.state.last_power)
     assert struck != 50
     for shooter, said in ((0, f"aid at {struck}% power · "),  # the breaker's own
@@ -1779,9 +1780,12 @@ def test_each_player_starts_their_turn_at_their_own_power_never_the_other_s() ->
         assert shots(app)[-1]["speed"] == power_to_speed(0.3)
         m.state = replace(m.state, shooter=0)  # ... and player 1's turn again: their 90%,
         m.ball_in_hand = None  # (a break's power set with a digit is the break's: holding,
-        app.state = start_turn(app.state)  # unless digits are the only way)
+        app.state = start_turn(app.state)  # and the aid at half, unless digits are the only
+        # way)
         assert app.state.controls.charge.preset_level == (0.9 if power == "digits" else None)
-        assert app.state.last_power == 0.9
+        assert app.state.last_power == (0.9 if power == "digits" else 0.5)
+        if power == "hold":
+            assert "aid at 50% power" in screen_text(app.cells(120, 40)[0])
         m.state = replace(m.state, shooter=1)  # player 2's 30% is theirs
         app.state = start_turn(app.state)
         assert app.state.controls.charge.preset_level == 0.3

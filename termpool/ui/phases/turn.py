@@ -167,13 +167,13 @@ def shoot(s: State, speed: float, angle: float, side: float, top: float, called=
 
 def shoot_human(s: State, level: float, called: tuple[str, str] | None) -> State:
     """The player's strike at power `level` (0 to 1) on the stroke set up."""
-    preset = s.controls.charge.preset_level
+    preset, last = s.controls.charge.preset_level, level
     if s.match.state.is_break and s.match.mode != "practice" and s.opts.power != "digits":
         # A power set for a match's break is the break's: one tap of Space must not strike
-        # the next shot at full power (with digits alone a power is always set, and stays;
-        # practice's first shot is any shot).
-        preset = None
-    mine = Power(preset, level)
+        # the next shot at full power, nor the aid show it at the break's (with digits alone
+        # a power is always set, and stays; practice's first shot is any shot).
+        preset, last = None, DEFAULT_POWER
+    mine = Power(preset, last)
     powers = tuple(mine if p == s.match.shooter else x for p, x in enumerate(s.powers))
     s = replace(s, last_power=level, powers=powers)
     st = s.stroke
