@@ -302,17 +302,17 @@ def test_quit_asks_first() -> None:
     assert app.done
 
 
-def test_the_quit_box_says_the_game_in_play_ends_either_way() -> None:
+def test_the_quit_box_says_y_and_m_both_end_the_game_in_play() -> None:
     """Y and M both leave the game in play (M does not keep it to take up again): the box
     says so while a game is in play, and not once the match is over."""
     app = app_for()
     run_script(app, "q")
-    assert "the game in play ends either way" in screen_text(app.cells(100, 32)[0])
+    assert "y and m both end the game in play" in screen_text(app.cells(100, 32)[0])
     app.key(Key("n"), 1.0)
     app.state.match.winner = 0
     run_script(app, "q")
     text = screen_text(app.cells(100, 32)[0])
-    assert "Quit termpool?" in text and "ends either way" not in text
+    assert "Quit termpool?" in text and "both end" not in text
 
 
 def test_help_lists_the_key_bindings() -> None:

@@ -109,7 +109,7 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
             lines[1:1] = ["", f"leaving gives {other} the match"]
         elif s.match is not None and s.match.winner is None and len(s.remote) < 2:
             # (M too: a game left for the menu does not wait there to be taken up again)
-            lines[1:1] = ["", "the game in play ends either way"]
+            lines[1:1] = ["", "y and m both end the game in play"]
         draw_box(out, lines, "quit")
     return out, Seen(cols, rows, lay, table)
 
