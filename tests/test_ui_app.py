@@ -1177,6 +1177,14 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
     assert "no other ball to aim at" in screen_text(app.cells(120, 40)[0])
     app.key(Key("right"), 5.0)  # the aim moved: the note, answered, goes
     assert "no other ball to aim at" not in screen_text(app.cells(120, 40)[0])
+    # A stripe between the cue ball and the 1: Tab names it, in the way of the only ball.
+    m.pos[m.ids.index("9")] = (1.6, 0.635)
+    put(app, stroke=replace(app.state.stroke, angle=at("1")))
+    app.key(Key("tab"), 6.0)
+    assert app.state.stroke.angle == pytest.approx(at("1"))
+    text = " ".join(screen_text(app.cells(120, 40)[0]).split())
+    assert "the 9 is in the way of the 1, the only ball you may hit: a cushion first?" in text, \
+        text
 
 
 # -------------------------------------------------------------------- the computer's turn

@@ -458,6 +458,13 @@ def next_ball_angle(s: State, clockwise: bool) -> float:
     return now if best is None else best[1]
 
 
+def in_the_way(s: State) -> int | None:
+    """The ball the aim's straight line meets first where it is not one the shooter may hit
+    (None: a ball they may hit, or a cushion)."""
+    b = _first_hit(s, cue_index(s), s.stroke.angle)
+    return b if b is not None and b not in targets(s) else None
+
+
 def _first_hit(s: State, c: int, angle: float) -> int | None:
     """The ball the cue ball's straight line at `angle` meets first (None: a cushion)."""
     m = s.match

@@ -11,7 +11,16 @@ from termpool.physics.table import POCKET_NAMES
 from termpool.ui import aid
 from termpool.ui.phases.turn import shoot_human, start_turn
 from termpool.ui.predict import LEVELS
-from termpool.ui.state import Phase, Place, State, cue_index, next_ball_angle, say
+from termpool.ui.state import (
+    Phase,
+    Place,
+    State,
+    cue_index,
+    in_the_way,
+    next_ball_angle,
+    say,
+    targets,
+)
 
 SPIN_STEP = 0.1  # tip offset per key, in units of R
 SPIN_KEYS = {"spin_up": (0, 1), "spin_down": (0, -1), "spin_left": (-1, 0), "spin_right": (1, 0)}
@@ -73,7 +82,13 @@ def key(s: State, key, action: str | None, t: float) -> State:
     if action in ("next_ball", "previous_ball"):
         angle = next_ball_angle(s, action == "next_ball")
         if angle == st.angle:  # (9-ball: the one ball on, already aimed at)
-            return say(s, "no other ball to aim at: the aim is at the only one you may hit")
+            way = in_the_way(s)
+            if way is None:
+                return say(s, "no other ball to aim at: the aim is at the only one you may hit")
+            ids = s.match.ids
+            on = [ids[k] for k in targets(s)]
+            return say(s, f"the {ids[way]} is in the way of the {on[0]}, the only ball you may "
+                          "hit: a cushion first?")
         return replace(answered(s), stroke=replace(st, angle=angle))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
