@@ -53,6 +53,20 @@ def test_a_verdict_takes_the_power_line_s_row_to_wrap_whole() -> None:
     assert all("…" not in t for t, _ in out)
 
 
+def test_a_key_s_answer_keeps_its_row_before_the_power_line() -> None:
+    """Tab's answer at 80x24 beside a warning: the answer to the key just pressed shows, the
+    power line (always there) gives way until the aim moves."""
+    answer = "the 6 is in the way of the 2, the only ball you may hit: a cushion first?"
+    status = [("You to shoot · the 2 is on", "turn"),
+              ("As aimed, a foul: the cue ball hit the 6 first, not the lowest ball, the 2",
+               "warn"),
+              ("power 60% · first ball: the 6", "dim"), (answer, "note")]
+    out = [t for t, _ in fit_status(status, 3, 77)]
+    assert out == [status[0][0], status[1][0], answer]
+    out = [t for t, _ in fit_status(status, 4, 77)]
+    assert out == [t for t, _ in status]  # room for all: in their order
+
+
 def test_a_warning_and_a_verdict_each_keep_a_row_before_either_wraps() -> None:
     status = [("You to shoot", "turn"), (LONG_BREAK, "foul"), ("power 50%", "dim"),
               (LONG_FOUL, "plain")]

@@ -130,9 +130,10 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
     """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
     all fit whole, rows go in turn to: the lines before the first verdict or warning that
     are not notes (what to do now, news), the verdicts and warnings ("plain", "good",
-    "foul", "warn") a row each, then each of them whole in order, the other lines a row each (the
-    computer's plan, "plan", and dim notes such as "F: fast forward" or "Computer is
-    aiming", which the key bar and the players' row say too), then whole. A line given
+    "foul", "warn") a row each, then each of them whole in order, the other lines a row each (a
+    key's answer, "note", first; then the computer's plan, "plan", and dim lines such as the
+    power or "Computer is aiming", which the key bar and the players' row say too), then
+    whole. A line given
     fewer rows than it needs is cut at a word with "…"; one given none is left out. So what
     a rule said reads whole, the power and the aid's notes giving way first."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
@@ -141,7 +142,10 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
     rows = [0] * len(wrapped)
     left = max(room, 0)
     kept = [k for k, (_, tone) in enumerate(status) if tone in KEPT_TONES]
-    rest = [k for k in range(len(status)) if k not in kept]
+    # Of the rest, a key's answer ("note") first: it answers what was just pressed, where the
+    # power line and the plan are on show all the time.
+    rest = sorted((k for k in range(len(status)) if k not in kept),
+                  key=lambda k: status[k][1] != "note")
     whole = [len(w) for w in wrapped]
     order = [(k, 1) for k in _leading(status, kept)] + [(k, 1) for k in kept] \
         + [(k, whole[k]) for k in kept] \
