@@ -130,12 +130,12 @@ def fit_status(status: Sequence[tuple[str, str]], room: int,
     """The status lines (text, tone) for `room` rows `width` wide, wrapped. Where they do not
     all fit whole, rows go in turn to: the lines before the first verdict or warning that
     are not notes (what to do now, news), the verdicts and warnings ("plain", "good",
-    "foul", "warn") a row each, then each of them whole in order, the other lines a row each (a
-    key's answer, "note", first; then the computer's plan, "plan", and dim lines such as the
-    power or "Computer is aiming", which the key bar and the players' row say too), then
-    whole. A line given
-    fewer rows than it needs is cut at a word with "…"; one given none is left out. So what
-    a rule said reads whole, the power and the aid's notes giving way first."""
+    "foul", "warn") a row each, then each of them whole in order, the other lines a row
+    each (a key's answer, "note", first; then the computer's plan, "plan", and dim lines
+    such as the power or "Computer is aiming", which the key bar and the players' row say
+    too), then whole. A line given fewer rows than it needs is cut at a word with "…"; one
+    given none is left out. So what a rule said reads whole, the power and the plan giving
+    way first."""
     wrapped = [[(s, tone) for s in _wrap(text, width)] for text, tone in status]
     if sum(len(w) for w in wrapped) <= room:
         return [line for w in wrapped for line in w]
