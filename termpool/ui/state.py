@@ -343,13 +343,17 @@ class State:
     aid: AidJob = AidJob()
     # the words on show
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
-    cpu_note: tuple[Line, ...] = ()  # the computer's plan, in words
-    cpu_plan: str = ""  # ... its words alone ("3 in the top-right corner pocket")
-    shot_note: tuple[Line, ...] = ()  # ... kept for the shot it is playing
+    cpu_plan: str = ""  # the computer's plan ("3 in the top-right corner pocket"; "": none)
+    shot_note: tuple[Line, ...] = ()  # its line, kept for the shot it is playing
 
     @property
     def phase(self) -> Phase:
         return self.part.phase
+
+    @property
+    def cpu_note(self) -> tuple[Line, ...]:
+        """The computer's plan as the panel's line (none without one)."""
+        return ((words.computer_plan(self.cpu_plan), "turn"),) if self.cpu_plan else ()
 
 
 # ------------------------------------------------------------------------- reading a state

@@ -68,9 +68,9 @@ def plan(s: State) -> tuple[State, Plan | Choice]:
         m.place_cue(*player.place(m))
     decision = player.shot(m)
     foresees = decision.sees in ("win", "loss", "foul")
-    note = ((words.computer_plan(decision.note), "turn"),) if decision.note and not foresees \
-        else ()  # a plan ("3 in the top-right corner pocket"), not the result it simulated
+    # A plan ("3 in the top-right corner pocket"), not the result it simulated.
+    s = replace(s, cpu_plan="" if foresees else decision.note)
     # The verdict on the shot just played stays in view (the player's, or its own last one),
     # or, after an option, the answer given; not the plan of the shot it was about.
     last = tuple(x for x in s.message if x not in s.shot_note)[:2]
-    return replace(s, message=last + note, cpu_note=note, cpu_plan=decision.note), decision
+    return replace(s, message=last + s.cpu_note), decision
