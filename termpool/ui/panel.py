@@ -290,33 +290,30 @@ def _room(width: int, nrows: int, block) -> bool:
     return width - w - 1 >= TEXT_MIN_COLS and h <= nrows
 
 
-def _text_cols(width: int, nrows: int, blocks) -> int:
-    """Columns of a bottom panel `width` wide left to text once these widgets take the
-    right end (those that fit), less the blank columns before them."""
-    right = width
+def _placed(width: int, nrows: int, blocks) -> tuple[list[tuple[object, int]], int]:
+    """The widgets that take the right end of a bottom panel `width` wide (those that fit),
+    each with its column from the panel's left, and the columns left to text, less the
+    blank columns before them."""
+    right, placed = width, []
     for block, _where in blocks:
         if _room(right, nrows, block):
             right -= block[0].shape[1] + 1
+            placed.append((block, right))
     # Two blank columns before a widget: with one, a line cut to fit reads on into the
     # spin face's words ("... hit no top 0.0").
-    return right - (WIDGET_GAP if right < width else 1)
+    return placed, right - (WIDGET_GAP if placed else 1)
 
 
 def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mono) -> None:
     # Widgets (spin face, power meter) take the right end; text gets the rest.
-    right = c0 + width
-    for block, _where in info.widgets:
-        bw = block[0].shape[1]
-        if not _room(right - c0, nrows, block):
-            continue
-        right -= bw + 1
-        _paste(cells, block, r0, right)
-    w = _text_cols(width, nrows, info.widgets)
+    placed, w = _placed(width, nrows, info.widgets)
+    for block, col in placed:
+        _paste(cells, block, r0, c0 + col)
     r = r0
     players = info.players[:2]
     # The players share the width left by the most widgets the match shows, whichever are
     # up now: the second player's name stays put from ball in hand to aim to charge.
-    half = min(w, _text_cols(width, nrows, info.most_widgets or info.widgets)) // 2
+    half = min(w, _placed(width, nrows, info.most_widgets or info.widgets)[1]) // 2
     keep = nrows >= 5
     forms = [_forms(p, info, mono) for p in players]
     # Where one line has no room for its balls down, the other leaves them out too (the
@@ -348,7 +345,7 @@ def _bottom(cells, c0: int, r0: int, width: int, nrows: int, info: PanelInfo, mo
         if sum(len(t) for t, _, _ in pieces) <= w:
             _put_line(cells, r, c0, pieces)
     if hint:  # the whole width where no widget takes the right end
-        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w if right < c0 + width else width),
+        put_text(cells, r0 + nrows - 1, c0, _fit_help(info, w if placed else width),
                  DIM_TEXT_C.rgb, BACKDROP_C.rgb)
 
 
