@@ -86,9 +86,8 @@ def key(s: State, key, action: str | None, t: float) -> State:
             if way is None:
                 return say(s, "no other ball to aim at: the aim is at the only one you may hit")
             ids = s.match.ids
-            on = [ids[k] for k in targets(s)]
-            return say(s, f"the {ids[way]} is in the way of the {on[0]}, the only ball you may "
-                          "hit: a cushion first?")
+            return say(s, f"the {ids[way]} is in the way of the {ids[targets(s)[0]]}, the only "
+                          "ball you may hit: a cushion first?")
         return replace(answered(s), stroke=replace(st, angle=angle))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
