@@ -501,11 +501,21 @@ def test_practice_take_back_restores_the_table() -> None:
         m.take_back()
 
 
-def test_practice_rerack() -> None:
+def test_practice_rerack_and_its_take_back() -> None:
+    """A re-rack racks every ball and keeps the record; taking it back puts the balls, the
+    state and the ball in hand back as they were, and the shot before it can still be taken
+    back after that."""
     m = Match("practice", seed=3)
     m.begin(Shot(8.0, 0.0)).finish()
+    pos1, on1, state1, hand1 = m.pos.copy(), m.on_table.copy(), m.state, m.ball_in_hand
     m.rerack()
     assert m.on_table.all() and at(m, "cue") == HEAD and len(m.history) == 1
+    assert not np.array_equal(m.pos, pos1)  # the break's layout is gone
+    assert m.state.is_break
+    assert m.take_back() == "rerack"
+    assert np.array_equal(m.pos, pos1) and np.array_equal(m.on_table, on1)
+    assert (m.state, m.ball_in_hand, len(m.history)) == (state1, hand1, 1)
+    assert m.take_back() == "shot" and m.history == []
     with pytest.raises(ValueError, match="no shot"):
         m.take_back()
 

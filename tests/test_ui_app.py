@@ -844,6 +844,21 @@ def test_take_back_works_with_the_ball_in_hand_in_practice():
     assert m.history == [] and app.state.message[0][0] == "took the last shot back"
 
 
+def test_a_re_rack_says_how_to_take_it_back_and_u_takes_it_back():
+    app = app_for(mode="practice")
+    run_script(app, "enter space-hold 1.0 wait 20")
+    m = app.state.match
+    before = m.pos.copy()
+    stroke = app.state.stroke
+    run_script(app, "r")
+    assert app.state.message[0][0] == "re-racked (U puts the balls back)"
+    assert m.on_table.all() and not np.array_equal(m.pos, before)
+    run_script(app, "u")
+    assert app.state.message[0][0] == "the re-rack taken back: the balls as they were"
+    assert np.array_equal(m.pos, before) and len(m.history) == 1
+    assert app.state.stroke.angle == stroke.angle  # the stick stays: no shot was taken back
+
+
 def test_a_shot_taken_back_leaves_the_stick_as_it_was_for_it():
     """Practice's U: the layout comes back, and so do the shot's aim and tip, to play it
     again or nudge it; from ball in hand once the ball goes down where it lay, and not

@@ -149,11 +149,12 @@ class Match:
         self._rack(0 if self.mode == "practice" else self.frame % 2)
 
     def rerack(self) -> None:
-        """Practice: a fresh 15-ball rack (the shots so far stay in the record)."""
+        """Practice: a fresh 15-ball rack (the shots so far stay in the record). `take_back`
+        puts the balls back as they were."""
         if self.mode != "practice":
             raise ValueError("rerack: only in practice (8-ball re-racks are the 'rerack' option)")
         self._check_idle("rerack")
-        self._undo.clear()
+        self._undo.append(self._snapshot("rerack"))
         self._rack(0)
 
     # --------------------------------------------------------------------- ball in hand
@@ -275,7 +276,7 @@ class Match:
         eng = run.engine
         summary = summarize(eng.log[0], run.ids, is_break=run.state.is_break)
         outcome, new_state = judge(run.state, summary)
-        self._undo.append(self._snapshot())
+        self._undo.append(self._snapshot("shot"))
         self.history.append(record.shot_record(run, outcome, len(self.history) + 1,
                                                self.frame + 1))
         if outcome.rerack:  # a fresh rack, broken by `next_shooter`: the new state is its
@@ -295,8 +296,9 @@ class Match:
         return outcome
 
     # ------------------------------------------------------------------------- take back
-    def _snapshot(self) -> dict:
-        return {"balls": self.balls.snapshot(), "state": self.state,
+    def _snapshot(self, undoes: str) -> dict:
+        """What `take_back` restores before a shot or a re-rack (`undoes`: "shot", "rerack")."""
+        return {"undoes": undoes, "balls": self.balls.snapshot(), "state": self.state,
                 "ball_in_hand": self.ball_in_hand, "option": self.option,
                 "last_outcome": self.last_outcome, "history": len(self.history),
                 "choices": len(self.choices)}
@@ -310,8 +312,9 @@ class Match:
         if self.winner is None:
             self.winner, self.conceded = 1 - player, player
 
-    def take_back(self) -> None:
-        """Practice: undo the last shot (the layout, state and record before it)."""
+    def take_back(self) -> str:
+        """Practice: undo the last shot or re-rack (the layout, state and record before it).
+        Returns what it undid: "shot" or "rerack"."""
         if self.mode != "practice":
             raise ValueError("take_back: only in practice")
         self._check_idle("take_back")
@@ -323,3 +326,4 @@ class Match:
         self.option, self.last_outcome = snap["option"], snap["last_outcome"]
         del self.history[snap["history"]:]
         del self.choices[snap["choices"]:]
+        return snap["undoes"]

@@ -9,6 +9,7 @@ from dataclasses import replace
 from termpool.physics.cue import clamp_tip
 from termpool.physics.table import POCKET_NAMES
 from termpool.ui import aid
+from termpool.ui.help import pretty
 from termpool.ui.phases.turn import shoot_human, start_turn
 from termpool.ui.predict import LEVELS
 from termpool.ui.state import (
@@ -145,11 +146,12 @@ def practice(s: State, action: str | None) -> State:
     if action == "undo":
         shot = m.history[-1]["shot"] if m.history else None
         try:
-            m.take_back()
-            s = say(s, "took the last shot back")
+            undid = m.take_back()
         except ValueError:
             return start_turn(say(s, "nothing to take back"))
-        s = start_turn(s)
+        if undid == "rerack":
+            return start_turn(say(s, "the re-rack taken back: the balls as they were"))
+        s = start_turn(say(s, "took the last shot back"))
         if shot is None:
             return s
         # The stick as it was for that shot (aim and tip), to play it again or nudge it;
@@ -160,7 +162,9 @@ def practice(s: State, action: str | None) -> State:
         return take_stroke(s, again) if s.phase is Phase.AIM else s
     if action == "rerack":
         m.rerack()
-        return start_turn(say(s, "re-racked"))
+        undo = s.keymap.keys_for("undo")
+        return start_turn(say(s, f"re-racked ({pretty(undo[0])} puts the balls back)" if undo
+                              else "re-racked"))
     return s
 
 
