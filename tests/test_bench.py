@@ -26,6 +26,8 @@ FIGURES = (
     "sim_start_cpu_s",
     "python_start_s",
     "numpy_start_s",
+    "memory_batch_cpu_s",
+    "memory_batch_breaks_per_cpu_s",
 )
 COUNTS = ("break_steps", "break_passes", "batch_passes", "batch_steps", "events_total")
 
