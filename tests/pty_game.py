@@ -87,6 +87,13 @@ class PtyGame:
             self.pump(0.1)
         return text in self.text()
 
+    def wait_for_raw(self, data: bytes, timeout: float = 20.0) -> bool:
+        """Read until the child has written `data` (True), or `timeout` s have passed."""
+        end = time.monotonic() + timeout
+        while data not in self.raw and time.monotonic() < end and not self.exited():
+            self.pump(0.1)
+        return data in self.raw
+
     def text(self) -> str:
         return "\n".join(self.screen.display)
 
