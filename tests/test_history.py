@@ -22,13 +22,14 @@ WHEN = datetime(2026, 11, 27, 13, 8, tzinfo=UTC)
 
 
 def rec(player: int, frame: int = 1, pots: int = 0, foul: bool = False, goes_on: bool = False,
-        brk: bool = False, winner: int | None = None) -> dict:
-    """A shot record with what the figures read: who shot, the balls it left pocketed (and one
-    left on the table), the referee's verdict."""
+        brk: bool = False, winner: int | None = None, push_out: bool = False) -> dict:
+    """A shot record with what the figures read: who shot (and whether as a push-out), the
+    balls it left pocketed (and one left on the table), the referee's verdict."""
     final = [{"id": "cue", "state": "pocketed" if foul else "stationary"},
              *({"id": str(k + 1), "state": "pocketed"} for k in range(pots)),
              {"id": "15", "state": "stationary"}]
     return {"player": player, "frame": frame, "final": final, "scene": {"game": {"break": brk}},
+            "shot": {"push_out": push_out},
             "outcome": {"foul": "scratch" if foul else None, "continue_turn": goes_on,
                         "winner": winner}}
 
@@ -39,6 +40,13 @@ def test_pots_count_only_object_balls_on_shots_without_a_foul() -> None:
     f = h.player_figures([rec(0, pots=2, goes_on=True), rec(0, pots=3, foul=True),
                           rec(1, pots=1)], 0)
     assert (f["shots"], f["pots"], f["potting_shots"], f["fouls"]) == (2, 2, 1, 1)
+
+
+def test_balls_down_on_a_push_out_are_no_pots() -> None:
+    """A push-out's pocketed balls stay down but are "not counted": the shot counts, they
+    do not (nor start a run)."""
+    f = h.player_figures([rec(0, pots=1, push_out=True), rec(0, pots=1, goes_on=True)], 0)
+    assert (f["shots"], f["pots"], f["potting_shots"], f["longest_run"]) == (2, 1, 1, 1)
 
 
 def test_a_run_is_the_balls_of_consecutive_potting_shots_within_a_frame() -> None:

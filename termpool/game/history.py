@@ -22,8 +22,8 @@ Every figure comes from the match's shot records (the engine's final ball states
 referee's outcomes), never from its words:
 
 - `shots`: the player's shots, breaks and push-outs included; `fouls`: those called fouls.
-- `pots`: object balls the player pocketed on shots that were no foul; `potting_shots`: such
-  shots that pocketed at least one; `pot_rate` = potting_shots / shots.
+- `pots`: object balls the player pocketed on shots that were neither a foul nor a push-out;
+  `potting_shots`: such shots that pocketed at least one; `pot_rate` = potting_shots / shots.
 - `break_runs`: frames the player broke and won without the opponent taking a shot.
 - `longest_run`: the most object balls pocketed in one run: shots in a row, each after one
   that pocketed a ball and kept the player at the table, within a frame.
@@ -77,7 +77,8 @@ def player_figures(history: list[dict], player: int) -> dict[str, int]:
     for rec in history:
         outcome = rec["outcome"]
         foul = outcome["foul"] is not None
-        pots = 0 if foul else _pocketed(rec)
+        # Balls down on a push-out stay down but are not the player's pots (9-ball).
+        pots = 0 if foul or rec["shot"].get("push_out") else _pocketed(rec)
         if rec["player"] == player:
             goes_on = (prev is not None and prev["player"] == player
                        and prev["frame"] == rec["frame"] and prev["outcome"]["continue_turn"]
