@@ -481,7 +481,10 @@ def test_push_out_then_pass_with_p_which_is_not_pause_here() -> None:
     run_script(app, "o space-hold 0.3 wait 20")
     assert app.state.phase is Phase.OPTION and app.state.match.option == "shoot_or_pass"
     assert app.state.match.shooter != pusher
-    assert "pass" in screen_text(app.cells(100, 32)[0])
+    screen = screen_text(app.cells(100, 32)[0])
+    # Two players at one screen: the box names whose call it is.
+    chooser = app.state.match.players[app.state.match.shooter]
+    assert "pass" in screen and f"{chooser}'s call" in screen, screen
     app.key(Key("p"), 200.0)
     assert app.state.box is None and app.state.match.option is None
     assert app.state.match.shooter == pusher

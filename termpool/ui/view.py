@@ -201,6 +201,7 @@ def _question(s: State, cells, lay: Layout) -> None:
     m = s.match
     if s.phase is Phase.OPTION:
         lines = words.option_lines(m.option)
+        title = f"{voice(s).whose(m.shooter)} call"  # whose: two players may share a screen
         c = cue_index(s)
         at = None
         if m.on_table[c]:
@@ -216,11 +217,11 @@ def _question(s: State, cells, lay: Layout) -> None:
                                         (cue, lines, table), (cue, tight, table),
                                         (near & m.on_table, lines, None), (cue, lines, None)):
                 keep = _cells_of(lay, m.pos[which], m.radius[which])
-                at = box_clear_of(cells, text, keep, "your call", within=within)
+                at = box_clear_of(cells, text, keep, title, within=within)
                 if at is not None:
                     lines = text
                     break
-        draw_box(cells, lines, "your call", at=at)
+        draw_box(cells, lines, title, at=at)
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
         again = "n: the lobby" if s.remote else "n: new game"  # online: a new challenge
