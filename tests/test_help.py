@@ -306,6 +306,24 @@ def test_practice_key_help_names_take_back_and_re_rack_where_they_fit() -> None:
     assert "take back" not in screen_text(app.cells(160, 50)[0])
 
 
+def test_practice_key_help_names_take_back_with_the_ball_in_hand_too() -> None:
+    """Ball in hand in practice (its start, or after a scratch, where a take-back is most
+    wanted): U and R are on the key line as they are while aiming."""
+    from termpool.ui.app import App, Options
+    from termpool.ui.headless import screen_text
+    from termpool.ui.state import Phase
+
+    app = App(Options(mode="practice", opponent="human", colors="mono", seed=0))
+    assert app.state.phase is Phase.PLACE
+    for cols, rows in ((80, 24), (60, 20)):
+        hint = screen_text(app.cells(cols, rows)[0]).splitlines()[-1]
+        assert "Enter place" in hint and "U " in hint and "R " in hint, hint
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0))
+    assert app.state.phase is Phase.PLACE
+    hint = screen_text(app.cells(160, 50)[0]).splitlines()[-1]
+    assert "Enter place" in hint and "take back" not in hint and "U " not in hint, hint
+
+
 def _keys_page(app: App) -> str:
     app.key(Key("h"), 0.0)
     text = screen_text(app.cells(120, 40)[0])

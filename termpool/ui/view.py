@@ -448,12 +448,17 @@ def hint_lines(s: State) -> list[tuple]:
 
     quit_, help_ = (f"{k('quit')} quit", 0), (f"{k('help')} help", 1)
     ch = s.controls.charge
+    # Practice's own keys rank with the help: a player who never sees U may never take a
+    # shot back (after a scratch, from ball in hand, most of all).
+    practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 1),
+                ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 1)] \
+        if s.match.state.mode == "practice" else []
     if s.phase is Phase.PLACE:
         leave = ([((f"{k('cancel')} leave it", f"{k('cancel')} leave"), 2)]
                  if lies_playable(s) else [])
         return [(f"{k('aim_ccw')}{k('aim_fine_ccw')}{k('aim_fine_cw')}{k('aim_cw')} move", 0),
                 ("(⇧ fine)", 3), (f"{k('confirm')} place", 0), *leave, ("mouse: click", 4),
-                help_, quit_]
+                *practice, help_, quit_]
     if s.phase is Phase.AIM and ch.active:  # what Space does now: the status's first line
         return [(f"{k('cancel')} cancel", 0)]
     if s.phase is Phase.AIM:
@@ -462,11 +467,6 @@ def hint_lines(s: State) -> list[tuple]:
         cancel = [(f"{k('cancel')} hold", 1)] if preset else []
         # Where there is room to spare (it never shortens the rest).
         ball = [(f"{k('next_ball')} next ball", SPARE)]
-        # Practice's own keys rank with the help: a player who never sees U may never
-        # take a shot back.
-        practice = [((f"{k('undo')} take back", f"{k('undo')} undo"), 1),
-                    ((f"{k('rerack')} re-rack", f"{k('rerack')} rack"), 1)] \
-            if s.match.state.mode == "practice" else []
         aim, fine = (f"{k('aim_ccw')}{k('aim_cw')}", f"{k('aim_fine_ccw')}{k('aim_fine_cw')}")
         return [((f"{aim} aim", f"{aim} aim", f"{aim}aim"), 0),
                 ((f"{fine} fine", f"{fine} fine", f"{fine}fine"), 5),
