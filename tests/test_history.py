@@ -301,6 +301,15 @@ def test_the_stats_text_fits_the_box_and_names_every_opponent() -> None:
     assert stats_lines(h.summary([])) == [stats_lines(h.summary([]))[0]]
 
 
+def test_a_long_name_gives_way_to_the_opponent_and_level_in_the_last_matches() -> None:
+    for level in ("hard", "normal"):
+        text = stats_lines(h.summary([line(player="Bartholomew Q. L", level=level)]))
+        row = next(x for x in text if x.startswith(WHEN.isoformat()[:10]))
+        assert f"… v Computer ({level})" in row and " Ba" in row, row
+    text = stats_lines(h.summary([line(player="Ann", level="hard")]))
+    assert any("Ann v Computer (hard)" in x for x in text)
+
+
 def test_the_chart_s_key_names_only_the_marks_it_shows() -> None:
     """Games against the computer alone: no word of online games or a second player; an
     online one added: its mark is explained."""

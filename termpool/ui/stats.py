@@ -13,6 +13,7 @@ from typing import Any
 from termpool.game.history import group_of
 
 WIDTH = 74  # what the Stats box holds on an 80-column terminal
+MATCH_COLS = 23  # the last matches' "match" column: "You v Computer (normal)"
 GROUP_WORDS = {"easy": "computer, easy", "normal": "computer, normal", "hard": "computer, hard",
                "pro": "computer, pro", "player": "a second player", "online": "someone online",
                "practice": "practice"}
@@ -83,10 +84,13 @@ def _match_row(line: dict[str, Any]) -> str:
         them = line["opponent"]
         if line["level"] is not None and not line["cpu"]:
             them = f"{them} ({line['level']})"
-        who = f"{line['player']} v {them}"
+        # The player is the same on every row (this screen's); the opponent and the
+        # computer's level are what tell the rows apart, so the player's name gives way first.
+        who = f"{_cut(line['player'], max(MATCH_COLS - 3 - len(them), 2))} v {them}"
         word = {"won": "won", "lost": "lost", "unfinished": "left"}[line["result"]]
         result = f"{word} {line['won']}-{line['lost']}"
-    return (f"{line['date'][:10]:<10} {GAMES[line['mode']]:<8} {_cut(who, 23):<23} "
+    who = _cut(who, MATCH_COLS)
+    return (f"{line['date'][:10]:<10} {GAMES[line['mode']]:<8} {who:<{MATCH_COLS}} "
             f"{result:<9} {line['shots']:>5} {pct(line['pot_rate']):>4} {line['fouls']:>5} "
             f"{line['longest_run']:>3}")
 
@@ -113,7 +117,7 @@ def stats_lines(summary: dict[str, Any]) -> list[str]:
     out += ["", *textwrap.wrap(chart_head, WIDTH)]
     out += chart_lines([line["pot_rate"] for line in last],
                        [GROUP_MARK[group_of(line)] for line in last])
-    out += ["", f"{'date':<10} {'game':<8} {'match':<23} {'result':<9} {'shots':>5} "
+    out += ["", f"{'date':<10} {'game':<8} {'match':<{MATCH_COLS}} {'result':<9} {'shots':>5} "
                 f"{'pot':>4} {'fouls':>5} {'run':>3}"]
     out += [_match_row(line) for line in reversed(last)]  # the newest first
     return out
