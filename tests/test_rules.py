@@ -688,7 +688,8 @@ THIRD_PERSON = re.compile(r"\byou (has|is|continues|loses|wins|takes|chooses|bre
 def test_every_verdict_reads_right_in_every_voice(data) -> None:
     state = data.draw(any_state())
     evs, _ = data.draw(any_shot(state.on_table()))
-    out, _ = judge(state, summarize(evs, IDS, is_break=state.is_break))
+    summary = summarize(evs, IDS, is_break=state.is_break)
+    out, _ = judge(state, summary)
     record = words.reason(out.said)
     assert record == out.reason and "you" not in record.lower().split()
     assert "player 0" in record or "player 1" in record or state.mode == "practice"
@@ -698,10 +699,24 @@ def test_every_verdict_reads_right_in_every_voice(data) -> None:
         assert not THIRD_PERSON.search(said), said
         assert "_" not in said  # pockets in words
         assert "solids" not in said and "stripes" not in said  # the classic theme's groups
-    # The people's words are the record's with the names, pockets and groups changed.
+    # The people's words are the record's with the names, pockets and groups changed, and a
+    # ball pocketed alone said with its pocket ("the 3 in the top-right corner pocket").
     ann = words.reason(out.said, words.voice(("Ann", "Bob")))
     plain = record.replace("player 0", "Ann").replace("player 1", "Bob")
-    assert ann == re.sub(r"(head|foot|side)_(left|right)", lambda m: ON_SCREEN[m.group(0)], plain)
+    expected = re.sub(r"(head|foot|side)_(left|right)", lambda m: ON_SCREEN[m.group(0)], plain)
+    for x in out.said:
+        assert len(x.pockets) == len(x.balls) or not x.pockets
+        if x.why in POTTED and len(x.balls) == 1 and x.pockets[0] is not None:
+            b, p = x.balls[0], x.pockets[0]
+            assert p == summary.pocketed[b]  # where the shot's events put it
+            said = f"the {b} in the {ON_SCREEN[p]} pocket"
+            expected = expected.replace(f"the {b} pocketed", said, 1)
+    assert ann == expected
+
+
+POTTED = {Why.LEGAL_BREAK_POTTED, Why.TAKES_GROUP, Why.POTTED_CONTINUES, Why.POTTED_NOT_OWN,
+          Why.PRACTICE_POTTED}  # the clauses of balls pocketed, which give their pockets
+
 
 
 # The pockets where the screen shows them (the head on the left, its left pockets at the top).

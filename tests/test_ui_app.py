@@ -612,6 +612,10 @@ def test_referee_words_get_the_players_names() -> None:
                    Said(Why.SCRATCH, pocket="foot_left")], voice(app.state)) == \
         ("the 3 pocketed: you continue; scratch: the cue ball went into the top-right corner "
          "pocket")
+    assert reason([Said(Why.POTTED_CONTINUES, balls=("3",), pockets=("foot_left",), player=0)],
+                  voice(app.state)) == "the 3 in the top-right corner pocket: you continue"
+    assert reason([Said(Why.POTTED_CONTINUES, balls=("3", "5"), pockets=("foot_left", "side_left"),
+                        player=0)], voice(app.state)) == "the 3 and the 5 pocketed: you continue"
     assert reason([Said(Why.IN_HAND, player=0)], voice(app.state)) == \
         "You have ball in hand"
     assert foul_warning(voice(app.state), 0).startswith("You are on two fouls")

@@ -160,7 +160,8 @@ def test_arrows_step_a_shot_back_and_forward(record) -> None:
         w.key(Key("right"), 3.0 + k)
     assert w.i == 3 and w.phase == "end"
     screen = text(w)
-    assert "shot 4 of 4 · Player 2" in screen and "the 9 pocketed: Player 2 continues" in screen
+    assert "shot 4 of 4 · Player 2" in screen
+    assert "the 9 in the top side pocket: Player 2 continues" in screen
     assert "the end: the record stops here" in screen
     w.key(Key("left"), 9.0)
     assert (w.i, w.phase) == (3, "aim")

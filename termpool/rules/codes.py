@@ -101,11 +101,12 @@ class Why(StrEnum):
 @dataclass(frozen=True)
 class Said:
     """One clause of a verdict: its code and the arguments it names (ball ids, pockets,
-    players 0 and 1, a group, a count)."""
+    players 0 and 1, a group, a count). A clause of balls pocketed gives their pockets too."""
 
     why: Why
     player: int | None = None
     balls: tuple[str, ...] = ()
+    pockets: tuple[str | None, ...] = ()  # where each of `balls` went down (None: off the table)
     ball: str | None = None
     lowest: str | None = None
     pocket: str | None = None

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
-from termpool.rules.codes import Foul, Option, Said
+from termpool.rules.codes import Foul, Option, Said, Why
 from termpool.rules.words import reason as in_words
 
 SOLIDS = tuple(str(n) for n in range(1, 8))
@@ -176,6 +176,13 @@ def count_fouls(state: State, fouled: bool) -> tuple[int, int]:
     f = list(state.fouls)
     f[state.shooter] = f[state.shooter] + 1 if fouled else 0
     return (f[0], f[1])
+
+
+def said_potted(why: Why, summary, balls: Sequence[str], **args) -> Said:
+    """A clause of balls pocketed (`balls`, in order), with where each went down (the shot's
+    summary's pockets; None for a ball that left the table)."""
+    return Said(why, balls=tuple(balls), pockets=tuple(summary.pocketed.get(b) for b in balls),
+                **args)
 
 
 def after(state: State, **changes) -> State:

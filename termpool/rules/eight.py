@@ -43,6 +43,7 @@ from termpool.rules.common import (
     legal_targets,
     order_fouls,
     other_group,
+    said_potted,
 )
 from termpool.rules.events import ShotSummary
 from termpool.rules.words import BREAK_RAIL_BALLS
@@ -113,7 +114,7 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     if rerack:
         # The variant where the 8 on the break means a fresh rack, broken by the same player.
         if legal:
-            said.insert(0, Said(Why.LEGAL_BREAK_POTTED, balls=tuple(potted)))
+            said.insert(0, said_potted(Why.LEGAL_BREAK_POTTED, s, potted))
         said.append(Said(Why.EIGHT_RERACKED, player=me))
         out = Outcome(foul=order[0] if order else None, fouls=order, next_shooter=me,
                       ball_in_hand=True, ball_in_hand_area="kitchen", groups=None,
@@ -146,7 +147,7 @@ def _break(state: State, s: ShotSummary) -> tuple[Outcome, State]:
                     pocketed=pocketed_after)
         return out, new
     if potted:
-        said.insert(0, Said(Why.LEGAL_BREAK_POTTED, balls=tuple(potted)))
+        said.insert(0, said_potted(Why.LEGAL_BREAK_POTTED, s, potted))
         said.append(Said(Why.OPEN_CONTINUES, player=me))
         nxt = me
     else:
@@ -240,11 +241,12 @@ def _shot(state: State, s: ShotSummary) -> tuple[Outcome, State]:
     if groups is None and potted:
         g = group_of(potted[0])
         groups = {me: g, you: other_group(g)}
-        nxt, why = me, Said(Why.TAKES_GROUP, balls=potted, player=me, group=g)
+        nxt, why = me, said_potted(Why.TAKES_GROUP, s, potted, player=me, group=g)
     elif groups is not None and any(group_of(b) == groups[me] for b in potted):
-        nxt, why = me, Said(Why.POTTED_CONTINUES, balls=potted, player=me)
+        nxt, why = me, said_potted(Why.POTTED_CONTINUES, s, potted, player=me)
     elif potted:
-        nxt, why = you, Said(Why.POTTED_NOT_OWN, balls=potted, group=groups[me], player=you)
+        nxt, why = you, said_potted(Why.POTTED_NOT_OWN, s, potted, group=groups[me],
+                                    player=you)
     else:
         nxt, why = you, Said(Why.NOTHING_TURN, player=you)
     out = Outcome(

@@ -24,7 +24,7 @@
 from __future__ import annotations
 
 from termpool.rules.codes import Foul, Option, Said, Why
-from termpool.rules.common import Outcome, State, after, count_fouls, order_fouls
+from termpool.rules.common import Outcome, State, after, count_fouls, order_fouls, said_potted
 from termpool.rules.events import ShotSummary
 from termpool.rules.words import BREAK_RAIL_BALLS, FOUL_LIMIT
 
@@ -115,7 +115,7 @@ def judge(state: State, s: ShotSummary) -> tuple[Outcome, State]:
         return out, new_state(me, ())
 
     if potted:
-        nxt, why = me, Said(Why.POTTED_CONTINUES, balls=potted, player=me)
+        nxt, why = me, said_potted(Why.POTTED_CONTINUES, s, potted, player=me)
     else:
         nxt, why = you, Said(Why.NOTHING_TURN, player=you)
     said = [Said(Why.LEGAL_BREAK), why] if is_break else [why]

@@ -12,7 +12,7 @@ shot, not only its events) and belong to ``termpool.game``: a re-rack starts a f
 from __future__ import annotations
 
 from termpool.rules.codes import Said, Why
-from termpool.rules.common import Outcome, State, after
+from termpool.rules.common import Outcome, State, after, said_potted
 
 
 def judge(state: State, s) -> tuple[Outcome, State]:
@@ -22,7 +22,7 @@ def judge(state: State, s) -> tuple[Outcome, State]:
     me = state.shooter
     gone = [*s.object_pocketed, *(b for b in s.off_table if b != s.cue_id)]
     down = [b for b in dict.fromkeys(gone) if b not in state.pocketed]
-    said = [Said(Why.PRACTICE_POTTED, balls=tuple(down)) if down else Said(Why.NOTHING_POCKETED)]
+    said = [said_potted(Why.PRACTICE_POTTED, s, down) if down else Said(Why.NOTHING_POCKETED)]
     in_hand = s.scratch or s.cue_off_table
     if s.scratch:
         said.append(Said(Why.SCRATCH_IN_HAND, pocket=s.pocketed.get(s.cue_id)))

@@ -156,6 +156,14 @@ def _balls(balls: Sequence[str]) -> str:
     return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
+def _potted(v: Voice, s: Said) -> str:
+    """Balls pocketed: one in a person's voice with its pocket ("the 2 in the top-right
+    corner pocket"), else "the 2 and the 5 pocketed" (the record's words stay as they were)."""
+    if not v.plain and len(s.balls) == 1 and s.pockets and s.pockets[0] is not None:
+        return f"{_ball(s.balls[0])} in the {v.pocket(s.pockets[0])} pocket"
+    return f"{_balls(s.balls)} pocketed"
+
+
 def _cue_down(v: Voice, pocket: str | None) -> str:
     if pocket is None:
         return "the cue ball was pocketed"
@@ -191,7 +199,7 @@ CLAUSES = {
                                      f"ball, {_ball(s.lowest)}",
     Why.NO_RAIL: lambda v, s: NO_RAIL,
     Why.LEGAL_BREAK: lambda v, s: "legal break",
-    Why.LEGAL_BREAK_POTTED: lambda v, s: f"legal break: {_balls(s.balls)} pocketed",
+    Why.LEGAL_BREAK_POTTED: lambda v, s: f"legal break: {_potted(v, s)}",
     Why.LEGAL_BREAK_RAILS: lambda v, s: f"legal break: {s.count} object balls reached a "
                                         "cushion, nothing pocketed",
     Why.EIGHT_RESPOTTED: lambda v, s: "the 8 went down on the break and is re-spotted",
@@ -209,13 +217,13 @@ CLAUSES = {
                                 "down",
     Why.POTTED_ON_FOUL: lambda v, s: f"{_balls(s.balls)} pocketed on a foul",
     Why.NINE_RESPOTTED: lambda v, s: "the 9 is re-spotted",
-    Why.TAKES_GROUP: lambda v, s: f"{_balls(s.balls)} pocketed: "
+    Why.TAKES_GROUP: lambda v, s: f"{_potted(v, s)}: "
                                   f"{v.does(s.player, 'takes', 'take')} the "
                                   f"{v.group(s.group)} and "
                                   f"{v.verb(s.player, 'continues', 'continue')}",
-    Why.POTTED_CONTINUES: lambda v, s: f"{_balls(s.balls)} pocketed: "
+    Why.POTTED_CONTINUES: lambda v, s: f"{_potted(v, s)}: "
                                        f"{v.does(s.player, 'continues', 'continue')}",
-    Why.POTTED_NOT_OWN: lambda v, s: f"{_balls(s.balls)} pocketed, none of the "
+    Why.POTTED_NOT_OWN: lambda v, s: f"{_potted(v, s)}, none of the "
                                      f"{v.group(s.group)}: {v.whose(s.player)} turn",
     Why.NOTHING_TURN: lambda v, s: f"nothing pocketed: {v.whose(s.player)} turn",
     Why.PUSH_OUT: lambda v, s: _push_out(s),
@@ -238,7 +246,9 @@ CLAUSES = {
                                  f"shot: {v.does(s.player, 'wins', 'win')}",
     Why.FOUL_LIMIT: lambda v, s: f"{ordinal(FOUL_LIMIT)} consecutive foul: "
                                  f"{v.does(s.player, 'loses', 'lose')}",
-    Why.PRACTICE_POTTED: lambda v, s: f"{', '.join('the ' + b for b in s.balls)} pocketed",
+    # (the record's words list the balls with commas alone, as they always have)
+    Why.PRACTICE_POTTED: lambda v, s: (f"{', '.join('the ' + b for b in s.balls)} pocketed"
+                                       if v.plain or len(s.balls) != 1 else _potted(v, s)),
     Why.NOTHING_POCKETED: lambda v, s: "nothing pocketed",
     Why.SCRATCH_IN_HAND: lambda v, s: f"{_cue_down(v, s.pocket)}: ball in hand",
     Why.CUE_LEFT_IN_HAND: lambda v, s: "the cue ball left the table: ball in hand",
