@@ -101,6 +101,22 @@ def test_each_shot_is_on_disk_before_the_game_is_left(capsys, tmp_path) -> None:
     assert replays(rec, capsys) == "2 shots: all identical"
 
 
+def test_a_shot_played_again_after_a_take_back_is_the_one_kept(capsys, tmp_path) -> None:
+    """Practice: U, then another shot, leaves as many shots as before; the file must hold the
+    new shot, not the one taken back (and the same again with the game left at once)."""
+    folder = tmp_path / "records"
+    app = App(Options(mode="practice", colors="mono", seed=3), records=Records(None,
+                                                                               folder=folder))
+    play_keys(app, parse_script(ONE_SHOT + " space-hold 0.6 wait 20"), 100, 32)
+    (rec,) = files.kept_records(folder)
+    taken_back = json.loads(files.read_text(rec, files.MAX_REPLAY_BYTES))["shots"][1]
+    play_keys(app, parse_script("u wait 1 right*9 space-hold 0.3 wait 20"), 100, 32)
+    shots_now = json.loads(files.read_text(rec, files.MAX_REPLAY_BYTES))["shots"]
+    assert len(shots_now) == 2 and shots_now[1]["shot"] != taken_back["shot"]
+    assert shots_now[1]["shot"] == app.state.match.history[1]["shot"]
+    assert replays(rec, capsys) == "2 shots: all identical"
+
+
 def test_a_failed_write_leaves_the_last_whole_record_and_no_temporary_file(
         capsys, tmp_path, monkeypatch) -> None:
     folder = tmp_path / "records"

@@ -46,10 +46,27 @@ class _Kept:
     match: object
     shots: int = 0  # as last written ...
     winner: int | None = None  # ... (a match given up changes no shot, only its winner)
+    last: object = None  # ... its last shot (a take-back and a new shot keep the count)
+    choices: int = 0  # ... and the options answered
     where: str | None = None  # the file it is in (None: lost)
     why: str | None = None  # why it is not in its own file
     target: str | None = None  # its own file in the records folder (chosen when first kept)
     floor: int = 0  # shots its file holds already (adopted): not written again with fewer
+
+
+def _written(kept: _Kept) -> None:
+    """Note the match as it was just written."""
+    m = kept.match
+    kept.shots, kept.winner, kept.choices = len(m.history), m.winner, len(m.choices)
+    kept.last = m.history[-1] if m.history else None
+
+
+def _as_written(kept: _Kept) -> bool:
+    """The match is as it was last written: the same shots (the last one the very record
+    written, not a shot played again after a take-back), winner and answers."""
+    m = kept.match
+    return ((kept.shots, kept.winner, kept.choices) == (len(m.history), m.winner, len(m.choices))
+            and kept.last is (m.history[-1] if m.history else None))
 
 
 class Records:
@@ -79,15 +96,14 @@ class Records:
         if kept is None:
             kept = _Kept(match)
             self._kept.append(kept)
-        elif (kept.shots, kept.winner) == (len(match.history), match.winner) \
-                and kept.where is not None:
+        elif _as_written(kept) and kept.where is not None:
             return
         if len(match.history) < kept.floor:  # an adopted file is not cut short meanwhile
             return
         if self.path != "-":
-            self._write(self._kept.index(kept) + 1, kept, len(match.history))
+            self._write(self._kept.index(kept) + 1, kept)
         else:
-            kept.shots = len(match.history)
+            _written(kept)
 
     def adopt(self, match, look: int = 20) -> None:
         """`match` is one this player's earlier session kept a part of (an online match they
@@ -142,7 +158,7 @@ class Records:
                 except OSError:
                     pass
 
-    def _write(self, k: int, kept: _Kept, shots: int) -> None:
+    def _write(self, k: int, kept: _Kept) -> None:
         if self.path:
             target = slot_path(self.path, k)
         else:
@@ -166,8 +182,8 @@ class Records:
                     self._ours.add(target)
                     if existed:
                         self._replaced.add(target)
-                    kept.where, kept.why, kept.shots = target, None, shots
-                    kept.winner = kept.match.winner
+                    kept.where, kept.why = target, None
+                    _written(kept)
                     if self.folder is not None and fresh:
                         self._prune()
                     return
@@ -184,7 +200,7 @@ class Records:
                 else:
                     kept.where = str(files.write_fallback(text, "record"))
                     self._ours.add(kept.where)
-                kept.shots, kept.winner = shots, kept.match.winner
+                _written(kept)
             except OSError as e:
                 kept.where = None
                 kept.why += f" nor to the data directory ({e.strerror or e})"
