@@ -106,8 +106,8 @@ def _replay_arguments(p: argparse.ArgumentParser) -> None:
                    help="--watch without a terminal: play --keys on a virtual screen, print "
                         "the last screen")
     p.add_argument("--size", help="--headless: screen size (default 100x32)")
-    p.add_argument("--keys", metavar="KEYS", help="--headless: key script ('-' for stdin), "
-                   "e.g. 'wait 5 right space'")
+    p.add_argument("--keys", metavar="FILE", help="--headless: a file of keys to play ('-' for "
+                   "stdin), such as: wait 5 right space")
 
 
 def _rules_arguments(p: argparse.ArgumentParser) -> None:

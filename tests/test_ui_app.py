@@ -462,6 +462,15 @@ def test_headless_bad_input_is_one_line_and_exit_2(args, needle) -> None:
     assert len(lines) == 1 and needle in lines[0], p.stderr
 
 
+def test_keys_given_in_place_of_a_key_file_are_told_to_be_a_file(tmp_path) -> None:
+    p = cli("play", "--headless", "--keys", "wait 5 right space")
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2 and len(lines) == 1, p.stderr
+    assert "'wait 5 right space'" in lines[0] and "takes a file of keys" in lines[0]
+    p = cli("play", "--headless", "--keys", str(tmp_path / "none.txt"))  # a file's name: as is
+    assert p.returncode == 2 and "takes a file" not in p.stderr and "none.txt" in p.stderr
+
+
 def test_bad_keymap_file_is_one_line_and_exit_2(tmp_path) -> None:
     conf = tmp_path / "keys.conf"
     conf.write_text("aim_ccw = left\nno_such_action = x\n")

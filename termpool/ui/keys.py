@@ -427,6 +427,20 @@ def _check_length(t: float, events: list) -> None:
                          f"{MAX_SCRIPT_EVENTS} key events")
 
 
+def read_script(path: str) -> str:
+    """The text of the key script in the file at `path` ('-': standard input); a FileError
+    whose one line says so too where the keys themselves were given in place of a file."""
+    from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
+
+    try:
+        return read_text(path, MAX_SCRIPT_BYTES, "key script")
+    except FileError as e:
+        if e.missing and " " in path.strip():
+            raise FileError(f"{e} (--keys takes a file of keys, or '-' to read them from "
+                            "standard input)") from None
+        raise
+
+
 def parse_script(text: str, tap_gap: float = 0.05, repeat_delay: float = 0.3,
                  repeat_rate: float = 0.033) -> list[tuple[float, Key]]:
     """A headless key script -> [(time, Key)] on a virtual clock starting at 0.

@@ -51,8 +51,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="no terminal: play --keys on a virtual screen, print the final screen "
                    "(to stderr with --record -)")
     p.add_argument("--size", help="headless screen size (default 100x32)")
-    p.add_argument("--keys", metavar="FILE", help="headless key script ('-' for stdin), e.g. "
-                   "'right*5 wait 0.2 space-hold 1.5'")
+    p.add_argument("--keys", metavar="FILE", help="headless: a file of keys to play ('-' for "
+                   "stdin), such as: right*5 wait 0.2 space-hold 1.5")
     p.add_argument("--record", metavar="FILE",
                    help="keep every match played (JSON, for `termpool replay`) in FILE "
                         "instead of the data directory's records/: the first in FILE, the "
@@ -209,11 +209,11 @@ def _terminal(args: argparse.Namespace, opts, keymap, files: dict):
 
 
 def _headless(args: argparse.Namespace, opts, keymap, files: dict):
-    from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
+    from termpool.files import FileError
     from termpool.ui.app import App
     from termpool.ui.headless import play as play_keys
     from termpool.ui.headless import screen_size
-    from termpool.ui.keys import legacy_events, parse_script
+    from termpool.ui.keys import legacy_events, parse_script, read_script
     from termpool.ui.term import Stop, stoppable
 
     try:
@@ -223,7 +223,7 @@ def _headless(args: argparse.Namespace, opts, keymap, files: dict):
     if not args.keys:
         raise PlayError("--headless needs --keys FILE (a key script; '-' reads stdin)")
     try:
-        text = read_text(args.keys, MAX_SCRIPT_BYTES, "key script")
+        text = read_script(args.keys)
     except FileError as e:
         raise PlayError(f"--keys: {e}") from None
     try:

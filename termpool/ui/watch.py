@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from termpool.files import MAX_SCRIPT_BYTES, FileError, read_text
+from termpool.files import FileError
 from termpool.game.record import (
     ReplayError,
     check_records,
@@ -46,7 +46,7 @@ from termpool.ui import overlay as ov
 from termpool.ui import term
 from termpool.ui.headless import play, screen_size
 from termpool.ui.help import help_pages, page_key
-from termpool.ui.keys import parse_script
+from termpool.ui.keys import parse_script, read_script
 from termpool.ui.output import resolve_depth
 from termpool.ui.panel import (
     PanelInfo,
@@ -519,7 +519,7 @@ def _headless(watch: Watch, args) -> int:
     except ValueError as e:
         raise WatchError(str(e)) from None
     try:
-        events = parse_script(read_text(args.keys, MAX_SCRIPT_BYTES, "key script"))
+        events = parse_script(read_script(args.keys))
     except (FileError, ValueError) as e:
         raise WatchError(f"--keys: {e}") from None
     try:
