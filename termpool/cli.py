@@ -43,11 +43,23 @@ def _positive(what: str, lo: float = 0.0, hi: float = math.inf):
         if not math.isfinite(val) or val <= 0:
             raise argparse.ArgumentTypeError(f"must be positive and finite, not '{text[:24]}'")
         if not lo <= val <= hi:
-            raise argparse.ArgumentTypeError(f"must be from {lo:g} to {hi:g}, not {val:g}")
+            span = f"above 0 and at most {hi:g}" if lo == 0 else f"from {lo:g} to {hi:g}"
+            raise argparse.ArgumentTypeError(f"must be {span}, not {val:g}")
         return val
 
     parse.__name__ = what
     return parse
+
+
+def _from_one(text: str) -> int:
+    """--last N: a whole number from 1 up (argparse's error names the option)."""
+    try:
+        n = int(text)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number from 1 up, not '{text[:24]}'")
+    return n
 
 
 def bundled_example(name: str = "break.json") -> str:
@@ -126,7 +138,7 @@ def _serve_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _records_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--last", type=int, default=None, metavar="N",
+    p.add_argument("--last", type=_from_one, default=None, metavar="N",
                    help="only the newest N (default: all that are kept)")
 
 
@@ -476,8 +488,6 @@ def _records(args: argparse.Namespace) -> int:
     from termpool.files import kept_records, records_dir
     from termpool.text import shown
 
-    if args.last is not None and args.last < 1:
-        return _fail("--last: must be a whole number from 1 up")
     folder = records_dir()
     kept = kept_records(folder)[::-1]
     if not kept:

@@ -345,7 +345,7 @@ def test_an_unknown_theme_and_a_missing_file(tmp_path, record) -> None:
     (("--watch", "--size", "80x24"), "--size: only with --headless"),
     (("--watch", "--headless"), "--headless needs --keys"),
     (("--watch", "--headless", "--keys", "-", "--size", "80"), "--size: must look like"),
-    (("--watch", "--headless", "--keys", "-", "--size", "0x0"), "out of range"),
+    (("--watch", "--headless", "--keys", "-", "--size", "0x0"), "out of range (1x1 to 1000x1000)"),
     (("--watch", "--json"), "--json: not with --watch"),
     (("--watch",), "needs a terminal"),
 ])

@@ -25,7 +25,7 @@ def screen_size(text: str) -> tuple[int, int]:
     except ValueError:
         raise ValueError(f"--size: must look like 100x32, not '{text}'") from None
     if c < 1 or r < 1 or c > 1000 or r > 1000:
-        raise ValueError(f"--size: {text} is out of range")
+        raise ValueError(f"--size: {text} is out of range (1x1 to 1000x1000)")
     return c, r
 
 
