@@ -16,7 +16,7 @@ from termpool.ui import aid as ui_aid
 from termpool.ui.app import App, Options
 from termpool.ui.keys import Key
 from termpool.ui.phases.turn import start_turn
-from termpool.ui.predict import MAX_CUSHIONS, Predictor, predict
+from termpool.ui.predict import JAWS, MAX_CUSHIONS, MAX_JAWS, Predictor, predict
 from termpool.ui.shots import power_to_speed
 from termpool.ui.state import Phase
 
@@ -41,10 +41,15 @@ def real_events(m: Match, shot: Shot) -> tuple[list[dict], list[str]]:
     return eng.events[0], list(scene.ids)
 
 
-def first_touch(events, k: int, after: float, kinds=("ball_ball", "cushion", "pocket")):
-    """Ball k's state at its first contact after time `after` (or its last event, at rest)."""
+def first_touch(events, k: int, after: float, kinds=("ball_ball", "cushion", "pocket"),
+                jaws: int = 0):
+    """Ball k's state at its first contact after time `after` (or its last event, at rest),
+    passing by up to `jaws` contacts with a pocket's jaws."""
     for ev in events:
         if ev["t"] > after and k in ev["i"] and ev["type"] in kinds:
+            if ev["type"] == "cushion" and ev.get("feature") in JAWS and jaws > 0:
+                jaws -= 1
+                continue
             return ev, ev["balls"][ev["i"].index(k)]
     return None, None
 
@@ -72,7 +77,7 @@ def test_the_prediction_is_the_shot_s_own_events_bit_for_bit(shot):
     other = hit["i"][1] if hit["i"][0] == c else hit["i"][0]
     assert m.ids[other] == m.ids[pred.ball] and ids[other] == m.ids[pred.ball]
     for leg, k in ((pred.object, other), (pred.after, c)):
-        ev, s = first_touch(real, k, hit["t"])
+        ev, s = first_touch(real, k, hit["t"], jaws=MAX_JAWS)
         end = leg.points[-1]
         if leg.end == "rest":  # no contact before it stopped: its place at rest
             x, y = _rest(m, shot).pos[0][k]
@@ -129,6 +134,40 @@ def test_bending_paths_lie_on_the_ball_s_real_track():
                       eng.run(1 / 60, duration=4.0, sample_hz=2000)])
     d = np.min(np.linalg.norm(pred.after.points[:, None, :] - track[None], axis=2), axis=1)
     assert d.max() < 0.002  # within the 2 kHz samples' spacing
+
+
+def _two_balls(cue, obj) -> tuple[Match, int, int]:
+    m = Match("practice", seed=1)
+    m.on_table[:] = False
+    c, o = m.ids.index("cue"), m.ids.index("1")
+    m.on_table[[c, o]] = True
+    m.ball_in_hand = None
+    m.pos[c], m.pos[o] = cue, obj
+    return m, c, o
+
+
+@pytest.mark.parametrize(("turn", "drops"), [(-0.8, True), (-2.2, False), (-0.6, False)])
+def test_a_ball_in_the_jaws_is_followed_to_the_pocket_or_out(turn, drops):
+    """A cut into a corner that meets the jaws: the aid follows the ball through them and
+    says what the shot does, into the pocket (a rattle that drops) or out to the rail."""
+    obj = np.array([2.29, 1.07])
+    cue = obj - (0.6, 0.25)
+    m, c, o = _two_balls(cue, obj)
+    shot = Shot(2.0, math.degrees(math.atan2(0.25, 0.6)) + turn)
+    real, _ = real_events(m, shot)
+    hit, _ = first_touch(real, o, -1.0, ("ball_ball",))
+    mine = [e for e in real if o in e["i"] and e["t"] > hit["t"]
+            and e["type"] in ("cushion", "pocket", "ball_ball")]
+    assert mine[0]["type"] == "cushion" and mine[0]["feature"] in JAWS  # the layout's premise
+    pred = predict(m, shot)
+    assert pred.ball == o
+    ev, s = first_touch(real, o, hit["t"], jaws=MAX_JAWS)
+    end = pred.object.points[-1]
+    assert (end[0], end[1]) == (s["x"], s["y"])  # where it really ends, past the jaws
+    if drops:
+        assert (pred.object.end, pred.object.pocket) == ("pocket", ev["pocket"])
+    else:
+        assert pred.object.end == "cushion" and ev["feature"] == "rail"
 
 
 def test_run_in_shares_gives_the_same_prediction():

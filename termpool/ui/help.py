@@ -51,10 +51,10 @@ def keymap_rows(keymap) -> list[tuple[str, str]]:
 AID_LEGEND = [
     ("Dots (. in mono)", "the cue ball's path to the first ball it meets, through up to three "
      "cushions; a ring (o) is the cue ball where they touch."),
-    ("Pink (- / | \\)", "that ball's path, on to its first cushion, ball or pocket: throw, "
-     "a rattle in the jaws and a pocket missed all show."),
-    ("Green dots (:)", "the cue ball after the hit, to its next contact or rest, curving "
-     "with follow or draw."),
+    ("Pink (- / | \\)", "that ball's path, on to its first cushion, ball or pocket, and "
+     "through a pocket's jaws to the pocket or out: throw and a pocket missed show."),
+    ("Green dots (:)", "the cue ball after the hit, to its next contact or rest (through a "
+     "pocket's jaws too), curving with follow or draw."),
     ("Below the table", "the power the aid shows the shot at, the first ball it sees hit and, "
      "when it sees a pot, the pocket; a red line when the referee would call it a foul."),
     ("G", "every path, then the ghost ball only, then off."),

@@ -4,7 +4,8 @@
 real one (the same scene through the same loader, so the same numbers bit for bit: spin,
 throw, cushions and all) and stops at the events the aid shows: the cue ball's path to the
 first ball it hits (through cushions), that ball's path to its next contact (a cushion, a
-pocket, another ball) or to rest, and the cue ball's path from the hit to its own next contact.
+pocket, another ball) or to rest, and the cue ball's path from the hit to its own next contact;
+after the hit a ball in a pocket's jaws is followed on through them, to the pocket or out.
 The engine is driven one event time at a time (`Engine.t_next`, `run_events(duration)`), so it
 simulates only up to the last event the aid needs.
 
@@ -27,6 +28,10 @@ from termpool.physics.engine import Engine
 
 LEVELS = ("off", "ghost", "full")  # what the aid shows: nothing, the ghost ball, every path
 MAX_CUSHIONS = 3  # the cue ball is followed through this many cushions to its first ball
+# After the hit, a ball that meets a pocket's jaws is followed on through them (this many
+# contacts at most): whether it rattles out or drops is what the shot comes to.
+MAX_JAWS = 6
+JAWS = ("jaw", "tip")  # the cushion features of a pocket's mouth (`Features.names`)
 MAX_TIME = 30.0  # simulated seconds: the aid gives up on a shot still going after this
 MAX_INSTANTS = 2000  # event times run; bounds the work of a pathological shot
 BEND_M = 0.0005  # a leg's piece bending less than this off its chord is drawn straight
@@ -177,6 +182,7 @@ class Job:
         self.cue = _Track(0.0, start)
         self.hit: dict = {}  # after the first hit: "ball", "ghost", "object", "after" tracks
         self.cushions = 0
+        self.jaws = {"object": 0, "after": 0}  # jaw contacts followed through, by leg
         self.seen = 0
         self.instants = 0
         self.done = False
@@ -242,7 +248,10 @@ class Job:
                 if tr.end is not None or k not in states:
                     continue
                 s = states[k]
-                if kind in TOUCH:
+                if kind == "cushion" and ev.get("feature") in JAWS and self.jaws[key] < MAX_JAWS:
+                    self.jaws[key] += 1
+                    tr.add(t, s)
+                elif kind in TOUCH:
                     tr.close(t, s, kind if kind != "ball_ball" else "ball", ev.get("pocket"))
                 elif s["state"] in _STOPPED:
                     tr.close(t, s, "rest")
