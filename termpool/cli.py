@@ -51,17 +51,6 @@ def _positive(what: str, lo: float = 0.0, hi: float = math.inf):
     return parse
 
 
-def _from_one(text: str) -> int:
-    """--last N: a whole number from 1 up (argparse's error names the option)."""
-    try:
-        n = int(text)
-    except ValueError:
-        n = 0
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"must be a whole number from 1 up, not '{text[:24]}'")
-    return n
-
-
 def bundled_example(name: str = "break.json") -> str:
     """Path of an example scene shipped inside the package."""
     from importlib.resources import files
@@ -138,7 +127,9 @@ def _serve_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _records_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--last", type=_from_one, default=None, metavar="N",
+    from termpool.ui.play import whole_number
+
+    p.add_argument("--last", type=whole_number(1), default=None, metavar="N",
                    help="only the newest N (default: all that are kept)")
 
 

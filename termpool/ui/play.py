@@ -12,17 +12,20 @@ INPUTS = ("auto", "kitty", "repeat", "classic")
 MAX_SEED = 2 ** 64 - 1  # a seed is saved in the record, and read back
 
 
-def whole_number(lo: int, hi: int):
-    """An argparse type: a whole number from lo to hi (the text is not echoed whole)."""
+def whole_number(lo: int, hi: int | None = None):
+    """An argparse type: a whole number from lo to hi, or from lo up with no hi (the text is
+    not echoed whole)."""
+    most = len(str(hi)) if hi is not None else 4000  # (int() reads no more than 4300 digits)
+
     def parse(text: str) -> int:
         digits = text.strip().removeprefix("-")
-        if digits.isascii() and digits.isdigit() and len(digits) <= len(str(hi)):
+        if digits.isascii() and digits.isdigit() and len(digits) <= most:
             val = int(text)
-            if lo <= val <= hi:
+            if lo <= val and (hi is None or val <= hi):
                 return val
         short = text if len(text) <= 24 else text[:24] + "..."
-        raise argparse.ArgumentTypeError(f"must be a whole number from {lo} to {hi}, "
-                                         f"not '{short}'")
+        span = f"from {lo} up" if hi is None else f"from {lo} to {hi}"
+        raise argparse.ArgumentTypeError(f"must be a whole number {span}, not '{short}'")
 
     return parse
 
