@@ -52,8 +52,7 @@ print(min(best))
 def one(tree: str, batches: int, size: int) -> float:
     env = dict(os.environ, PYTHONPATH=tree, **{name: "1" for name in BLAS_THREADS})
     out = subprocess.run([sys.executable, "-c", CHILD, str(batches), str(size)], cwd=tree,
-                         env=env,
-                         capture_output=True, text=True, check=True)
+                         env=env, capture_output=True, text=True, check=True)
     return float(out.stdout)
 
 
