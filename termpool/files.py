@@ -71,7 +71,9 @@ def read_text(path: str | os.PathLike, limit: int, what: str = "file") -> str:
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError:
-        raise FileError(f"{name}: not UTF-8 text") from None
+        # A name ending .gz promises gzip: say that it is not, before what else it is not.
+        gz = " (nor gzip, though its name ends in .gz)" if name.endswith(".gz") else ""
+        raise FileError(f"{name}: not UTF-8 text{gz}") from None
 
 
 GZIP_MAGIC = b"\x1f\x8b"
@@ -126,6 +128,8 @@ def parse_json(text: str, where: str,
                pairs_hook: Callable[[list[tuple[str, Any]]], Any] | None = None) -> Any:
     """Parse JSON text, refusing what no termpool file holds: integers longer than
     MAX_INT_DIGITS digits and nesting deeper than MAX_DEPTH. Raises FileError."""
+    if not text.strip():  # (json's own words for it point at line 1 column 1)
+        raise FileError(f"{where}: empty, where JSON was expected")
     try:
         data = json.loads(text, parse_int=_int, parse_constant=_constant,
                           object_pairs_hook=pairs_hook)

@@ -228,7 +228,7 @@ def test_bad_scenes_exit_2(tmp_path: Path) -> None:
         "unknown": "table: unknown key 'lenght'",
         "physics": "physics.mu_slide: must not be negative",
         "miscue": "miscue",
-        "empty": "invalid JSON",
+        "empty": "empty, where JSON was expected",
     }
     for name, path in scenes.items():
         assert_usage_error(run("sim", str(path)), expect[name])

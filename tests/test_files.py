@@ -48,6 +48,22 @@ def test_read_text_drops_a_byte_order_mark_and_refuses_other_encodings(tmp_path)
         read_text(p, 100)
 
 
+def test_a_file_named_gz_that_is_not_gzip_says_so(tmp_path) -> None:
+    p = tmp_path / "match.json.gz"
+    p.write_bytes(b"\x00\xff\xfe not gzip")
+    with pytest.raises(FileError, match=r"match.json.gz: not UTF-8 text \(nor gzip, though its "
+                                        r"name ends in .gz\)$"):
+        read_text(p, 100)
+    p.write_text('{"a": 1}')  # plain text under a .gz name is still read
+    assert read_text(p, 100) == '{"a": 1}'
+
+
+@pytest.mark.parametrize("text", ["", "  \n\t"])
+def test_empty_json_is_called_empty(text) -> None:
+    with pytest.raises(FileError, match=r"^stdin: empty, where JSON was expected$"):
+        parse_json(text, "stdin")
+
+
 def test_read_text_reads_a_gzip_file_through(tmp_path) -> None:
     p = tmp_path / "x.json.gz"
     p.write_bytes(files.gzipped('{"a": "é"}'))
