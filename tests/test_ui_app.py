@@ -1057,6 +1057,24 @@ def test_referee_words_take_the_theme_s_group_names():
         "the cue ball hit the 9 first, not one of the reds"
 
 
+@pytest.mark.parametrize("mode, red", [("9ball", False), ("8ball", True)])
+def test_the_classic_theme_colours_8_ball_s_groups_and_leaves_9_ball_its_colours(mode, red):
+    # Reds and yellows are 8-ball's groups: in 9-ball they would make the 1 to 7 one red,
+    # and its rules ask for the lowest ball.
+    from termpool.ui.palette import BALL_C, CLASSIC_RED_C
+    from termpool.ui.state import shown_theme
+    from termpool.ui.table_view import Geometry
+    from termpool.ui.view import draw
+
+    app = app_for(mode=mode, opponent="human", theme="classic", colors="truecolor")
+    assert shown_theme(app.state) == ("classic" if red else "standard")
+    (_, fg, bg), _ = draw(app.state, 120, 40, Geometry())
+    seen = {tuple(int(x) for x in c) for c in [*fg.reshape(-1, 3), *bg.reshape(-1, 3)]}
+    assert (CLASSIC_RED_C.rgb in seen) is red
+    assert (BALL_C[1].rgb in seen) is not red
+    assert (BALL_C[3].rgb in seen) is not red
+
+
 def test_the_record_keeps_the_computer_s_level():
     assert app_for(mode="9ball", opponent="cpu", level="hard").state.match.levels == (None, "hard")
     assert app_for(mode="9ball", opponent="human", level="hard").state.match.levels == (None, None)

@@ -405,3 +405,19 @@ def test_watching_takes_the_colour_depth_as_play_does(monkeypatch, tmp_path, mat
     with pytest.raises(watch_mod.WatchError, match="stop here"):
         watch_mod.run(args)
     assert seen["depth"] == want
+
+
+@pytest.mark.parametrize("mode, red", [("9ball", False), ("8ball", True)])
+def test_a_classic_replay_is_coloured_as_its_game_was(mode, red) -> None:
+    # The classic theme's reds and yellows are 8-ball's groups; 9-ball keeps its colours.
+    from termpool.ui.palette import BALL_C, CLASSIC_RED_C
+
+    app = App(Options(mode=mode, opponent="human", seed=3, colors="mono", theme="classic"))
+    play(app, parse_script("enter space-hold 1.3 wait 12"), COLS, ROWS)
+    data = app.state.match.to_json()
+    assert data["match"]["theme"] == "classic"
+    w = Watch(data, "truecolor")
+    _, fg, bg = w.cells(120, 40)
+    seen = {tuple(int(x) for x in c) for c in [*fg.reshape(-1, 3), *bg.reshape(-1, 3)]}
+    assert (CLASSIC_RED_C.rgb in seen) is red
+    assert (BALL_C[1].rgb in seen) is not red

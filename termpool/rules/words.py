@@ -25,6 +25,15 @@ GROUP_WORDS = {
 THEMES = tuple(GROUP_WORDS)
 
 
+def shown_theme(theme: str, ids: Sequence[str]) -> str:
+    """The theme a game's balls are drawn and named in. The classic theme's reds and yellows
+    are 8-ball's two groups; a game without balls 10 to 15 (9-ball's 1 to 9, whose rules ask
+    for the lowest ball) keeps the standard theme, whose colours tell its balls apart."""
+    if any(b.isdigit() and 10 <= int(b) <= 15 for b in ids):
+        return theme
+    return "standard"
+
+
 def group_label(group: str, theme: str = "standard") -> str:
     """The theme's word for a rules group: "solids" is "reds" in the classic theme."""
     return GROUP_WORDS[theme][group]

@@ -117,7 +117,8 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("frames", "Frames to win", "a match is a race to this many frames", 1,
             kind="count", lo=1, hi=MAX_FRAMES, later=True),
     Setting("theme", "Theme", "ball colours: numbered solids and stripes, or reds and "
-            "yellows", "standard", values=("standard", "classic"), later=True),
+            "yellows (8-ball; 9-ball keeps its colours)", "standard",
+            values=("standard", "classic"), later=True),
     Setting("colors", "Colour depth", "colour depth (auto: from the terminal; NO_COLOR "
             "gives mono)", "auto", values=("auto", "truecolor", "256", "16", "mono")),
     Setting("three_foul", "Three-foul rule", "9-ball: three fouls in a row lose the "

@@ -403,7 +403,14 @@ def menu_entries(s: State) -> list:
 
 def voice(s: State) -> words.Voice:
     """How words name this match's players, pockets and groups (rules.words)."""
-    return words.voice(s.match.players, s.opts.theme)
+    return words.voice(s.match.players, shown_theme(s))
+
+
+def shown_theme(s: State) -> str:
+    """The theme this match's balls are drawn and named in (`words.shown_theme`)."""
+    if s.match is None:
+        return s.opts.theme
+    return words.shown_theme(s.opts.theme, s.match.ids)
 
 
 def shot_clock(s: State) -> float:

@@ -62,6 +62,7 @@ from termpool.ui.state import (
     lies_playable,
     lobby_choice,
     menu_entries,
+    shown_theme,
     voice,
 )
 from termpool.ui.table_view import Geometry, Layout, TableView
@@ -81,7 +82,7 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
         out = _menu_cells(s, cols, rows, mono)
     else:
         table = s.match.table
-        lay, view = geometry.get(cols, rows, table, s.opts.theme)
+        lay, view = geometry.get(cols, rows, table, shown_theme(s))
         if lay is None:
             out = message_cells(cols, rows, too_small_lines(cols, rows), mono)
         else:
@@ -256,8 +257,8 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
             mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
             balls = [k for k in mine if m.on_table[k]]
             down = [k for k in mine if not m.on_table[k]]
-        label = words.group_label(group, s.opts.theme) if group and s.opts.theme != "standard" \
-            else group
+        theme = shown_theme(s)
+        label = words.group_label(group, theme) if group and theme != "standard" else group
         # Fouls in a row matter only under 9-ball's three-foul rule: shown only then.
         fouls = st.fouls[p] if st.mode == "9ball" and st.three_foul else 0
         score = f"{m.scores[p]}/{frames}" if frames > 1 else None
@@ -300,7 +301,7 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
     legend = [k for k, b in enumerate(m.ids) if b != "cue" and m.on_table[k]] \
         if st.groups is None and s.phase is not Phase.RUN else []
     return PanelInfo(f"termpool · {title}", players, status, hint_lines(s), m.ids,
-                     widgets=widgets, most_widgets=most, theme=s.opts.theme, legend=legend)
+                     widgets=widgets, most_widgets=most, theme=shown_theme(s), legend=legend)
 
 
 def _spin_block(side: float, top: float):

@@ -153,6 +153,8 @@ class Watch:
         self._played: OrderedDict[int, Played] = OrderedDict()
         self.geometry = Geometry()  # the layout and table view for the screen's size
         self.clock = Clock()  # the wall-clock time owed to the shot on show
+        # Drawn and named as the game was (9-ball keeps the standard colours).
+        self.theme = words.shown_theme(self.theme, self.ids_rows(0)[0])
         self.go_to(0)
 
     @classmethod
