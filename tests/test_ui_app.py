@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import subprocess
 import sys
 from dataclasses import replace
@@ -1049,12 +1050,35 @@ def test_referee_words_take_the_theme_s_group_names():
 
     said = [Said(Why.TAKES_GROUP, balls=("11",), player=0, group="stripes")]
     assert reason(said, words.voice(["Ann", "Bob"], "classic")) == \
-        "the 11 pocketed: Ann takes the yellows and continues"
+        "a yellow pocketed: Ann takes the yellows and continues"
     assert reason(said, words.voice(["You", "Bob"])) == \
         "the 11 pocketed: you take the stripes and continue"
     app = app_for(mode="8ball", opponent="human", theme="classic")
     assert reason([Said(Why.HIT_NOT_GROUP, ball="9", group="solids")], voice(app.state)) == \
-        "the cue ball hit the 9 first, not one of the reds"
+        "the cue ball hit a yellow first, not one of the reds"
+
+
+def test_the_classic_theme_names_its_unnumbered_balls_by_colour():
+    # Its reds and yellows show no numbers on the table: a person hears "a red", and balls
+    # of a colour are counted; the 8, the cue ball and the record keep their names.
+    from termpool.rules import words
+    from termpool.rules.codes import Said, Why
+    from termpool.rules.words import RECORD, reason
+
+    classic, standard = words.voice(["You", "Bob"], "classic"), words.voice(["You", "Bob"])
+    down = [Said(Why.STAY_DOWN, balls=("3", "12", "5", "8"))]
+    assert reason(down, classic) == "two reds, a yellow and the 8 stay down"
+    assert reason(down, standard) == "the 3, the 12, the 5 and the 8 stay down"
+    assert reason(down, RECORD) == "the 3, the 12, the 5 and the 8 stay down"
+    one = [Said(Why.POTTED_CONTINUES, balls=("6",), pockets=("foot_left",), player=0)]
+    assert reason(one, classic) == "a red in the top-right corner pocket: you continue"
+    practice = [Said(Why.PRACTICE_POTTED, balls=("9", "8"))]
+    assert reason(practice, classic) == "a yellow and the 8 pocketed"
+    assert reason(practice, RECORD) == "the 9, the 8 pocketed"  # as records have it
+    # The aid's first ball too.
+    app = app_for(mode="8ball", opponent="human", theme="classic")
+    text = run_script(app, "enter wait 0.2", cols=120, rows=40)
+    assert re.search(r"first ball: a (red|yellow)\b", text), text
 
 
 @pytest.mark.parametrize("mode, red", [("9ball", False), ("8ball", True)])

@@ -23,6 +23,8 @@ GROUP_WORDS = {
     "classic": {"solids": "reds", "stripes": "yellows"},
 }
 THEMES = tuple(GROUP_WORDS)
+# Themes whose group balls carry no number a player can see: a person hears their colour.
+COLOUR_NAMES = {"classic": {"solids": "red", "stripes": "yellow"}}
 
 
 def shown_theme(theme: str, ids: Sequence[str]) -> str:
@@ -54,6 +56,40 @@ class Voice:
 
     def group(self, group: str) -> str:
         return group_label(group, self.theme)
+
+    def colour(self, b: str | None) -> str | None:
+        """The colour a person names ball b by (the classic theme's "red" for the 3), else
+        None: it is named by its number."""
+        names = None if self.plain else COLOUR_NAMES.get(self.theme)
+        if names is None or b is None or not b.isdigit():
+            return None
+        n = int(b)
+        return names["solids"] if 1 <= n <= 7 else names["stripes"] if 9 <= n <= 15 else None
+
+    def ball(self, b: str | None) -> str:
+        """"the cue ball", "the 3", or in a theme of colours "a red"."""
+        if b == "cue":
+            return "the cue ball"
+        colour = self.colour(b)
+        return f"a {colour}" if colour else f"the {b}"
+
+    def balls(self, balls: Sequence[str]) -> str:
+        """"the 2 and the 5"; in a theme of colours, balls of a colour counted where the
+        first of them comes ("two reds and the cue ball")."""
+        counts: dict[str, int] = {}
+        names: list[str] = []
+        for b in balls:
+            colour = self.colour(b)
+            if colour is None:
+                names.append(self.ball(b))
+            elif colour not in counts:
+                counts[colour] = 1
+                names.append(colour)
+            else:
+                counts[colour] += 1
+        names = [f"a {x}" if counts.get(x) == 1 else f"{count_word(counts[x])} {x}s"
+                 if x in counts else x for x in names]
+        return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
     def spoken_to(self, p: int) -> bool:
         return self.players[p] == YOU
@@ -156,21 +192,12 @@ MODE_NAMES = {"8ball": "8-ball", "9ball": "9-ball", "practice": "practice"}
 # ----------------------------------------------------------------------------------- verdicts
 
 
-def _ball(b: str | None) -> str:
-    return "the cue ball" if b == "cue" else f"the {b}"
-
-
-def _balls(balls: Sequence[str]) -> str:
-    names = [_ball(b) for b in balls]
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-
-
 def _potted(v: Voice, s: Said) -> str:
     """Balls pocketed: one in a person's voice with its pocket ("the 2 in the top-right
     corner pocket"), else "the 2 and the 5 pocketed" (the record's words stay as they were)."""
     if not v.plain and len(s.balls) == 1 and s.pockets and s.pockets[0] is not None:
-        return f"{_ball(s.balls[0])} in the {v.pocket(s.pockets[0])} pocket"
-    return f"{_balls(s.balls)} pocketed"
+        return f"{v.ball(s.balls[0])} in the {v.pocket(s.pockets[0])} pocket"
+    return f"{v.balls(s.balls)} pocketed"
 
 
 def _cue_down(v: Voice, pocket: str | None) -> str:
@@ -189,23 +216,23 @@ def _early(v: Voice, s: Said) -> str:
     return f"the 8 went down early ({still}): {v.does(s.player, 'loses', 'lose')}"
 
 
-def _push_out(s: Said) -> str:
-    return "push-out" + (f": {_balls(s.balls)} pocketed, not counted" if s.balls else "")
+def _push_out(v: Voice, s: Said) -> str:
+    return "push-out" + (f": {v.balls(s.balls)} pocketed, not counted" if s.balls else "")
 
 
 CLAUSES = {
     Why.SCRATCH: lambda v, s: f"scratch: {_cue_down(v, s.pocket)}",
-    Why.LEFT_TABLE: lambda v, s: f"{_balls(s.balls)} left the table",
+    Why.LEFT_TABLE: lambda v, s: f"{v.balls(s.balls)} left the table",
     Why.ILLEGAL_BREAK: lambda v, s: _illegal_break(s.count),
     Why.NO_HIT: lambda v, s: NO_HIT,
-    Why.HIT_ON_OPEN_TABLE: lambda v, s: f"the cue ball hit {_ball(s.ball)} first, which is "
+    Why.HIT_ON_OPEN_TABLE: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first, which is "
                                         "not allowed on an open table",
-    Why.HIT_NOT_EIGHT: lambda v, s: f"the cue ball hit {_ball(s.ball)} first; with the "
+    Why.HIT_NOT_EIGHT: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first; with the "
                                     f"{v.group(s.group)} cleared it must be the 8",
-    Why.HIT_NOT_GROUP: lambda v, s: f"the cue ball hit {_ball(s.ball)} first, not one of the "
+    Why.HIT_NOT_GROUP: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first, not one of the "
                                     f"{v.group(s.group)}",
-    Why.HIT_NOT_LOWEST: lambda v, s: f"the cue ball hit {_ball(s.ball)} first, not the lowest "
-                                     f"ball, {_ball(s.lowest)}",
+    Why.HIT_NOT_LOWEST: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first, not the lowest "
+                                     f"ball, {v.ball(s.lowest)}",
     Why.NO_RAIL: lambda v, s: NO_RAIL,
     Why.LEGAL_BREAK: lambda v, s: "legal break",
     Why.LEGAL_BREAK_POTTED: lambda v, s: f"legal break: {_potted(v, s)}",
@@ -222,9 +249,9 @@ CLAUSES = {
     Why.IN_HAND: lambda v, s: f"{v.does(s.player, 'has', 'have')} ball in hand",
     Why.IN_HAND_KITCHEN: lambda v, s: f"{v.does(s.player, 'has', 'have')} ball in hand "
                                       f"{KITCHEN}",
-    Why.STAY_DOWN: lambda v, s: f"{_balls(s.balls)} stay{'s' if len(s.balls) == 1 else ''} "
+    Why.STAY_DOWN: lambda v, s: f"{v.balls(s.balls)} stay{'s' if len(s.balls) == 1 else ''} "
                                 "down",
-    Why.POTTED_ON_FOUL: lambda v, s: f"{_balls(s.balls)} pocketed on a foul",
+    Why.POTTED_ON_FOUL: lambda v, s: f"{v.balls(s.balls)} pocketed on a foul",
     Why.NINE_RESPOTTED: lambda v, s: "the 9 is re-spotted",
     Why.TAKES_GROUP: lambda v, s: f"{_potted(v, s)}: "
                                   f"{v.does(s.player, 'takes', 'take')} the "
@@ -235,7 +262,7 @@ CLAUSES = {
     Why.POTTED_NOT_OWN: lambda v, s: f"{_potted(v, s)}, none of the "
                                      f"{v.group(s.group)}: {v.whose(s.player)} turn",
     Why.NOTHING_TURN: lambda v, s: f"nothing pocketed: {v.whose(s.player)} turn",
-    Why.PUSH_OUT: lambda v, s: _push_out(s),
+    Why.PUSH_OUT: _push_out,
     Why.CHOOSES: lambda v, s: f"{v.does(s.player, 'chooses', 'choose')} {PUSH_OUT_CHOICE}",
     Why.EIGHT_OFF_TABLE: lambda v, s: "with the 8 off the table "
                                       f"{v.does(s.player, 'loses', 'lose')}",
@@ -257,7 +284,7 @@ CLAUSES = {
                                  f"{v.does(s.player, 'loses', 'lose')}",
     # (the record's words list the balls with commas alone, as they always have)
     Why.PRACTICE_POTTED: lambda v, s: (f"{', '.join('the ' + b for b in s.balls)} pocketed"
-                                       if v.plain or len(s.balls) != 1 else _potted(v, s)),
+                                       if v.plain else _potted(v, s)),
     Why.NOTHING_POCKETED: lambda v, s: "nothing pocketed",
     Why.SCRATCH_IN_HAND: lambda v, s: f"{_cue_down(v, s.pocket)}: ball in hand",
     Why.CUE_LEFT_IN_HAND: lambda v, s: "the cue ball left the table: ball in hand",

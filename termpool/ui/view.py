@@ -434,9 +434,10 @@ def _first_ball(s: State) -> str:
         return f" · no ball within {MAX_CUSHIONS} cushions"
     if pred is None or pred.ball is None:
         return ""
-    line = f" · first ball: the {s.match.ids[pred.ball]}"
+    v = voice(s)
+    line = f" · first ball: {v.ball(s.match.ids[pred.ball])}"
     if pred.object is not None and pred.object.end == "pocket":
-        line += f", into the {voice(s).pocket(pred.object.pocket)} pocket"
+        line += f", into the {v.pocket(pred.object.pocket)} pocket"
     return line
 
 
