@@ -16,7 +16,14 @@ from termpool.ui import aid as ui_aid
 from termpool.ui.app import App, Options
 from termpool.ui.keys import Key
 from termpool.ui.phases.turn import start_turn
-from termpool.ui.predict import JAWS, MAX_CUSHIONS, MAX_JAWS, Predictor, predict
+from termpool.ui.predict import (
+    AFTER_CUSHIONS,
+    JAWS,
+    MAX_CUSHIONS,
+    MAX_JAWS,
+    Predictor,
+    predict,
+)
 from termpool.ui.shots import power_to_speed
 from termpool.ui.state import Phase
 
@@ -42,13 +49,16 @@ def real_events(m: Match, shot: Shot) -> tuple[list[dict], list[str]]:
 
 
 def first_touch(events, k: int, after: float, kinds=("ball_ball", "cushion", "pocket"),
-                jaws: int = 0):
+                jaws: int = 0, rails: int = 0):
     """Ball k's state at its first contact after time `after` (or its last event, at rest),
-    passing by up to `jaws` contacts with a pocket's jaws."""
+    passing by up to `jaws` contacts with a pocket's jaws and `rails` with other cushions."""
     for ev in events:
         if ev["t"] > after and k in ev["i"] and ev["type"] in kinds:
             if ev["type"] == "cushion" and ev.get("feature") in JAWS and jaws > 0:
                 jaws -= 1
+                continue
+            if ev["type"] == "cushion" and ev.get("feature") not in JAWS and rails > 0:
+                rails -= 1
                 continue
             return ev, ev["balls"][ev["i"].index(k)]
     return None, None
@@ -76,8 +86,8 @@ def test_the_prediction_is_the_shot_s_own_events_bit_for_bit(shot):
     assert pred.ghost == (s["x"], s["y"])
     other = hit["i"][1] if hit["i"][0] == c else hit["i"][0]
     assert m.ids[other] == m.ids[pred.ball] and ids[other] == m.ids[pred.ball]
-    for leg, k in ((pred.object, other), (pred.after, c)):
-        ev, s = first_touch(real, k, hit["t"], jaws=MAX_JAWS)
+    for leg, k, rails in ((pred.object, other, 0), (pred.after, c, AFTER_CUSHIONS)):
+        ev, s = first_touch(real, k, hit["t"], jaws=MAX_JAWS, rails=rails)
         end = leg.points[-1]
         if leg.end == "rest":  # no contact before it stopped: its place at rest
             x, y = _rest(m, shot).pos[0][k]
@@ -131,7 +141,7 @@ def test_bending_paths_lie_on_the_ball_s_real_track():
     scene = record.shot_scene(m.scene_dict(), shot.to_json())
     eng = record.start_engine(scene)
     track = np.array([p[0, scene.ids.index("cue")] for _, p, _ in
-                      eng.run(1 / 60, duration=4.0, sample_hz=2000)])
+                      eng.run(1 / 60, duration=12.0, sample_hz=2000)])
     d = np.min(np.linalg.norm(pred.after.points[:, None, :] - track[None], axis=2), axis=1)
     assert d.max() < 0.002  # within the 2 kHz samples' spacing
 
@@ -168,6 +178,26 @@ def test_a_ball_in_the_jaws_is_followed_to_the_pocket_or_out(turn, drops):
         assert (pred.object.end, pred.object.pocket) == ("pocket", ev["pocket"])
     else:
         assert pred.object.end == "cushion" and ev["feature"] == "rail"
+
+
+def test_a_scratch_off_a_rail_after_the_hit_is_foreseen():
+    """After the hit the cue ball goes to a rail and from it into a corner: the aid follows
+    it through that rail into the pocket, where the shot really takes it."""
+    m, c, o = _two_balls((1.6, 0.7), (2.1, 0.9))
+    shot = Shot(3.5, math.degrees(math.atan2(0.2, 0.5)) + 3.5)
+    real, _ = real_events(m, shot)
+    hit, _ = first_touch(real, c, -1.0, ("ball_ball",))
+    mine = [e for e in real if c in e["i"] and e["t"] > hit["t"]
+            and e["type"] in ("cushion", "pocket", "ball_ball")]
+    assert [e["type"] for e in mine[:2]] == ["cushion", "pocket"]  # the layout's premise
+    assert mine[0]["feature"] == "rail"
+    pred = predict(m, shot)
+    assert pred.ball == o
+    assert (pred.after.end, pred.after.pocket) == ("pocket", mine[1]["pocket"])
+    s = mine[1]["balls"][mine[1]["i"].index(c)]
+    assert tuple(pred.after.points[-1]) == (s["x"], s["y"])
+    r = mine[0]["balls"][mine[0]["i"].index(c)]  # through the rail's contact
+    assert any(tuple(p) == (r["x"], r["y"]) for p in pred.after.points)
 
 
 def test_run_in_shares_gives_the_same_prediction():

@@ -53,8 +53,8 @@ AID_LEGEND = [
      "cushions; a ring (o) is the cue ball where they touch."),
     ("Pink (- / | \\)", "that ball's path, on to its first cushion, ball or pocket, and "
      "through a pocket's jaws to the pocket or out: throw and a pocket missed show."),
-    ("Green dots (:)", "the cue ball after the hit, to its next contact or rest (through a "
-     "pocket's jaws too), curving with follow or draw."),
+    ("Green dots (:)", "the cue ball after the hit, through one cushion to its next contact "
+     "or rest (through a pocket's jaws too), curving with follow or draw."),
     ("Below the table", "the power the aid shows the shot at, the first ball it sees hit and, "
      "when it sees a pot, the pocket; a red line when the referee would call it a foul."),
     ("G", "every path, then the ghost ball only, then off."),

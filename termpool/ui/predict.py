@@ -4,8 +4,9 @@
 real one (the same scene through the same loader, so the same numbers bit for bit: spin,
 throw, cushions and all) and stops at the events the aid shows: the cue ball's path to the
 first ball it hits (through cushions), that ball's path to its next contact (a cushion, a
-pocket, another ball) or to rest, and the cue ball's path from the hit to its own next contact;
-after the hit a ball in a pocket's jaws is followed on through them, to the pocket or out.
+pocket, another ball) or to rest, and the cue ball's path from the hit through one cushion to
+its next contact; after the hit a ball in a pocket's jaws is followed on through them, to the
+pocket or out.
 The engine is driven one event time at a time (`Engine.t_next`, `run_events(duration)`), so it
 simulates only up to the last event the aid needs.
 
@@ -32,6 +33,9 @@ MAX_CUSHIONS = 3  # the cue ball is followed through this many cushions to its f
 # contacts at most): whether it rattles out or drops is what the shot comes to.
 MAX_JAWS = 6
 JAWS = ("jaw", "tip")  # the cushion features of a pocket's mouth (`Features.names`)
+# After the hit the cue ball is followed through this many cushions (not the object ball):
+# where it goes off its first rail is where a scratch most often comes from.
+AFTER_CUSHIONS = 1
 MAX_TIME = 30.0  # simulated seconds: the aid gives up on a shot still going after this
 MAX_INSTANTS = 2000  # event times run; bounds the work of a pathological shot
 BEND_M = 0.0005  # a leg's piece bending less than this off its chord is drawn straight
@@ -59,7 +63,8 @@ class Prediction:
     (`ball`, an index into the match's balls, None if it meets none: then the path ends at
     its pocket, its rest, or its last cushion followed); `ghost` is the cue ball's centre at
     that contact; `object` the first ball's path from the contact to its next contact or
-    rest; `after` the cue ball's from the contact to its next contact or rest."""
+    rest; `after` the cue ball's from the contact, through AFTER_CUSHIONS cushions, to its
+    next contact or rest."""
 
     cue: Leg
     ball: int | None = None
@@ -183,6 +188,7 @@ class Job:
         self.hit: dict = {}  # after the first hit: "ball", "ghost", "object", "after" tracks
         self.cushions = 0
         self.jaws = {"object": 0, "after": 0}  # jaw contacts followed through, by leg
+        self.rails_after = 0  # the cue ball's cushions followed through after the hit
         self.seen = 0
         self.instants = 0
         self.done = False
@@ -250,6 +256,10 @@ class Job:
                 s = states[k]
                 if kind == "cushion" and ev.get("feature") in JAWS and self.jaws[key] < MAX_JAWS:
                     self.jaws[key] += 1
+                    tr.add(t, s)
+                elif (kind == "cushion" and key == "after" and ev.get("feature") not in JAWS
+                      and self.rails_after < AFTER_CUSHIONS):
+                    self.rails_after += 1
                     tr.add(t, s)
                 elif kind in TOUCH:
                     tr.close(t, s, kind if kind != "ball_ball" else "ball", ev.get("pocket"))
