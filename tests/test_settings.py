@@ -309,6 +309,30 @@ def test_a_name_is_typed_and_plays_under_it() -> None:
     assert "Zoe to break" in screen_text(app.cells(100, 32)[0])
 
 
+def test_typing_over_a_name_starts_a_new_one_and_backspace_edits_the_old() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("player1"),
+         "enter", "A", "n", "n", "enter")
+    assert app.state.opts.player1 == "Ann"
+    keys(app, "enter")
+    assert "or Backspace to edit this one" in screen_text(app.cells(100, 32)[0])
+    keys(app, "B", "o", "b", "enter")  # a new name, not "AnnBob"
+    assert app.state.opts.player1 == "Bob"
+    keys(app, "enter", "backspace", "o", "enter")  # the old one, edited
+    assert app.state.opts.player1 == "Boo"
+
+
+def test_enter_changes_a_setting_as_right_does_and_the_box_stays() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("aid"))
+    keys(app, "enter")
+    assert app.state.opts.aid == "ghost" and app.state.box is not None
+    keys(app, "enter", "enter")  # round the choices
+    assert app.state.opts.aid == "full" and app.state.box is not None
+    keys(app, "esc")
+    assert app.state.box is None
+
+
 def test_a_name_stops_at_its_length_and_esc_leaves_it_as_it_was() -> None:
     app = app_at_menu()
     keys(app, menu_item("Settings"), *["down"] * KEYS.index("player2"), "enter", "x")

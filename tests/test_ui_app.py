@@ -1959,7 +1959,7 @@ def test_the_settings_screen_loses_nothing_on_a_small_screen(cols, rows, in_game
         lines = [x[x.index("│") + 1:x.rindex("│")].strip() for x in text.splitlines()
                  if x.count("│") >= 2]  # the box's insides
         assert any(x.startswith("▶ " + setting.label) for x in lines), (k, text)
-        assert "↑↓ choose · ←→ change · Esc done" in text
+        assert "↑↓ choose · ←→ or Enter change · Esc done" in text
         said = " ".join(x for x in lines if x)  # what the setting does, whole
         assert " ".join(setting.help.split()) in said or setting.kind == "name", (k, text)
         shown_ = sum(any(x.lstrip("▶ ").startswith(s.label) for x in lines) for s in SETTINGS)

@@ -70,7 +70,9 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
             headed.append(line)
     setting = SETTINGS[box.index]
     if box.editing is not None:  # what was not typed, and why, until the name is done
-        help_ = box.refused or f"type the name (up to {MAX_NAME} characters)"
+        help_ = box.refused or (f"type a new name (up to {MAX_NAME} characters), or "
+                                "Backspace to edit this one" if box.whole
+                                else f"type the name (up to {MAX_NAME} characters)")
     elif setting.kind == "name":
         help_ = f"{setting.help} · Enter: type it"
     else:
@@ -78,7 +80,7 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
     about = textwrap.wrap(help_, width)
     keys = ("Backspace deletes · Enter keeps it · Esc leaves it as it was"
             if box.editing is not None
-            else "↑↓ choose · ←→ change · Esc done")
+            else "↑↓ choose · ←→ or Enter change · Esc done")
     if len(keys) > width:  # (a narrow screen: the short form)
         keys = "Backspace · Enter keeps · Esc leaves it" if box.editing is not None else keys
     prefs = s.files.prefs

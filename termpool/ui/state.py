@@ -234,6 +234,7 @@ class Settings:
     index: int = 0
     editing: str | None = None
     refused: str | None = None  # why a key typed into the name was not taken
+    whole: bool = False  # the name being typed is still the old one whole: a key replaces it
 
 
 @dataclass(frozen=True)

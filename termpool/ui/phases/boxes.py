@@ -116,9 +116,12 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
     if key.name in ("left", "right") and setting.kind != "name":
         d = -1 if key.name == "left" else 1
         return set_value(s, setting.key, _step(setting, current(s, setting.key), d))
-    if setting.kind == "name" and (key.name == "enter" or action == "confirm"):
-        return replace(s, box=replace(box, editing=current(s, setting.key)))
-    if key.name in ("esc", "q", "enter") or action in ("cancel", "quit", "confirm"):
+    if key.name == "enter" or action == "confirm":
+        if setting.kind == "name":  # typing starts over it; Backspace edits it
+            return replace(s, box=replace(box, editing=current(s, setting.key), whole=True))
+        # (Enter changes the value, as → does: the box closes with Esc or Q)
+        return set_value(s, setting.key, _step(setting, current(s, setting.key), 1))
+    if key.name in ("esc", "q") or action in ("cancel", "quit"):
         return _close(s, box)
     return s
 
@@ -126,17 +129,19 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
 def _type(s: State, box: Settings, key) -> State:
     # (A refusal stays said until the name is done: keys typed after it would hide it.)
     if key.name == "esc":
-        return replace(s, box=replace(box, editing=None, refused=None))
+        return replace(s, box=replace(box, editing=None, refused=None, whole=False))
     if key.name == "enter":  # only what check_name takes can be typed (see _typed)
         s = set_value(s, SETTINGS[box.index].key, check_name(box.editing.strip()))
-        return replace(s, box=replace(box, editing=None, refused=None))
+        return replace(s, box=replace(box, editing=None, refused=None, whole=False))
     if key.name == "backspace":
-        return replace(s, box=replace(box, editing=box.editing[:-1]))
+        return replace(s, box=replace(box, editing=box.editing[:-1], whole=False))
     ch = _typed(key)
     if ch is None:
         if len(key.name) == 1 and not (key.ctrl or key.alt):  # a character, refused
             return replace(s, box=replace(box, refused=f"not typed: {ONE_COLUMN}"))
         return s
+    if box.whole:  # the first character typed is a new name's first
+        return replace(s, box=replace(box, editing=ch, whole=False))
     if len(box.editing) >= MAX_NAME:
         return replace(s, box=replace(box, refused=f"a name holds {MAX_NAME} characters at most"))
     return replace(s, box=replace(box, editing=box.editing + ch))
