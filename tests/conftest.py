@@ -6,6 +6,7 @@ examples every run. Set HYPOTHESIS_PROFILE=explore to search new random examples
 
 import os
 import signal
+from pathlib import Path
 
 import pytest
 from contact_check import checked_handle
@@ -37,3 +38,23 @@ def _own_config_and_data(monkeypatch, tmp_path_factory):
     base = tmp_path_factory.mktemp("xdg")
     monkeypatch.setenv("XDG_CONFIG_HOME", str(base / "config"))
     monkeypatch.setenv("XDG_DATA_HOME", str(base / "data"))
+
+
+# The user's own directories, as the environment names them before any test changes it (a
+# child process started with a bare environment falls back to these).
+USER_DIRS = [Path(os.environ.get(var) or Path.home() / rest) / "termpool"
+             for var, rest in (("XDG_DATA_HOME", ".local/share"), ("XDG_CONFIG_HOME", ".config"))]
+
+
+def _files(dirs: list[Path]) -> dict[str, tuple[int, int]]:
+    return {str(f): (f.stat().st_mtime_ns, f.stat().st_size)
+            for d in dirs if d.is_dir() for f in d.rglob("*") if f.is_file()}
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _the_user_s_files_are_untouched():
+    """However a test starts the game (a subprocess with an environment of its own
+    included), the suite writes nothing to the user's history, records or settings."""
+    before = _files(USER_DIRS)
+    yield
+    assert _files(USER_DIRS) == before, "a test wrote to the user's own termpool files"

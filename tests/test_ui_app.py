@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -431,7 +432,10 @@ def test_computer_takes_its_turn() -> None:
 def cli(*args: str, stdin: str = "") -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "termpool", *args], cwd=ROOT, input=stdin,
                           capture_output=True, text=True, timeout=300,
-                          env={"PATH": "/usr/bin:/bin", "PYTHONPATH": str(ROOT)})
+                          env={"PATH": "/usr/bin:/bin", "PYTHONPATH": str(ROOT),
+                               # the test's own directories (conftest), never the user's
+                               **{k: os.environ[k] for k in ("XDG_CONFIG_HOME",
+                                                             "XDG_DATA_HOME")}})
 
 
 def test_headless_play_prints_the_screen_and_a_replayable_record(tmp_path) -> None:
