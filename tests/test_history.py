@@ -298,6 +298,8 @@ def test_the_stats_text_fits_the_box_and_names_every_opponent() -> None:
     for words in ("computer, easy", "computer, normal", "computer, hard", "a second player"):
         assert words in body
     assert "24 matches: won 24" in body and "the last 20 matches" in body
+    # what the pot rate counts is said where it is first given
+    assert "pot rate 40% (the shots that pocketed a ball)" in " ".join(text)
     assert stats_lines(h.summary([])) == [stats_lines(h.summary([]))[0]]
 
 

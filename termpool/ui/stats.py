@@ -104,9 +104,10 @@ def stats_lines(summary: dict[str, Any]) -> list[str]:
     head = (f"{_plural(a['matches'], 'match', 'matches')}: won {a['won']}, lost {a['lost']}, "
             f"left {a['unfinished']}, practice {practice}; frames {a['frames_won']}-"
             f"{a['frames_lost']}. {_plural(a['shots'], 'shot')}, {_plural(a['pots'], 'pot')}, "
-            f"pot rate {pct(a['pot_rate'])}; {_plural(a['fouls'], 'foul')}, "
+            f"pot rate {pct(a['pot_rate'])} (the shots that pocketed a ball); "
+            f"{_plural(a['fouls'], 'foul')}, "
             f"{_plural(a['break_runs'], 'break-and-run')}, longest run {a['longest_run']}.")
-    out = [*textwrap.wrap(head, WIDTH), "",
+    out = [*textwrap.wrap(head, WIDTH, break_on_hyphens=False), "",
            f"{'against':<16} {'matches':>7} {'won-lost':>8} {'frames':>7} {'shots':>6} "
            f"{'pot rate':>8} {'fouls':>5} {'B&R':>3} {'run':>4}"]
     for group, t in summary["per_opponent"].items():
