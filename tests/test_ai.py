@@ -18,9 +18,11 @@ from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.engine import POCKETED, Engine
 from termpool.physics.params import BALL_MASS, BALL_RADIUS, Physics
 from termpool.physics.table import Table
+from termpool.rules.codes import Aim, PlanNote
 from termpool.rules.common import SOLIDS, STRIPES, State
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
+from termpool.rules.words import plan_note
 from termpool.scene import load_scene
 
 TABLE = Table()  # 9 ft: 2.54 x 1.27 m
@@ -86,7 +88,7 @@ def test_straight_in_on_an_empty_table_goes_in():
     assert not summary.scratch
     assert out.continue_turn
     assert (plan.kind, plan.ball, plan.pocket, plan.sees) == ("pot", "1", "foot_left", "pot")
-    assert plan.note == "1 in the top-right corner pocket"  # for people: the pocket in words
+    assert plan_note(plan.note) == "1 in the top-right corner pocket"  # the pocket in words
 
 
 def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -> float:
@@ -251,7 +253,7 @@ def test_risky_pots_rank_below_safe_ones():
     state = State(mode="practice")
     plans = ai.score_shots(*lay.args(), state)
     # The pots the batch saw drop where they were sent.
-    one = [p.score for p in plans if (p.kind, p.ball, p.pocket, p.sees, p.note) ==
+    one = [p.score for p in plans if (p.kind, p.ball, p.pocket, p.sees, plan_note(p.note)) ==
            ("pot", "1", "head_right", "pot", "1 in the bottom-left corner pocket")]
     two = [p.score for p in plans if (p.kind, p.ball, p.sees) == ("pot", "2", "pot")]
     assert one and two
@@ -606,7 +608,7 @@ def test_placement_area_is_checked():
 
 
 def test_with_error_is_seeded_and_zero_error_keeps_the_plan():
-    plan = ai.Plan(2.0, 30.0, 0.1, 0.2, None, 1.0, "x")
+    plan = ai.Plan(2.0, 30.0, 0.1, 0.2, None, 1.0, PlanNote(Aim.SAFETY, ball="1"))
     assert ai.with_error(plan, 0.0, 0.0, seed=3) == plan
     a = ai.with_error(plan, 0.25, 0.02, seed=3)
     assert a == ai.with_error(plan, 0.25, 0.02, seed=3)
@@ -643,15 +645,15 @@ def test_a_plan_s_target_is_the_ball_its_note_names_first():
         if p.sees in ("win", "loss", "foul"):  # its note is the verdict (never on screen)
             continue
         if p.kind in ("safety", "kick"):
-            assert p.note.endswith(f" on the {p.target}"), p
+            assert plan_note(p.note).endswith(f" on the {p.target}"), p
         elif p.sees == "pass":  # a pot tried that the batch saw miss: "try ..."
             tries += 1
             start = f"try {p.target} in " if p.kind == "pot" else f"try the {p.target} into "
-            assert p.note.startswith(start), p
-        elif p.sees == "pot" and p.kind == "pot" and "in by" not in p.note:
-            assert p.note.startswith(f"{p.target} in the "), p
-        elif p.sees == "pot" and p.kind == "combo" and "in by" not in p.note:
-            assert p.note.startswith(f"combination: the {p.target} into "), p
+            assert plan_note(p.note).startswith(start), p
+        elif p.sees == "pot" and p.kind == "pot" and "in by" not in plan_note(p.note):
+            assert plan_note(p.note).startswith(f"{p.target} in the "), p
+        elif p.sees == "pot" and p.kind == "combo" and "in by" not in plan_note(p.note):
+            assert plan_note(p.note).startswith(f"combination: the {p.target} into "), p
     assert tries
     brk = Layout({b: tuple(xy) for b, xy in zip(*_rack("8ball"), strict=True)})
     assert ai.choose_shot(*brk.args(), State(mode="8ball", is_break=True)).target is None
@@ -692,7 +694,8 @@ def test_options_are_answered_and_unknown_ones_refused():
 
 
 def test_levels_strike_with_errors_drawn_at_their_own_sd_and_each_better_than_the_last():
-    plan = ai.Plan(2.0, 30.0, 0.0, 0.1, None, 0.0, "", "pot", "1", "foot_left")
+    plan = ai.Plan(2.0, 30.0, 0.0, 0.1, None, 0.0, PlanNote(Aim.POT, ball="1", pocket="foot_left"),
+                   "pot", "1", "foot_left")
     last = None
     for name, lv in ai.LEVELS.items():
         shots = [ai.as_struck(plan, name, seed) for seed in range(2000)]
@@ -922,3 +925,31 @@ def test_each_cushion_the_cue_ball_meets_risks_a_scratch(monkeypatch):
         else:
             assert plan.score == plain.score
     assert seen >= 10
+
+
+def test_a_plan_is_data_that_each_voice_says_in_its_words():
+    # The computer's plan leaves the computer as data: the players, the pockets and the
+    # theme's balls are named where it is shown.
+    from termpool.rules import words
+    from termpool.rules.codes import Aim, PlanNote, Said, Why
+
+    classic = words.voice(("You", "Computer"), "classic")
+    pot = PlanNote(Aim.POT, ball="3", pocket="foot_left")
+    assert plan_note(pot) == "3 in the top-right corner pocket"
+    assert plan_note(pot, classic) == "a red in the top-right corner pocket"
+    combo = PlanNote(Aim.COMBO, ball="2", sunk="11", pocket="side_right")
+    assert plan_note(combo) == "combination: the 2 into the 11, 11 in the bottom side pocket"
+    assert plan_note(combo, classic) == \
+        "combination: a red into a yellow, a yellow in the bottom side pocket"
+    assert plan_note(PlanNote(Aim.SAFETY, ball="12"), classic) == "safety on a yellow"
+    assert plan_note(PlanNote(Aim.TRY, ball="5", sunk="5", pocket="head_left")) == \
+        "try 5 in the top-left corner pocket"
+    assert plan_note(PlanNote(Aim.FLUKE, balls=("4", "9"), by_break=True)) == \
+        "4, 9 in by the break"
+    win = PlanNote(Aim.VERDICT, said=(Said(Why.EIGHT_CALLED, pocket="foot_right", player=1),))
+    assert plan_note(win) == "the 8 went into the called bottom-right corner pocket: " \
+                             "player 1 wins"
+    assert plan_note(win, classic) == "the 8 went into the called bottom-right corner " \
+                                      "pocket: Computer wins"
+    assert words.computer_plan(pot, classic, done=True) == \
+        "Computer's plan was: a red in the top-right corner pocket"

@@ -18,6 +18,8 @@ from termpool.physics.cue import MISCUE_OFFSET, strike
 from termpool.physics.params import BALL_RADIUS
 from termpool.physics.table import POCKET_NAMES
 from termpool.rules import words
+from termpool.rules.codes import Aim as PlanAim
+from termpool.rules.codes import PlanNote, Said, Why
 from termpool.ui import aid
 from termpool.ui.app import App, Options
 from termpool.ui.controls import PowerCharge
@@ -1033,8 +1035,8 @@ def test_the_computer_announces_its_plan_not_the_result_it_simulated(monkeypatch
 
     def plan(*a, **k):
         return ai.Plan(2.0, 10.0, 0.0, 0.0, None, 1.0,
-                       "the 9 went into the bottom-left corner pocket on a legal shot: "
-                       "player 1 wins",
+                       PlanNote(PlanAim.VERDICT, said=(Said(Why.NINE_LEGAL, pocket="head_right",
+                                                        player=1),)),
                        "pot", "9", "head_right", "win")
 
     monkeypatch.setattr(ai.Computer, "shot", plan)
@@ -1266,7 +1268,10 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
 
 # -------------------------------------------------------------------- the computer's turn
 
-def cpu_to_shoot(monkeypatch, note="3 in the top-right corner pocket"):
+THREE_TOP_RIGHT = PlanNote(PlanAim.POT, ball="3", pocket="foot_left")
+
+
+def cpu_to_shoot(monkeypatch, note=THREE_TOP_RIGHT):
     """An 8-ball table where the computer is to shoot a plan of our own (no ball in hand)."""
     from termpool import ai
 
@@ -1322,13 +1327,16 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
         m.pos[m.ids.index(b)] = p
         m.on_table[m.ids.index(b)] = True
     monkeypatch.setattr(__import__("termpool").ai.Computer, "shot",
-                        lambda *a, **k: plan._replace(angle=0.0, note="3 in the side",
+                        lambda *a, **k: plan._replace(angle=0.0,
+                                                      note=PlanNote(PlanAim.POT, ball="3",
+                                                                    pocket="side_left"),
                                                       target="3"))
     app.state = start_turn(app.state)
     stroke(app, angle=90.0)  # its stick starts away from its aim, on the 8
     app.tick(t)
     app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
-    assert app.state.message == (verdict, ("Computer's plan: 3 in the side", "turn"))
+    assert app.state.message == (verdict,
+                                 ("Computer's plan: 3 in the top side pocket", "turn"))
     # Its plan's ball from the start, the one its note names: not the 8 its stick is on.
     assert app.state.stroke.angle != 0.0
     assert "Computer is aiming at the 3\n" in screen_text(app.cells(120, 40)[0])
@@ -1351,7 +1359,7 @@ def test_the_computer_names_its_plan_s_ball_even_where_its_aim_meets_another(mon
 
     for plan, said in ((base._replace(angle=90.0, target="3"), "Computer is aiming at the 3\n"),
                        (base._replace(angle=90.0), "Computer is aiming\n"),
-                       (base._replace(angle=90.0, kind="break", note="break"),
+                       (base._replace(angle=90.0, kind="break", note=PlanNote(PlanAim.BREAK)),
                         "Computer is about to break\n")):
         monkeypatch.setattr(ai.Computer, "shot", lambda *a, plan=plan, **k: plan)
         app.state = start_turn(app.state)

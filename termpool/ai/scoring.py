@@ -10,11 +10,10 @@ import numpy as np
 from termpool.physics.engine import POCKETED
 from termpool.physics.events import EventKind
 from termpool.physics.table import Table
-from termpool.rules import words
+from termpool.rules.codes import Aim, PlanNote
 from termpool.rules.common import State, legal_targets
 from termpool.rules.events import summarize
 from termpool.rules.referee import judge
-from termpool.rules.words import voice
 
 from . import geometry as geo
 from .balls import OnTable
@@ -26,7 +25,6 @@ LEAVE_SIGMA = 0.5  # degrees: the aim error a table left behind is valued with, 
 # shooter's next shot and for the opponent alike (a club player's, whatever the level: an
 # error as small as a pro's would call every open shot certain, and tell no leave from another)
 FLUKE = 0.3  # chance a legal pot the sim found by a kiss or a combination happens in play
-SAID = voice(("player 0", "player 1"))  # the notes' words: pockets as people say them
 
 
 
@@ -83,38 +81,33 @@ def score_tables(state, targets, t, cands, eng, table, pockets, lv,
         fluke = kept and bool(potted) and not intended and cands.kind[b] != "break"
         ball = next((x for x in potted if x in targets), potted[0]) if fluke else None
         flukes.append((ball, summary.pocketed[ball]) if fluke else None)
-        pocket = None if aimed is None else SAID.pocket(aimed)
         if out.winner is not None:
             scores[b] = p * WIN + (1 - p) * miss if out.winner == state.shooter else LOSS
-            notes.append(words.reason(out.said, SAID))
+            notes.append(PlanNote(Aim.VERDICT, said=tuple(out.said)))
             sees.append("win" if out.winner == state.shooter else "loss")
         elif out.foul is not None or (practice and out.ball_in_hand):
             scores[b] = foul
-            why = words.reason(out.said, SAID)
-            notes.append(f"foul: {why}" if out.foul else why)
+            notes.append(PlanNote(Aim.VERDICT, said=tuple(out.said), foul=out.foul is not None))
             sees.append("foul")
         elif out.continue_turn and potted:
             scores[b] = p * CONTINUE + (1 - p) * miss
             leave_for.append((b, p, nxt))
             if intended and cands.kind[b] == "combo":
-                notes.append(f"combination: the {tgt} into the {sunk}, {sunk} in the {pocket} "
-                             "pocket")
+                notes.append(PlanNote(Aim.COMBO, ball=tgt, sunk=sunk, pocket=aimed))
             elif intended:
-                notes.append(f"{tgt} in the {pocket} pocket")
+                notes.append(PlanNote(Aim.POT, ball=tgt, pocket=aimed))
             else:
-                how = "the break" if cands.kind[b] == "break" else "a kiss or combination"
-                notes.append(f"{', '.join(potted)} in by {how}")
+                notes.append(PlanNote(Aim.FLUKE, balls=tuple(potted),
+                                      by_break=cands.kind[b] == "break"))
             sees.append("pot")
         else:
             scores[b] = PASS
             if not practice:  # in practice the same player shoots again: nothing to deny
                 leave_for.append((b, -1.0, nxt))
-            word = {"break": "break", "safety": "safety", "kick": "kick"}.get(cands.kind[b])
-            if word is None:  # the ball struck first named, as in a pot's note
-                word = f"try {sunk} in the {pocket} pocket" if sunk == tgt else \
-                    f"try the {tgt} into the {sunk}, {sunk} in the {pocket} pocket"
-            notes.append(f"{word} on the {tgt}" if cands.kind[b] in ("safety", "kick")
-                         else word)
+            aim = {"break": Aim.BREAK, "safety": Aim.SAFETY, "kick": Aim.KICK}.get(
+                cands.kind[b], Aim.TRY)
+            notes.append(PlanNote(aim, ball=tgt, sunk=sunk, pocket=aimed) if aim is Aim.TRY
+                         else PlanNote(aim, ball=tgt))
             sees.append("pass")
     if leave_for:
         rows = [b for b, _, _ in leave_for]

@@ -12,7 +12,7 @@ import numpy as np
 from termpool.physics.cue import clamp_tip
 from termpool.physics.params import Physics
 from termpool.physics.table import Table
-from termpool.rules.codes import Choice, Option
+from termpool.rules.codes import Aim, Choice, Option, PlanNote
 from termpool.rules.common import State, legal_targets
 
 from . import geometry as geo
@@ -45,7 +45,7 @@ class Plan(NamedTuple):
     top: float
     called: tuple[str, str] | None  # (ball, pocket name) when the rules need a call (the 8)
     score: float
-    note: str  # why, in words for people ("3 in the top-right corner pocket")
+    note: PlanNote  # why, as data for words.plan_note ("3 in the top-right corner pocket")
     kind: str = ""  # "break", "pot", "combo", "safety", "kick" ("": none of them)
     ball: str | None = None  # pots and combinations: the ball meant to drop ...
     pocket: str | None = None  # ... and the pocket it is sent to
@@ -176,14 +176,14 @@ def choose_shot(table: Table, physics: Physics, ids: Sequence[str], pos, radius,
     ev = _evaluate(table, physics, ids, pos, radius, mass, on_table, state, level,
                    max_candidates)
     if len(ev.cands) == 0:  # nothing to aim at: roll the cue ball up the table
-        return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, "no object ball on the table")
+        return Plan(1.0, 0.0, 0.0, 0.0, None, PASS, PlanNote(Aim.NOTHING))
     if state.is_break:  # the break whose samples did best on average, as meant
         mean = ev.scores.reshape(-1, BREAK_SAMPLES).mean(axis=1)
         k = int(np.argmax(mean))
         speed, (side, top) = BREAK_SPEEDS[k // len(BREAK_SPINS)], BREAK_SPINS[k % len(BREAK_SPINS)]
         angle = (geo.deg(ev.t.pos[ev.cands.target[0]] - ev.t.pos[ev.t.cue]) + 180.0) % 360.0 \
             - 180.0
-        return Plan(speed, angle, side, top, None, float(mean[k]), "break", "break")
+        return Plan(speed, angle, side, top, None, float(mean[k]), PlanNote(Aim.BREAK), "break")
     if ev.lv.verify == 0:
         best = int(np.argmax(ev.scores))
         score = float(ev.scores[best])

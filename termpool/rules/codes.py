@@ -115,4 +115,34 @@ class Said:
     count: int | None = None
 
 
-__all__ = ["CHOICES", "Choice", "Foul", "Option", "Said", "Why"]
+class Aim(StrEnum):
+    """What the computer's plan for a shot is (`PlanNote`)."""
+
+    VERDICT = "verdict"  # the shot wins, loses or fouls: the referee's verdict says it
+    POT = "pot"  # `ball` into `pocket`
+    COMBO = "combo"  # `ball` into `sunk`, `sunk` into `pocket`
+    FLUKE = "fluke"  # `balls` drop by the break or by a kiss or combination (`by_break`)
+    TRY = "try"  # a pot tried that passes the turn: `ball` (into `sunk`) into `pocket`
+    BREAK = "break"
+    SAFETY = "safety"  # on `ball`
+    KICK = "kick"  # on `ball`
+    NOTHING = "nothing"  # no object ball on the table
+
+
+@dataclass(frozen=True)
+class PlanNote:
+    """The computer's plan for a shot as data, for `rules.words.plan_note` to say: a pot, a
+    combination, a try, a safety or kick on a ball, or (when its batch saw the shot win, lose
+    or foul) the referee's verdict on it. Pockets by the table's names."""
+
+    aim: Aim
+    ball: str | None = None  # the ball the cue ball is sent at
+    sunk: str | None = None  # a combination's: the ball it sends on to the pocket
+    pocket: str | None = None
+    balls: tuple[str, ...] = ()  # a fluke's balls
+    by_break: bool = False  # a fluke's: by the break (else a kiss or a combination)
+    said: tuple[Said, ...] = ()  # a verdict's clauses
+    foul: bool = False  # a verdict's: a foul
+
+
+__all__ = ["CHOICES", "Aim", "Choice", "Foul", "Option", "PlanNote", "Said", "Why"]

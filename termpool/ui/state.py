@@ -31,7 +31,7 @@ from termpool.ai import Plan
 from termpool.game import Match, ShotRun
 from termpool.physics.results import DT
 from termpool.rules import words
-from termpool.rules.codes import Choice
+from termpool.rules.codes import Choice, PlanNote
 from termpool.rules.common import legal_targets
 from termpool.ui.aim import Aim as Trace
 from termpool.ui.aim import aim_trace
@@ -344,7 +344,8 @@ class State:
     aid: AidJob = AidJob()
     # the words on show
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
-    cpu_plan: str = ""  # the computer's plan ("3 in the top-right corner pocket"; "": none)
+    cpu_plan: PlanNote | None = None  # the computer's plan ("3 in the top-right corner
+    # pocket" in words; None: none)
     shot_note: tuple[Line, ...] = ()  # its line, kept for the shot it is playing
 
     @property
@@ -354,7 +355,9 @@ class State:
     @property
     def cpu_note(self) -> tuple[Line, ...]:
         """The computer's plan as the panel's line (none without one)."""
-        return ((words.computer_plan(self.cpu_plan), "turn"),) if self.cpu_plan else ()
+        if self.cpu_plan is None:
+            return ()
+        return ((words.computer_plan(self.cpu_plan, voice(self)), "turn"),)
 
 
 # ------------------------------------------------------------------------- reading a state

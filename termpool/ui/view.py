@@ -370,7 +370,7 @@ def _status(s: State, spin_words: bool = True) -> list[tuple[str, str]]:
             out.append((f"{name} is about to break", "dim"))
         else:  # the ball its plan is about, as its note names it (not the aid's first ball,
             # which its stick sweeps past, and its aim's error may change)
-            at = f" at the {plan.target}" if plan.target is not None else ""
+            at = f" at {voice(s).ball(plan.target)}" if plan.target is not None else ""
             out.append((f"{name} is aiming{at}", "dim"))
     elif s.phase is Phase.REMOTE:
         doing = ("answering" if m.option is not None else

@@ -190,7 +190,8 @@ def finish_shot(s: State) -> State:
     verdict = words.verdict(out, voice(s), shooter)
     # The verdict first, the plan it answers after (now in the past: "plan was"): where the
     # computer's next plan takes the old one's place, the verdict does not move.
-    plan = ((words.computer_plan(s.cpu_plan, done=True), "turn"),) if s.shot_note else ()
+    plan = ((words.computer_plan(s.cpu_plan, voice(s), done=True), "turn"),) \
+        if s.shot_note and s.cpu_plan is not None else ()
     s = replace(s, message=(verdict, *plan), shot_note=plan)
     if s.files.records is not None:  # on disk after every shot, whatever comes next
         s.files.records.keep(m, on=s.opts.records)
