@@ -322,6 +322,23 @@ def test_typing_over_a_name_starts_a_new_one_and_backspace_edits_the_old() -> No
     assert app.state.opts.player1 == "Boo"
 
 
+def test_a_flag_s_value_set_on_the_screen_is_saved_as_the_screen_shows_it() -> None:
+    # Run with --theme classic (a flag: not saved), the theme set to standard and back on the
+    # screen, and another setting changed: the file keeps what the screen showed, classic.
+    store = load_settings()
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0, theme="classic"),
+              prefs=store)
+    keys(app, "enter", "p", "s", *["down"] * KEYS.index("theme"), "right", "left",
+         *["down"] * (KEYS.index("aid") - KEYS.index("theme")), "right", "esc")
+    saved = load_settings().saved
+    assert saved["theme"] == "classic" and saved["aid"] == "ghost"
+    # A flag's value left alone stays unsaved.
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0, level="pro"),
+              prefs=load_settings())
+    keys(app, "enter", "p", "s", *["down"] * KEYS.index("aid"), "right", "esc")
+    assert load_settings().saved["level"] == "normal"
+
+
 def test_enter_changes_a_setting_as_right_does_and_the_box_stays() -> None:
     app = app_at_menu()
     keys(app, menu_item("Settings"), *["down"] * KEYS.index("aid"))
@@ -518,3 +535,12 @@ def test_the_files_warnings_are_on_the_games_first_screen_too() -> None:
     # (wrapped to the menu's width: read as words)
     assert ("settings: 2 warnings (all said after play), the first: settings.conf line 1: "
             "unknown setting 'tabel'") in " ".join(p.stdout.split())
+
+
+def test_the_box_says_the_file_is_written_when_it_closes() -> None:
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0),
+              prefs=load_settings())
+    keys(app, "enter", "p", "s")
+    text = " ".join(screen_text(app.cells(120, 40)[0]).split())
+    assert "closing saves the changes in " in text, text
+    assert not load_settings().path.exists()  # nothing written while it is open

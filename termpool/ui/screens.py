@@ -87,8 +87,11 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
     files = []
     if prefs is not None:
         path = shown(prefs.path)
-        room = width - len("saved in ")
-        files.append(f"saved in {path if len(path) <= room else '…' + path[1 - room:]}")
+        head = "closing saves the changes in"
+        if len(head) + 1 + len(path) <= width:
+            files.append(f"{head} {path}")
+        else:  # the path on a line of its own, its end kept
+            files += [head, path if len(path) <= width else "…" + path[1 - width:]]
         if prefs.warnings:
             files += textwrap.wrap(shown(prefs.warnings[0]), width)
     note = textwrap.wrap(LATER_NOTE, width) if later else []

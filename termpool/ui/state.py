@@ -235,6 +235,8 @@ class Settings:
     editing: str | None = None
     refused: str | None = None  # why a key typed into the name was not taken
     whole: bool = False  # the name being typed is still the old one whole: a key replaces it
+    touched: frozenset[str] = frozenset()  # the settings set here (saved as shown, even one
+    # set back to a value a flag gave this run)
 
 
 @dataclass(frozen=True)

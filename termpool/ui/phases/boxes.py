@@ -113,14 +113,17 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
         return replace(s, box=replace(box, index=(box.index - 1) % len(SETTINGS)))
     if key.name in ("down", "j", "tab"):
         return replace(s, box=replace(box, index=(box.index + 1) % len(SETTINGS)))
+    touched = replace(box, touched=box.touched | {setting.key})
     if key.name in ("left", "right") and setting.kind != "name":
         d = -1 if key.name == "left" else 1
-        return set_value(s, setting.key, _step(setting, current(s, setting.key), d))
+        s = set_value(s, setting.key, _step(setting, current(s, setting.key), d))
+        return replace(s, box=touched)
     if key.name == "enter" or action == "confirm":
         if setting.kind == "name":  # typing starts over it; Backspace edits it
             return replace(s, box=replace(box, editing=current(s, setting.key), whole=True))
         # (Enter changes the value, as → does: the box closes with Esc or Q)
-        return set_value(s, setting.key, _step(setting, current(s, setting.key), 1))
+        s = set_value(s, setting.key, _step(setting, current(s, setting.key), 1))
+        return replace(s, box=touched)
     if key.name in ("esc", "q") or action in ("cancel", "quit"):
         return _close(s, box)
     return s
@@ -131,8 +134,10 @@ def _type(s: State, box: Settings, key) -> State:
     if key.name == "esc":
         return replace(s, box=replace(box, editing=None, refused=None, whole=False))
     if key.name == "enter":  # only what check_name takes can be typed (see _typed)
-        s = set_value(s, SETTINGS[box.index].key, check_name(box.editing.strip()))
-        return replace(s, box=replace(box, editing=None, refused=None, whole=False))
+        key_ = SETTINGS[box.index].key
+        s = set_value(s, key_, check_name(box.editing.strip()))
+        return replace(s, box=replace(box, editing=None, refused=None, whole=False,
+                                      touched=box.touched | {key_}))
     if key.name == "backspace":
         return replace(s, box=replace(box, editing=box.editing[:-1], whole=False))
     ch = _typed(key)
@@ -148,10 +153,11 @@ def _type(s: State, box: Settings, key) -> State:
 
 
 def _close(s: State, box: Settings) -> State:
-    """Done: the changes made here are saved (the flags of this run are not), and the box
-    it came from is back."""
+    """Done: the changes made here are saved (the flags of this run are not, unless set
+    here: what the box showed is what is saved), and the box it came from is back."""
     s = replace(s, box=box.back)
-    changes = {k: current(s, k) for k, v in box.before.items() if current(s, k) != v}
+    changes = {k: current(s, k) for k, v in box.before.items()
+               if current(s, k) != v or k in box.touched}
     if changes and s.files.prefs is not None:
         warning = s.files.prefs.save(changes)
         if warning:
