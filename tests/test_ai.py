@@ -88,7 +88,7 @@ def test_straight_in_on_an_empty_table_goes_in():
     assert not summary.scratch
     assert out.continue_turn
     assert (plan.kind, plan.ball, plan.pocket, plan.sees) == ("pot", "1", "foot_left", "pot")
-    assert plan_note(plan.note) == "1 in the top-right corner pocket"  # the pocket in words
+    assert plan_note(plan.note) == "the 1 in the top-right corner pocket"  # pocket in words
 
 
 def _heading(lay: Layout, speed: float, angle: float, side: float, top: float) -> float:
@@ -254,7 +254,7 @@ def test_risky_pots_rank_below_safe_ones():
     plans = ai.score_shots(*lay.args(), state)
     # The pots the batch saw drop where they were sent.
     one = [p.score for p in plans if (p.kind, p.ball, p.pocket, p.sees, plan_note(p.note)) ==
-           ("pot", "1", "head_right", "pot", "1 in the bottom-left corner pocket")]
+           ("pot", "1", "head_right", "pot", "the 1 in the bottom-left corner pocket")]
     two = [p.score for p in plans if (p.kind, p.ball, p.sees) == ("pot", "2", "pot")]
     assert one and two
     assert min(one) > max(two)
@@ -648,10 +648,10 @@ def test_a_plan_s_target_is_the_ball_its_note_names_first():
             assert plan_note(p.note).endswith(f" on the {p.target}"), p
         elif p.sees == "pass":  # a pot tried that the batch saw miss: "try ..."
             tries += 1
-            start = f"try {p.target} in " if p.kind == "pot" else f"try the {p.target} into "
+            start = f"try the {p.target} " + ("in the " if p.kind == "pot" else "into ")
             assert plan_note(p.note).startswith(start), p
         elif p.sees == "pot" and p.kind == "pot" and "in by" not in plan_note(p.note):
-            assert plan_note(p.note).startswith(f"{p.target} in the "), p
+            assert plan_note(p.note).startswith(f"the {p.target} in the "), p
         elif p.sees == "pot" and p.kind == "combo" and "in by" not in plan_note(p.note):
             assert plan_note(p.note).startswith(f"combination: the {p.target} into "), p
     assert tries
@@ -935,17 +935,18 @@ def test_a_plan_is_data_that_each_voice_says_in_its_words():
 
     classic = words.voice(("You", "Computer"), "classic")
     pot = PlanNote(Aim.POT, ball="3", pocket="foot_left")
-    assert plan_note(pot) == "3 in the top-right corner pocket"
+    assert plan_note(pot) == "the 3 in the top-right corner pocket"
     assert plan_note(pot, classic) == "a red in the top-right corner pocket"
     combo = PlanNote(Aim.COMBO, ball="2", sunk="11", pocket="side_right")
-    assert plan_note(combo) == "combination: the 2 into the 11, 11 in the bottom side pocket"
+    assert plan_note(combo) == \
+        "combination: the 2 into the 11, the 11 in the bottom side pocket"
     assert plan_note(combo, classic) == \
         "combination: a red into a yellow, a yellow in the bottom side pocket"
     assert plan_note(PlanNote(Aim.SAFETY, ball="12"), classic) == "safety on a yellow"
     assert plan_note(PlanNote(Aim.TRY, ball="5", sunk="5", pocket="head_left")) == \
-        "try 5 in the top-left corner pocket"
+        "try the 5 in the top-left corner pocket"
     assert plan_note(PlanNote(Aim.FLUKE, balls=("4", "9"), by_break=True)) == \
-        "4, 9 in by the break"
+        "the 4 and the 9 in by the break"
     win = PlanNote(Aim.VERDICT, said=(Said(Why.EIGHT_CALLED, pocket="foot_right", player=1),))
     assert plan_note(win) == "the 8 went into the called bottom-right corner pocket: " \
                              "player 1 wins"

@@ -1292,7 +1292,7 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
         app.tick(t)
         screen = screen_text(app.cells(120, 40)[0])
         if isinstance(app.state.part, Aiming):
-            assert "Computer's plan: 3 in the top-right corner pocket" in screen
+            assert "Computer's plan: the 3 in the top-right corner pocket" in screen
             assert aid.prediction(app.state) is not None and "o" in screen  # its ghost ball
             if aimed is None and app.state.stroke.angle == plan.angle:
                 aimed = t
@@ -1300,15 +1300,15 @@ def test_the_computer_shows_its_aim_and_plan_for_1_2_s_then_keeps_its_words(monk
     assert aimed is not None and app.state.part.struck_at - aimed >= 1.2
     while app.state.phase is Phase.RUN:  # its words stay up while the shot runs ...
         shown = screen_text(app.cells(120, 40)[0])
-        assert "Computer's plan: 3 in the top-right corner pocket" in shown
+        assert "Computer's plan: the 3 in the top-right corner pocket" in shown
         app.tick(t)
         t += 1 / 60
     # ... and when it is over, after the verdict, until the next shot: in the past, so that
     # on your turn it does not read as a shot still to come
-    assert app.state.message[1][0] == "Computer's plan was: 3 in the top-right corner pocket"
+    assert app.state.message[1][0] == "Computer's plan was: the 3 in the top-right corner pocket"
     assert len(app.state.message) == 2
     shown = screen_text(app.cells(120, 40)[0])
-    assert "Computer's plan was: 3 in the top-right corner pocket" in shown
+    assert "Computer's plan was: the 3 in the top-right corner pocket" in shown
     assert "Computer's plan: " not in shown
 
 
@@ -1336,7 +1336,7 @@ def test_a_second_computer_shot_shows_only_its_own_plan_and_names_its_ball(monke
     app.tick(t)
     app.tick(t + 0.1)  # it has its new plan; the old one is gone, the verdict stays
     assert app.state.message == (verdict,
-                                 ("Computer's plan: 3 in the top side pocket", "turn"))
+                                 ("Computer's plan: the 3 in the top side pocket", "turn"))
     # Its plan's ball from the start, the one its note names: not the 8 its stick is on.
     assert app.state.stroke.angle != 0.0
     assert "Computer is aiming at the 3\n" in screen_text(app.cells(120, 40)[0])

@@ -45,7 +45,7 @@ class Plan(NamedTuple):
     top: float
     called: tuple[str, str] | None  # (ball, pocket name) when the rules need a call (the 8)
     score: float
-    note: PlanNote  # why, as data for words.plan_note ("3 in the top-right corner pocket")
+    note: PlanNote  # why, as data for words.plan_note ("the 3 in the top-right corner pocket")
     kind: str = ""  # "break", "pot", "combo", "safety", "kick" ("": none of them)
     ball: str | None = None  # pots and combinations: the ball meant to drop ...
     pocket: str | None = None  # ... and the pocket it is sent to

@@ -367,29 +367,25 @@ PLANS = voice(("player 0", "player 1"))  # a plan's words with no match to name 
 
 
 def plan_note(note: PlanNote, v: Voice = PLANS) -> str:
-    """The computer's plan in words: "3 in the top-right corner pocket", "safety on the 5",
+    """The computer's plan in words: "the 3 in the top-right corner pocket", "safety on the 5",
     or the referee's verdict on the shot (in a theme of colours, "a red in ...")."""
     if note.aim is Aim.VERDICT:
         why = reason(note.said, v)
         return f"foul: {why}" if note.foul else why
 
-    def bare(b: str | None) -> str:  # a ball leading a phrase: "3", or "a red"
-        name = v.ball(b)
-        return name[4:] if name.startswith("the ") else name
-
     pocket = f"in the {v.pocket(note.pocket)} pocket" if note.pocket is not None else ""
     if note.aim is Aim.POT:
-        return f"{bare(note.ball)} {pocket}"
+        return f"{v.ball(note.ball)} {pocket}"
     if note.aim is Aim.COMBO:
         return f"combination: {v.ball(note.ball)} into {v.ball(note.sunk)}, " \
-               f"{bare(note.sunk)} {pocket}"
+               f"{v.ball(note.sunk)} {pocket}"
     if note.aim is Aim.FLUKE:
         by = "the break" if note.by_break else "a kiss or combination"
-        return f"{', '.join(bare(b) for b in note.balls)} in by {by}"
+        return f"{v.balls(note.balls)} in by {by}"
     if note.aim is Aim.TRY:
         if note.sunk is None or note.sunk == note.ball:
-            return f"try {bare(note.ball)} {pocket}"
-        return f"try {v.ball(note.ball)} into {v.ball(note.sunk)}, {bare(note.sunk)} {pocket}"
+            return f"try {v.ball(note.ball)} {pocket}".rstrip()
+        return f"try {v.ball(note.ball)} into {v.ball(note.sunk)}, {v.ball(note.sunk)} {pocket}"
     if note.aim is Aim.BREAK:
         return "break"
     if note.aim is Aim.NOTHING:
@@ -398,7 +394,7 @@ def plan_note(note: PlanNote, v: Voice = PLANS) -> str:
 
 
 def computer_plan(note: PlanNote, v: Voice = PLANS, done: bool = False) -> str:
-    """The computer's plan ("3 in the top-right corner pocket") as the panel says it: while
+    """The computer's plan ("the 3 in the top-right corner pocket") as the panel says it: while
     it aims and shoots, then (`done`) once the shot is over, beside the verdict on it, where
     the present tense would read as a shot still to come."""
     return f"Computer's plan{' was' if done else ''}: {plan_note(note, v)}"

@@ -346,7 +346,7 @@ class State:
     aid: AidJob = AidJob()
     # the words on show
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
-    cpu_plan: PlanNote | None = None  # the computer's plan ("3 in the top-right corner
+    cpu_plan: PlanNote | None = None  # the computer's plan ("the 3 in the top-right corner
     # pocket" in words; None: none)
     shot_note: tuple[Line, ...] = ()  # its line, kept for the shot it is playing
 

@@ -68,7 +68,7 @@ def plan(s: State) -> tuple[State, Plan | Choice]:
         m.place_cue(*player.place(m))
     decision = player.shot(m)
     foresees = decision.sees in ("win", "loss", "foul")
-    # A plan ("3 in the top-right corner pocket"), not the result it simulated.
+    # A plan ("the 3 in the top-right corner pocket"), not the result it simulated.
     s = replace(s, cpu_plan=None if foresees else decision.note)
     # The verdict on the shot just played stays in view (the player's, or its own last one),
     # or, after an option, the answer given; not the plan of the shot it was about.
