@@ -184,6 +184,17 @@ def test_placement_refusals(area, x, y, words) -> None:
     assert at(m, "cue") == HEAD  # unchanged
 
 
+def test_a_placement_refused_names_the_ball_as_the_screen_does() -> None:
+    from termpool.rules import words
+
+    m = Match("8ball")
+    setup(m, {"cue": HEAD, "5": (1.2, 0.6), **PARK})
+    m.ball_in_hand = "anywhere"
+    assert m.placement_error(1.2 + R, 0.6, words.voice(("You", "Bob"), "classic")) == \
+        "overlaps a red"  # the classic theme's balls show no numbers
+    assert m.placement_error(1.2 + R, 0.6, words.voice(("You", "Bob"))) == "overlaps the 5"
+
+
 @pytest.mark.parametrize(
     "area, x, y",
     [

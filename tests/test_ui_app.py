@@ -1248,9 +1248,14 @@ def test_tab_aims_at_the_shooter_s_balls_in_turn_and_shift_tab_goes_back() -> No
         app.key(Key("tab"), 3.0)
         seen.append(app.state.stroke.angle)
     assert seen == pytest.approx([at("3"), at("1")])
-    # The 2 and the 3 down: the 1 alone, already aimed at. Tab says so, and leaves the aim.
-    for b in ("2", "3"):
-        m.on_table[m.ids.index(b)] = False
+    # The 3 down, the 2 behind the stripe: the 1 is the only clear one, and Tab says that.
+    m.on_table[m.ids.index("3")] = False
+    app.key(Key("tab"), 3.5)
+    assert app.state.stroke.angle == pytest.approx(at("1"))
+    text = " ".join(screen_text(app.cells(120, 40)[0]).split())
+    assert "no other ball you may hit has a clear path" in text, text
+    # The 2 down too: the 1 alone, already aimed at. Tab says so, and leaves the aim.
+    m.on_table[m.ids.index("2")] = False
     app.key(Key("tab"), 4.0)
     assert app.state.stroke.angle == pytest.approx(at("1"))
     assert "no other ball to aim at" in screen_text(app.cells(120, 40)[0])

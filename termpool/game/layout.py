@@ -167,7 +167,7 @@ def placement_error(table: Table, x: float, y: float, r: float, area: str,
             return f"in the mouth of the {v.pocket(name)} pocket"
     for bid, (bx, by, br) in others.items():
         if math.hypot(x - bx, y - by) < r + br - TOUCH_TOL:
-            return f"overlaps the {bid}" if bid != "cue" else "overlaps the cue ball"
+            return f"overlaps {v.ball(bid)}"
     return None
 
 

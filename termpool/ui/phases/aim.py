@@ -21,6 +21,7 @@ from termpool.ui.state import (
     next_ball_angle,
     say,
     targets,
+    voice,
 )
 
 SPIN_STEP = 0.1  # tip offset per key, in units of R
@@ -84,11 +85,14 @@ def key(s: State, key, action: str | None, t: float) -> State:
         angle = next_ball_angle(s, action == "next_ball")
         if angle == st.angle:  # (9-ball: the one ball on, already aimed at)
             way = in_the_way(s)
+            if way is None and len(targets(s)) > 1:  # the others are all behind balls
+                return say(s, "no other ball you may hit has a clear path: the aim is at the "
+                              "only one that has")
             if way is None:
                 return say(s, "no other ball to aim at: the aim is at the only one you may hit")
-            ids = s.match.ids
-            return say(s, f"the {ids[way]} is in the way of the {ids[targets(s)[0]]}, the only "
-                          "ball you may hit: a cushion first?")
+            ids, v = s.match.ids, voice(s)
+            return say(s, f"{v.ball(ids[way])} is in the way of {v.ball(ids[targets(s)[0]])}, "
+                          "the only ball you may hit: a cushion first?")
         return replace(answered(s), stroke=replace(st, angle=angle))
     if action in SPIN_KEYS:
         dx, dy = SPIN_KEYS[action]
