@@ -826,7 +826,7 @@ def test_a_match_over_stays_on_show_when_the_other_player_goes(lobby, tmp_path):
     for app in (ann, bob):
         app.state.match.winner = 0  # the match won, on both screens
         app.state = replace(app.state, part=Over())
-    assert "n: the lobby" in screen(ann, 100, 30)
+    assert "N: the lobby" in screen(ann, 100, 30)
     bob.key(Key("m"), time.monotonic())  # bob goes back to the menu
     until([ann, bob], lambda: "bob has left" in screen(ann, 100, 30), "ann told")
     assert ann.state.phase is Phase.OVER  # the end, the W to watch it, stay hers

@@ -418,7 +418,7 @@ def test_m_in_the_quit_question_goes_to_the_menu_and_keeps_the_match(capsys,
     app = App(Options(mode="practice", opponent="human", colors="mono", seed=0),
               records=Records(str(tmp_path / "m.json")))
     play_keys(app, parse_script("enter space-hold 1.0 wait 20 q"), 80, 24)
-    assert "m: menu" in screen_text(app.cells(80, 24)[0])
+    assert "M: menu" in screen_text(app.cells(80, 24)[0])
     app.key(Key("m"), 100.0)
     assert app.state.phase is Phase.MENU and app.state.match is None and not app.done
     rec = tmp_path / "m.json"

@@ -311,7 +311,7 @@ def test_the_quit_box_says_y_and_m_both_end_the_game_in_play() -> None:
     says so while a game is in play, and not once the match is over."""
     app = app_for()
     run_script(app, "q")
-    assert "y and m both end the game in play" in screen_text(app.cells(100, 32)[0])
+    assert "Y and M both end the game in play" in screen_text(app.cells(100, 32)[0])
     app.key(Key("n"), 1.0)
     app.state.match.winner = 0
     run_script(app, "q")

@@ -265,7 +265,7 @@ def test_w_at_the_end_of_a_match_watches_it_and_q_comes_back() -> None:
     play(app, parse_script("enter space-hold 1.3 wait 12"), COLS, ROWS)
     app.state.match.winner = 0  # as if the 8 had just gone down legally
     app.state = start_turn(app.state)
-    assert "w: watch this match" in screen_text(app.cells(COLS, ROWS)[0])
+    assert "W: watch this match" in screen_text(app.cells(COLS, ROWS)[0])
     app.key(Key("w"), 100.0)
     assert app.state.watch is not None and app.wake_in(100.0) == 0.0
     assert "shot 1 of 1 · Player 1 · the break" in screen_text(app.cells(COLS, ROWS)[0])
@@ -274,7 +274,7 @@ def test_w_at_the_end_of_a_match_watches_it_and_q_comes_back() -> None:
     assert app.state.watch.phase == "run" and app.dirty
     app.key(Key("q"), 103.0)  # stops watching: the game-over box again, not a quit question
     assert app.state.watch is None and not app.done and app.state.box is None
-    assert "w: watch this match" in screen_text(app.cells(COLS, ROWS)[0])
+    assert "W: watch this match" in screen_text(app.cells(COLS, ROWS)[0])
 
 
 # ---------------------------------------------------------------------------- the command

@@ -104,13 +104,13 @@ def draw(s: State, cols: int, rows: int, geometry: Geometry) -> tuple[tuple, See
     elif isinstance(box, Settings | Stats):
         draw_box(out, box_lines(s, box, cols, rows), TITLES[type(box)], wrap=False)
     elif isinstance(box, Quit):  # drawn even over "make the window bigger": Q must show
-        lines = ["Quit termpool?", "", "y: quit    n: keep playing    m: menu"]
+        lines = ["Quit termpool?", "", "Y: quit    N: keep playing    M: menu"]
         if concedes(s):
             other = shown(s.match.players[s.remote[0]])[:16]
             lines[1:1] = ["", f"leaving gives {other} the match"]
         elif s.match is not None and s.match.winner is None and len(s.remote) < 2:
             # (M too: a game left for the menu does not wait there to be taken up again)
-            lines[1:1] = ["", "y and m both end the game in play"]
+            lines[1:1] = ["", "Y and M both end the game in play"]
         draw_box(out, lines, "quit")
     return out, Seen(cols, rows, lay, table)
 
@@ -225,9 +225,9 @@ def _question(s: State, cells, lay: Layout) -> None:
         draw_box(cells, lines, title, at=at)
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
-        again = "n: the lobby" if s.remote else "n: new game"  # online: a new challenge
+        again = "N: the lobby" if s.remote else "N: new game"  # online: a new challenge
         lines = [words.game_won(voice(s), m.winner), why, "",
-                 f"{again}   m: menu   q: quit", "w: watch this match"]
+                 f"{again}   M: menu   Q: quit", "W: watch this match"]
         records = s.files.records
         where = records.kept_at(m) if records is not None else None
         if where is not None:  # where to find it again (`termpool records` lists them)
