@@ -2128,3 +2128,26 @@ def test_the_aid_says_when_it_sees_no_ball_within_its_cushions() -> None:
     angle = math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3))
     stroke(app, angle=angle)  # at the 3: its name instead
     assert "no ball within" not in aid_done(app)
+
+
+def test_in_practice_the_aid_warns_of_a_cue_ball_lost() -> None:
+    # Practice has no fouls, but a cue ball sent into a pocket is a shot spoiled: said.
+    app = app_for(mode="practice")
+    app.key(Key("enter"), 0.0)
+    m = app.state.match
+    m.on_table[:] = False
+    for b, p in {"cue": (0.3, 0.3), "3": (1.8, 0.9)}.items():
+        m.pos[m.index(b)] = p
+        m.on_table[m.index(b)] = True
+    m.ball_in_hand = None
+    m.state = replace(m.state, is_break=False)
+    put(app, last_power=0.4)
+    stroke(app, angle=225.0)  # straight into the corner pocket behind it
+    text = aid_done(app)
+    pred = aid.prediction(app.state)
+    assert pred.cue.end == "pocket"
+    said = f"As aimed: the cue ball went into the {words.spoken_pocket(pred.cue.pocket)} " \
+           "pocket: ball in hand"
+    assert said in text, text
+    stroke(app, angle=math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3)))  # at the 3
+    assert "As aimed" not in aid_done(app)

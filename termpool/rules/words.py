@@ -311,12 +311,17 @@ def aid_warning(outcome, v: Voice, shooter: int) -> str | None:
     """What the aim aid warns of, from the referee's outcome of the shot as the aid sees it:
     "As aimed: the 8 went down early (...): you lose" for a shot that loses the game, "As
     aimed, a foul: the cue ball hit the 8 first, not one of the solids" for a foul; None for
-    a legal shot."""
+    a legal shot; in practice, "As aimed: the cue ball went into the ... pocket: ball in
+    hand"."""
     fouls = outcome.said[:len(outcome.fouls)]
     if outcome.winner is not None and outcome.winner != shooter:
         return "As aimed: " + reason((*fouls, outcome.said[-1]), v)
     if outcome.foul is not None:
         return "As aimed, a foul: " + reason(fouls, v)
+    # Practice has no fouls, but a cue ball lost is still a shot spoiled.
+    lost = [x for x in outcome.said if x.why in (Why.SCRATCH_IN_HAND, Why.CUE_LEFT_IN_HAND)]
+    if lost:
+        return "As aimed: " + reason(lost, v)
     return None
 
 
