@@ -544,3 +544,10 @@ def test_the_box_says_the_file_is_written_when_it_closes() -> None:
     text = " ".join(screen_text(app.cells(120, 40)[0]).split())
     assert "closing saves the changes in " in text, text
     assert not load_settings().path.exists()  # nothing written while it is open
+
+
+def test_the_settings_open_again_on_the_row_they_closed_on() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("aid"), "esc")
+    keys(app, menu_item("Settings"), "right")  # the aim aid again, not the computer's level
+    assert app.state.opts.aid == "ghost" and app.state.opts.level == "normal"

@@ -345,6 +345,7 @@ class State:
     # their next turn (None: the default power, before their first shot)
     aid: AidJob = AidJob()
     # the words on show
+    settings_row: int = 0  # the Settings screen's row when it last closed (it opens there)
     message: tuple[Line, ...] = ()  # the last verdicts and notes, in the panel
     cpu_plan: PlanNote | None = None  # the computer's plan ("the 3 in the top-right corner
     # pocket" in words; None: none)

@@ -63,7 +63,8 @@ def key(s: State, key, action: str | None, seen: Seen | None) -> State:
 def open_settings(s: State, back: Pause | None = None) -> State:
     if s.match is None:
         s = apply_pending(s)
-    return replace(s, box=Settings({x.key: current(s, x.key) for x in SETTINGS}, back))
+    return replace(s, box=Settings({x.key: current(s, x.key) for x in SETTINGS}, back,
+                                   index=s.settings_row))
 
 
 def set_value(s: State, key: str, value: Any) -> State:
@@ -155,7 +156,7 @@ def _type(s: State, box: Settings, key) -> State:
 def _close(s: State, box: Settings) -> State:
     """Done: the changes made here are saved (the flags of this run are not, unless set
     here: what the box showed is what is saved), and the box it came from is back."""
-    s = replace(s, box=box.back)
+    s = replace(s, box=box.back, settings_row=box.index)
     changes = {k: current(s, k) for k, v in box.before.items()
                if current(s, k) != v or k in box.touched}
     if changes and s.files.prefs is not None:
