@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -551,3 +552,19 @@ def test_the_settings_open_again_on_the_row_they_closed_on() -> None:
     keys(app, menu_item("Settings"), *["down"] * KEYS.index("aid"), "esc")
     keys(app, menu_item("Settings"), "right")  # the aim aid again, not the computer's level
     assert app.state.opts.aid == "ghost" and app.state.opts.level == "normal"
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(80, 24), (100, 30), (60, 20), (120, 40)])
+def test_the_settings_box_holds_still_as_the_choice_moves(cols, rows) -> None:
+    # Its headings, its frame and its key line stay where they are, whichever setting's
+    # words (one line or three) are shown under the list.
+    app = App(Options(mode="8ball", opponent="human", colors="mono", seed=0))
+    app.state = open_settings(app.state)
+    seen = set()
+    for k in range(len(SETTINGS)):
+        app.state = replace(app.state, box=replace(app.state.box, index=k))
+        lines = screen_text(app.cells(cols, rows)[0]).splitlines()
+        where = tuple(next((i for i, x in enumerate(lines) if mark in x), None)
+                      for mark in ("┌─ settings", "The game", "Names", "Esc done"))
+        seen.add(where)
+    assert len(seen) == 1, seen

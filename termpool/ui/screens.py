@@ -46,6 +46,13 @@ def _value(s: State, setting) -> str:
     return str(v)
 
 
+def _about(setting) -> str:
+    """What a setting does, as the line under the settings says it."""
+    if setting.kind == "name":
+        return f"{setting.help} · Enter: type it"
+    return f"{setting.allowed()} · {setting.help}"
+
+
 def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
     # One width for every row chosen: the box must not change size as the selection (and
     # the help under it) moves.
@@ -73,11 +80,12 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
         help_ = box.refused or (f"type a new name (up to {MAX_NAME} characters), or "
                                 "Backspace to edit this one" if box.whole
                                 else f"type the name (up to {MAX_NAME} characters)")
-    elif setting.kind == "name":
-        help_ = f"{setting.help} · Enter: type it"
     else:
-        help_ = f"{setting.allowed()} · {setting.help}"
+        help_ = _about(setting)
     about = textwrap.wrap(help_, width)
+    # The rows every setting's words would take: the layout is made for the tallest, so that
+    # nothing above them moves (headings, scrolling) as the choice moves.
+    tall = max(len(about), *(len(textwrap.wrap(_about(x), width)) for x in SETTINGS))
     keys = ("Backspace deletes · Enter keeps it · Esc leaves it as it was"
             if box.editing is not None
             else "↑↓ choose · ←→ or Enter change · Esc done")
@@ -100,9 +108,11 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
     # this order while there is room: the blank line above it, the note, the file's lines.
     space = rows - 2
     least = min(len(body), SETTINGS_SEEN)
-    if len(about) > max(1, space - 1 - least):
-        about = about[:max(1, space - 1 - least)]
+    cap = max(1, space - 1 - least)
+    if len(about) > cap:
+        about = about[:cap]
         about[-1] = cut(about[-1] + " …", width)
+    about += [""] * (min(tall, cap) - len(about))
     left = space - 1 - len(about) - least
     extra = {}
     for name, lines in (("gap", [""]), ("note", [*note, ""] if note else []), ("files", files)):
