@@ -1,6 +1,7 @@
-"""The referee's vocabulary as codes: fouls, options and their choices, and the reasons a
-verdict gives. Outcomes carry these codes and their arguments; `termpool.rules.words` is the
-one place that turns them into words (for people, for the record, for `termpool replay`).
+"""The referee's vocabulary as codes: 8-ball's groups of balls, fouls, options and their
+choices, and the reasons a verdict gives; and the computer's plans. Outcomes carry these
+codes and their arguments; `termpool.rules.words` is the one place that turns them into
+words (for people, for the record, for `termpool replay`).
 
 The codes' values are the strings the JSON forms hold (a `StrEnum` compares equal to them).
 """
@@ -9,6 +10,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import StrEnum
+
+# 8-ball's two groups of balls (the 8 and the cue ball are in neither).
+SOLIDS = tuple(str(n) for n in range(1, 8))
+STRIPES = tuple(str(n) for n in range(9, 16))
+GROUPS = {"solids": SOLIDS, "stripes": STRIPES}
+
+
+def group_of(ball: str) -> str | None:
+    """The group of a ball: "solids", "stripes" or None (the 8, the cue ball, others)."""
+    for name, balls in GROUPS.items():
+        if ball in balls:
+            return name
+    return None
 
 
 class Foul(StrEnum):
@@ -145,4 +159,5 @@ class PlanNote:
     foul: bool = False  # a verdict's: a foul
 
 
-__all__ = ["CHOICES", "Aim", "Choice", "Foul", "Option", "PlanNote", "Said", "Why"]
+__all__ = ["CHOICES", "GROUPS", "SOLIDS", "STRIPES", "Aim", "Choice", "Foul", "Option",
+           "PlanNote", "Said", "Why", "group_of"]

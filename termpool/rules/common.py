@@ -10,12 +10,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
-from termpool.rules.codes import Foul, Option, Said, Why
+from termpool.rules.codes import GROUPS, SOLIDS, STRIPES, Foul, Option, Said, Why, group_of
 from termpool.rules.words import reason as in_words
 
-SOLIDS = tuple(str(n) for n in range(1, 8))
-STRIPES = tuple(str(n) for n in range(9, 16))
-GROUPS = {"solids": SOLIDS, "stripes": STRIPES}
 EIGHT_BALLS = (*SOLIDS, "8", *STRIPES)
 NINE_BALLS = tuple(str(n) for n in range(1, 10))
 MODES = ("8ball", "9ball", "practice")
@@ -25,14 +22,6 @@ EIGHT_BREAKS = ("respot", "rerack")  # what the 8 pocketed on an 8-ball break me
 AREAS = ("anywhere", "kitchen")
 
 FOULS = tuple(Foul)  # in the order `Outcome.fouls` lists them
-
-
-def group_of(ball: str) -> str | None:
-    """The group of a ball: "solids", "stripes" or None (the 8, the cue ball, others)."""
-    for name, balls in GROUPS.items():
-        if ball in balls:
-            return name
-    return None
 
 
 def other_group(group: str) -> str:

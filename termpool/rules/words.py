@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from termpool.rules.codes import Aim, Choice, Option, PlanNote, Said, Why
+from termpool.rules.codes import STRIPES, Aim, Choice, Option, PlanNote, Said, Why, group_of
 
 YOU = "You"  # the name of a player spoken to (the person against the computer)
 # The ball themes and each one's words for the rules' groups. The balls' colours are the UI's.
@@ -31,7 +31,7 @@ def shown_theme(theme: str, ids: Sequence[str]) -> str:
     """The theme a game's balls are drawn and named in. The classic theme's reds and yellows
     are 8-ball's two groups; a game without balls 10 to 15 (9-ball's 1 to 9, whose rules ask
     for the lowest ball) keeps the standard theme, whose colours tell its balls apart."""
-    if any(b.isdigit() and 10 <= int(b) <= 15 for b in ids):
+    if any(b in STRIPES and b != "9" for b in ids):  # (9-ball's own 9 is a stripe)
         return theme
     return "standard"
 
@@ -61,10 +61,8 @@ class Voice:
         """The colour a person names ball b by (the classic theme's "red" for the 3), else
         None: it is named by its number."""
         names = None if self.plain else COLOUR_NAMES.get(self.theme)
-        if names is None or b is None or not b.isdigit():
-            return None
-        n = int(b)
-        return names["solids"] if 1 <= n <= 7 else names["stripes"] if 9 <= n <= 15 else None
+        group = group_of(b) if names is not None and b is not None else None
+        return None if group is None else names[group]
 
     def ball(self, b: str | None) -> str:
         """"the cue ball", "the 3", or in a theme of colours "a red"."""

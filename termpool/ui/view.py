@@ -249,6 +249,7 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
     m = s.match
     st = m.state
     frames = s.opts.frames
+    theme = shown_theme(s)
     players = []
     for p in range(2):
         group = "" if st.groups is None else st.groups[p]
@@ -257,8 +258,7 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
             mine = [k for k, b in enumerate(m.ids) if b in GROUPS[group]]
             balls = [k for k in mine if m.on_table[k]]
             down = [k for k in mine if not m.on_table[k]]
-        theme = shown_theme(s)
-        label = words.group_label(group, theme) if group and theme != "standard" else group
+        label = words.group_label(group, theme) if group else group
         # Fouls in a row matter only under 9-ball's three-foul rule: shown only then.
         fouls = st.fouls[p] if st.mode == "9ball" and st.three_foul else 0
         score = f"{m.scores[p]}/{frames}" if frames > 1 else None
@@ -301,7 +301,7 @@ def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
     legend = [k for k, b in enumerate(m.ids) if b != "cue" and m.on_table[k]] \
         if st.groups is None and s.phase is not Phase.RUN else []
     return PanelInfo(f"termpool · {title}", players, status, hint_lines(s), m.ids,
-                     widgets=widgets, most_widgets=most, theme=shown_theme(s), legend=legend)
+                     widgets=widgets, most_widgets=most, theme=theme, legend=legend)
 
 
 def _spin_block(side: float, top: float):
