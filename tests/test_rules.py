@@ -724,6 +724,29 @@ def test_every_verdict_reads_right_in_every_voice(data) -> None:
 POTTED = {Why.LEGAL_BREAK_POTTED, Why.TAKES_GROUP, Why.POTTED_CONTINUES, Why.POTTED_NOT_OWN,
           Why.PRACTICE_POTTED}  # the clauses of balls pocketed, which give their pockets
 
+PAST = re.compile(r"\b(went|reached|was|were|hit|left the table)\b")
+
+
+@settings(max_examples=300, deadline=None)
+@given(data=st.data())
+def test_the_aid_warns_ahead_of_the_shot(data) -> None:
+    """The aim aid's warning speaks of a shot not yet played ("the cue ball goes into ..."),
+    of every foul and loss the referee finds, and only of those."""
+    state = data.draw(any_state())
+    evs, _ = data.draw(any_shot(state.on_table()))
+    out, _ = judge(state, summarize(evs, IDS, is_break=state.is_break))
+    for who in (("You", "Bob"), ("Ann", "Bob")):
+        warning = words.aid_warning(out, words.voice(who), state.shooter)
+        lost = out.winner is not None and out.winner != state.shooter
+        spoiled = any(x.why in (Why.SCRATCH_IN_HAND, Why.CUE_LEFT_IN_HAND) for x in out.said)
+        assert (warning is not None) == (lost or out.foul is not None or spoiled)
+        if warning is None:
+            continue
+        assert warning.startswith("As aimed, a foul: " if out.foul and not lost
+                                  else "As aimed: ")
+        assert not PAST.search(warning), warning
+        assert warning.count(":") <= 2 + lost, warning
+
 
 
 # The pockets where the screen shows them (the head on the left, its left pockets at the top).

@@ -1939,22 +1939,22 @@ def test_the_aid_warns_of_a_shot_that_loses_the_game_or_fouls() -> None:
     assert aid.foreseen(app.state).winner == 0
     app.key(Key("c"), 1.0)  # another pocket called: the 8 in this one loses
     text = aid_done(app)
-    assert "As aimed: the 8 went into the top-left corner pocket, not the called" in text
+    assert "As aimed: the 8 goes into the top-left corner pocket, not the called" in text
     m.on_table[m.index("1")] = True  # a solid still on: the 8 is not the shooter's ball
     m.state = replace(m.state, pocketed=tuple("234567"))
     m.pos[m.index("1")] = (1.2, 0.3)
     text = aid_done(app)
     assert aid.foreseen(app.state).winner == 1
-    assert "As aimed: the cue ball hit the 8 first, not one of the solids; the 8 went down on " \
-           "a foul: Player 1 loses" in text
+    assert "As aimed: the cue ball hits the 8 first, not one of the solids; the 8 goes down " \
+           "on a foul: Player 1 loses" in text
     m.state = replace(m.state, groups=None)  # an open table: the 8 first is a foul too
-    assert "As aimed: the cue ball hit the 8 first, which is not allowed on an open table; " \
-           "the 8 went down on a foul: Player 1 loses" in aid_done(app)
+    assert "As aimed: the cue ball hits the 8 first, which is not allowed on an open table; " \
+           "the 8 goes down on a foul: Player 1 loses" in aid_done(app)
     m.pos[m.index("8")] = (1.2, 0.6)  # the 1 where the 8 was: the aim meets it ...
     m.pos[m.index("1")] = hole - 0.35 * u
     m.state = replace(m.state, groups={0: "stripes", 1: "solids"})  # ... not the shooter's
     text = aid_done(app)
-    assert "As aimed, a foul: the cue ball hit the 1 first, not one of the stripes" in text
+    assert "As aimed, a foul: the cue ball hits the 1 first, not one of the stripes" in text
     m.state = replace(m.state, groups={0: "solids", 1: "stripes"})
     assert "As aimed" not in aid_done(app)  # their own ball: no warning
 
@@ -2103,7 +2103,7 @@ def test_the_aid_warns_of_a_shot_that_meets_no_ball() -> None:
     text = aid_done(app)
     pred = aid.prediction(app.state)
     assert pred.ball is None and pred.cue.end == "rest"
-    assert "As aimed, a foul: the cue ball hit no ball" in text, text
+    assert "As aimed, a foul: the cue ball hits no ball" in text, text
     angle = math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3))
     stroke(app, angle=angle)  # at the 3: a legal shot
     put(app, last_power=0.5)
@@ -2146,7 +2146,7 @@ def test_in_practice_the_aid_warns_of_a_cue_ball_lost() -> None:
     text = aid_done(app)
     pred = aid.prediction(app.state)
     assert pred.cue.end == "pocket"
-    said = f"As aimed: the cue ball went into the {words.spoken_pocket(pred.cue.pocket)} " \
+    said = f"As aimed: the cue ball goes into the {words.spoken_pocket(pred.cue.pocket)} " \
            "pocket: ball in hand"
     assert said in text, text
     stroke(app, angle=math.degrees(math.atan2(0.9 - 0.3, 1.8 - 0.3)))  # at the 3

@@ -12,7 +12,7 @@ groups ("reds" for solids in the classic theme).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from termpool.rules.codes import STRIPES, Aim, Choice, Option, PlanNote, Said, Why, group_of
 
@@ -48,6 +48,11 @@ class Voice:
     players: tuple[str, str] = ("player 0", "player 1")
     theme: str = "standard"
     plain: bool = True  # pockets as the table names them ("foot_left"), else in words
+    ahead: bool = False  # of a shot not yet played (the aim aid's): "goes", not "went"
+
+    def did(self, past: str, now: str) -> str:
+        """A verb of what a shot did: `past` ("went"), or ahead of the shot `now` ("goes")."""
+        return now if self.ahead else past
 
     def pocket(self, name: str) -> str:
         """A pocket's name before the word "pocket": "foot_left" in the record's voice,
@@ -166,8 +171,19 @@ BREAK_RAIL_BALLS = 4  # a break that pockets nothing must drive this many object
 FOUL_LIMIT = 3  # 9-ball's three-foul rule: this many fouls in a row lose the frame
 KITCHEN = "behind the head string"  # where ball in hand goes on a break (and after a scratch
 # on the 8-ball break)
-NO_HIT = "the cue ball hit no ball"
-NO_RAIL = "no ball reached a cushion after contact and nothing was pocketed"
+
+
+def _no_hit(v: Voice) -> str:
+    return f"the cue ball {v.did('hit', 'hits')} no ball"
+
+
+def _no_rail(v: Voice) -> str:
+    return (f"no ball {v.did('reached', 'reaches')} a cushion after contact and nothing "
+            f"{v.did('was', 'is')} pocketed")
+
+
+NO_HIT = _no_hit(RECORD)
+NO_RAIL = _no_rail(RECORD)
 PUSH_OUT_CHOICE = "to shoot or to pass the shot back"  # the answer to a 9-ball push-out
 
 NUMBER_WORDS = {1: "one", 2: "two", 3: "three", 4: "four", 5: "five", 6: "six"}
@@ -200,18 +216,39 @@ def _potted(v: Voice, s: Said) -> str:
 
 def _cue_down(v: Voice, pocket: str | None) -> str:
     if pocket is None:
-        return "the cue ball was pocketed"
-    return f"the cue ball went into the {v.pocket(pocket)} pocket"
+        return f"the cue ball {v.did('was', 'is')} pocketed"
+    return f"the cue ball {v.did('went', 'goes')} into the {v.pocket(pocket)} pocket"
 
 
-def _illegal_break(n: int) -> str:
-    return (f"illegal break: nothing pocketed and {n} object {'ball' if n == 1 else 'balls'} "
-            f"reached a cushion ({BREAK_RAIL_BALLS} needed)")
+def _scratch(v: Voice, s: Said) -> str:
+    # (ahead of the shot the aid's "a foul:" has said what a scratch is)
+    return _cue_down(v, s.pocket) if v.ahead else f"scratch: {_cue_down(v, s.pocket)}"
+
+
+def _illegal_break(v: Voice, n: int) -> str:
+    nothing = "nothing is pocketed" if v.ahead else "nothing pocketed"
+    balls, reach = ("ball", "reaches") if n == 1 else ("balls", "reach")
+    return (f"illegal break: {nothing} and {n} object {balls} {v.did('reached', reach)} a "
+            f"cushion ({BREAK_RAIL_BALLS} needed)")
+
+
+def _left(v: Voice, s: Said) -> str:
+    leave = "leaves" if len(s.balls) == 1 else "leave"
+    return f"{v.balls(s.balls)} {v.did('left', leave)} the table"
+
+
+def _first(v: Voice, s: Said) -> str:
+    return f"the cue ball {v.did('hit', 'hits')} {v.ball(s.ball)} first"
+
+
+def _eight_down(v: Voice) -> str:
+    return f"the 8 {v.did('went', 'goes')}"
 
 
 def _early(v: Voice, s: Said) -> str:
-    still = "the table is open" if s.group is None else f"the {v.group(s.group)} were not cleared"
-    return f"the 8 went down early ({still}): {v.does(s.player, 'loses', 'lose')}"
+    still = ("the table is open" if s.group is None else
+             f"the {v.group(s.group)} {'are' if v.ahead else 'were'} not cleared")
+    return f"{_eight_down(v)} down early ({still}): {v.does(s.player, 'loses', 'lose')}"
 
 
 def _push_out(v: Voice, s: Said) -> str:
@@ -219,19 +256,18 @@ def _push_out(v: Voice, s: Said) -> str:
 
 
 CLAUSES = {
-    Why.SCRATCH: lambda v, s: f"scratch: {_cue_down(v, s.pocket)}",
-    Why.LEFT_TABLE: lambda v, s: f"{v.balls(s.balls)} left the table",
-    Why.ILLEGAL_BREAK: lambda v, s: _illegal_break(s.count),
-    Why.NO_HIT: lambda v, s: NO_HIT,
-    Why.HIT_ON_OPEN_TABLE: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first, which is "
-                                        "not allowed on an open table",
-    Why.HIT_NOT_EIGHT: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first; with the "
-                                    f"{v.group(s.group)} cleared it must be the 8",
-    Why.HIT_NOT_GROUP: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first, not one of the "
-                                    f"{v.group(s.group)}",
-    Why.HIT_NOT_LOWEST: lambda v, s: f"the cue ball hit {v.ball(s.ball)} first, not the lowest "
-                                     f"ball, {v.ball(s.lowest)}",
-    Why.NO_RAIL: lambda v, s: NO_RAIL,
+    Why.SCRATCH: _scratch,
+    Why.LEFT_TABLE: _left,
+    Why.ILLEGAL_BREAK: lambda v, s: _illegal_break(v, s.count),
+    Why.NO_HIT: lambda v, s: _no_hit(v),
+    Why.HIT_ON_OPEN_TABLE: lambda v, s: f"{_first(v, s)}, which is not allowed on an open "
+                                        "table",
+    Why.HIT_NOT_EIGHT: lambda v, s: f"{_first(v, s)}; with the {v.group(s.group)} cleared it "
+                                    "must be the 8",
+    Why.HIT_NOT_GROUP: lambda v, s: f"{_first(v, s)}, not one of the {v.group(s.group)}",
+    Why.HIT_NOT_LOWEST: lambda v, s: f"{_first(v, s)}, not the lowest ball, "
+                                     f"{v.ball(s.lowest)}",
+    Why.NO_RAIL: lambda v, s: _no_rail(v),
     Why.LEGAL_BREAK: lambda v, s: "legal break",
     Why.LEGAL_BREAK_POTTED: lambda v, s: f"legal break: {_potted(v, s)}",
     Why.LEGAL_BREAK_RAILS: lambda v, s: f"legal break: {s.count} object balls reached a "
@@ -264,13 +300,13 @@ CLAUSES = {
     Why.CHOOSES: lambda v, s: f"{v.does(s.player, 'chooses', 'choose')} {PUSH_OUT_CHOICE}",
     Why.EIGHT_OFF_TABLE: lambda v, s: "with the 8 off the table "
                                       f"{v.does(s.player, 'loses', 'lose')}",
-    Why.EIGHT_ON_FOUL: lambda v, s: f"the 8 went down on a foul: "
+    Why.EIGHT_ON_FOUL: lambda v, s: f"{_eight_down(v)} down on a foul: "
                                     f"{v.does(s.player, 'loses', 'lose')}",
     Why.EIGHT_EARLY: _early,
-    Why.EIGHT_UNCALLED: lambda v, s: f"the 8 went into the {v.pocket(s.pocket)} pocket "
+    Why.EIGHT_UNCALLED: lambda v, s: f"{_eight_down(v)} into the {v.pocket(s.pocket)} pocket "
                                      f"without a call: {v.does(s.player, 'loses', 'lose')}",
-    Why.EIGHT_WRONG_POCKET: lambda v, s: f"the 8 went into the {v.pocket(s.pocket)} pocket, "
-                                         f"not the called {v.pocket(s.called)}: "
+    Why.EIGHT_WRONG_POCKET: lambda v, s: f"{_eight_down(v)} into the {v.pocket(s.pocket)} "
+                                         f"pocket, not the called {v.pocket(s.called)}: "
                                          f"{v.does(s.player, 'loses', 'lose')}",
     Why.EIGHT_CALLED: lambda v, s: f"the 8 went into the called {v.pocket(s.pocket)} pocket: "
                                    f"{v.does(s.player, 'wins', 'win')}",
@@ -285,7 +321,8 @@ CLAUSES = {
                                        if v.plain else _potted(v, s)),
     Why.NOTHING_POCKETED: lambda v, s: "nothing pocketed",
     Why.SCRATCH_IN_HAND: lambda v, s: f"{_cue_down(v, s.pocket)}: ball in hand",
-    Why.CUE_LEFT_IN_HAND: lambda v, s: "the cue ball left the table: ball in hand",
+    Why.CUE_LEFT_IN_HAND: lambda v, s: f"the cue ball {v.did('left', 'leaves')} the table: "
+                                       "ball in hand",
 }
 
 
@@ -306,11 +343,12 @@ def verdict(outcome, v: Voice, shooter: int) -> tuple[str, str]:
 
 
 def aid_warning(outcome, v: Voice, shooter: int) -> str | None:
-    """What the aim aid warns of, from the referee's outcome of the shot as the aid sees it:
-    "As aimed: the 8 went down early (...): you lose" for a shot that loses the game, "As
-    aimed, a foul: the cue ball hit the 8 first, not one of the solids" for a foul; None for
-    a legal shot; in practice, "As aimed: the cue ball went into the ... pocket: ball in
-    hand"."""
+    """What the aim aid warns of, from the referee's outcome of the shot as the aid sees it,
+    said ahead of the shot: "As aimed: the 8 goes down early (...): you lose" for a shot that
+    loses the game, "As aimed, a foul: the cue ball hits the 8 first, not one of the solids"
+    for a foul; None for a legal shot; in practice, "As aimed: the cue ball goes into the ...
+    pocket: ball in hand"."""
+    v = replace(v, ahead=True)
     fouls = outcome.said[:len(outcome.fouls)]
     if outcome.winner is not None and outcome.winner != shooter:
         return "As aimed: " + reason((*fouls, outcome.said[-1]), v)
