@@ -568,3 +568,26 @@ def test_the_settings_box_holds_still_as_the_choice_moves(cols, rows) -> None:
                       for mark in ("┌─ settings", "The game", "Names", "Esc done"))
         seen.add(where)
     assert len(seen) == 1, seen
+
+
+def test_frames_to_win_is_typed_in_digits() -> None:
+    app = app_at_menu()
+    keys(app, menu_item("Settings"), *["down"] * KEYS.index("frames"), "1", "5")
+    assert "15_" in screen_text(app.cells(80, 24)[0])
+    assert app.state.opts.frames == 1  # not yet: Enter keeps it
+    keys(app, "enter")
+    assert app.state.opts.frames == 15 and app.state.box.editing is None
+    keys(app, "7", "backspace", "9", "enter")  # Backspace takes the last digit back
+    assert app.state.opts.frames == 9
+    keys(app, "0", "enter")  # out of range: refused, said, and still being typed
+    assert app.state.opts.frames == 9
+    assert "from 1 to 1000" in screen_text(app.cells(80, 24)[0])
+    keys(app, "esc")  # leaves it as it was
+    assert app.state.box.editing is None and app.state.opts.frames == 9
+    keys(app, "1", "2", "3", "4", "5")  # no more digits than the largest number has
+    assert app.state.box.editing == "1234"
+    keys(app, "x")  # not a digit: refused
+    assert app.state.box.editing == "1234" and "not typed" in screen_text(app.cells(80, 24)[0])
+    keys(app, "backspace", "enter", "esc")
+    assert app.state.opts.frames == 123 and load_settings().saved["frames"] == 123
+

@@ -50,6 +50,8 @@ def _about(setting) -> str:
     """What a setting does, as the line under the settings says it."""
     if setting.kind == "name":
         return f"{setting.help} · Enter: type it"
+    if setting.kind == "count":
+        return f"{setting.allowed()} (type it, or ←→) · {setting.help}"
     return f"{setting.allowed()} · {setting.help}"
 
 
@@ -76,7 +78,9 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
             body.append(line)
             headed.append(line)
     setting = SETTINGS[box.index]
-    if box.editing is not None:  # what was not typed, and why, until the name is done
+    if box.editing is not None and setting.kind == "count":
+        help_ = box.refused or f"type {setting.allowed()}"
+    elif box.editing is not None:  # what was not typed, and why, until the name is done
         help_ = box.refused or (f"type a new name (up to {MAX_NAME} characters), or "
                                 "Backspace to edit this one" if box.whole
                                 else f"type the name (up to {MAX_NAME} characters)")

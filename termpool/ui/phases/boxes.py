@@ -27,7 +27,7 @@ from termpool.ui.screens import (
     stats_top,
     stats_width,
 )
-from termpool.ui.settings import BY_KEY, MAX_NAME, ONE_COLUMN, SETTINGS, check_name
+from termpool.ui.settings import BY_KEY, MAX_NAME, ONE_COLUMN, SETTINGS
 from termpool.ui.state import Help, Pause, Quit, Seen, Settings, State, Stats, help_of
 from termpool.ui.stats import stats_lines
 
@@ -115,6 +115,8 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
     if key.name in ("down", "j", "tab"):
         return replace(s, box=replace(box, index=(box.index + 1) % len(SETTINGS)))
     touched = replace(box, touched=box.touched | {setting.key})
+    if setting.kind == "count" and _digit(key):  # a number typed starts with its first digit
+        return replace(s, box=replace(box, editing=key.name, refused=None, whole=False))
     if key.name in ("left", "right") and setting.kind != "name":
         d = -1 if key.name == "left" else 1
         s = set_value(s, setting.key, _step(setting, current(s, setting.key), d))
@@ -130,17 +132,35 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
     return s
 
 
+def _digit(key) -> bool:
+    return len(key.name) == 1 and key.name.isdigit() and key.name.isascii() and not (
+        key.ctrl or key.alt)
+
+
 def _type(s: State, box: Settings, key) -> State:
+    """A name or a number being typed."""
     # (A refusal stays said until the name is done: keys typed after it would hide it.)
+    setting = SETTINGS[box.index]
     if key.name == "esc":
         return replace(s, box=replace(box, editing=None, refused=None, whole=False))
     if key.name == "enter":  # only what check_name takes can be typed (see _typed)
-        key_ = SETTINGS[box.index].key
-        s = set_value(s, key_, check_name(box.editing.strip()))
+        try:
+            value = setting.parse(box.editing.strip())
+        except ValueError as e:  # (a number out of its range)
+            return replace(s, box=replace(box, refused=f"{e}"))
+        s = set_value(s, setting.key, value)
         return replace(s, box=replace(box, editing=None, refused=None, whole=False,
-                                      touched=box.touched | {key_}))
+                                      touched=box.touched | {setting.key}))
     if key.name == "backspace":
         return replace(s, box=replace(box, editing=box.editing[:-1], whole=False))
+    if setting.kind == "count":
+        if not _digit(key):
+            if len(key.name) == 1 and not (key.ctrl or key.alt):
+                return replace(s, box=replace(box, refused=f"not typed: {setting.allowed()}"))
+            return s
+        if len(box.editing) >= len(str(setting.hi)):
+            return replace(s, box=replace(box, refused=f"{setting.allowed()}"))
+        return replace(s, box=replace(box, editing=box.editing + key.name, refused=None))
     ch = _typed(key)
     if ch is None:
         if len(key.name) == 1 and not (key.ctrl or key.alt):  # a character, refused
