@@ -591,3 +591,12 @@ def test_frames_to_win_is_typed_in_digits() -> None:
     keys(app, "backspace", "enter", "esc")
     assert app.state.opts.frames == 123 and load_settings().saved["frames"] == 123
 
+
+def test_the_computer_s_level_says_when_no_computer_plays() -> None:
+    for opponent, said in (("human", True), ("cpu", False)):
+        app = App(Options(mode="8ball", opponent=opponent, colors="mono", seed=0),
+                  prefs=load_settings())
+        keys(app, "enter", "p", "s")
+        text = screen_text(app.cells(80, 24)[0])
+        assert "Computer's level" in text
+        assert ("‹ normal ›  (not in this game)" in text) == said, text

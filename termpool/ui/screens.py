@@ -74,6 +74,8 @@ def settings_lines(s: State, box: Settings, cols: int, rows: int) -> list[str]:
                 value = _value(s, setting)
                 value = f"‹ {value} ›" if sel and setting.kind != "name" else value
             mark = "  * next game" if setting.key in s.pending else ""
+            if key == "level" and s.match is not None and s.opts.opponent != "cpu":
+                mark += "  (not in this game)"
             line = f"{'▶' if sel else ' '} {setting.label:<18} {value}{mark}"
             body.append(line)
             headed.append(line)
