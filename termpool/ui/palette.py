@@ -79,7 +79,7 @@ BALL_C = {
     4: Colour((106, 38, 156), 91, 5),  # purple
     5: Colour((246, 114, 18), 208, 3),  # orange
     6: Colour((40, 196, 92), 41, 14),  # green, brighter than the felt (cyan in 16 colours)
-    7: Colour((128, 20, 34), 88, 1),  # maroon
+    7: Colour((122, 22, 58), 89, 1),  # maroon, toward wine: apart from the 3's red at a glance
     8: Colour((30, 30, 34), 234, 0),  # black
 }
 
