@@ -589,15 +589,15 @@ def test_mono_aim_marks_the_paths_and_the_ghost(view):
     mono_prediction(chars, lay, straight(a, pos[0]))
     gx, gy = _px(lay, a.ghost)
     cx, cy = _px(lay, pos[0])
-    assert chars[int(gy) // 2, int(gx)] == "o"
+    assert chars[int(gy) // 2, int(gx)] == "◌"
     dots = np.argwhere(chars == ".")
     assert len(dots) > 0.8 * (gx - cx) - 3
     assert (dots[:, 0] == int(cy) // 2).all()  # a flat shot: one row of dots
     # the first ball leaves at 30 degrees up-right: on screen, cells twice as tall as wide
-    assert set(chars[chars != before]) == {".", "o", "-", ":"} | ({"/"} & set(chars.ravel()))
+    assert set(chars[chars != before]) == {".", "◌", "-", ":"} | ({"/"} & set(chars.ravel()))
     ghost_only = before.copy()
     mono_prediction(ghost_only, lay, straight(a, pos[0]), "ghost")
-    assert set(ghost_only[ghost_only != before]) == {".", "o"}
+    assert set(ghost_only[ghost_only != before]) == {".", "◌"}
 
 
 # ------------------------------------------------------------------ panel widgets

@@ -241,10 +241,10 @@ def draw_placement(canvas: Canvas, lay: Layout, pos, radius: float, ok: bool) ->
 def mono_prediction(chars: np.ndarray, lay: Layout, pred: Prediction, level: str = "full",
                     radius: float = BALL_RADIUS) -> None:
     """The aim aid for the monochrome mode, on TableView.mono's glyph grid (in place): '.'
-    along the cue ball's path, 'o' where it ends (the ghost ball), and at level "full" the
-    first ball's path drawn with '-', '/', '|' or '\\' by its slope on screen and the cue
-    ball's path after the hit with ':'. Only blank cells are marked: balls and cushions keep
-    their glyphs."""
+    along the cue ball's path, '◌' where it ends (the ghost ball, dotted: the cue ball is
+    '○'), and at level "full" the first ball's path drawn with '-', '/', '|' or '\\' by its
+    slope on screen and the cue ball's path after the hit with ':'. Only blank cells are
+    marked: balls and cushions keep their glyphs."""
     if level == "off":
         return
     rows, cols = chars.shape
@@ -273,7 +273,7 @@ def mono_prediction(chars: np.ndarray, lay: Layout, pred: Prediction, level: str
     if cue.end != "pocket" and len(cue.points):
         gx, gy = lay.to_pixels(cue.points[-1][0], cue.points[-1][1])
         if math.isfinite(gx) and math.isfinite(gy):
-            mark(np.array([math.floor(gx)]), np.array([math.floor(gy)]), "o")
+            mark(np.array([math.floor(gx)]), np.array([math.floor(gy)]), "◌")
     mark(*_polyline(lay, w, h, cue.points, 0.0), ".")
 
 
