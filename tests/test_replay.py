@@ -251,6 +251,9 @@ def test_malformed_replay_exits_2_with_one_line(saved, capsys, tmp_path, change,
     assert rc == 2 and out == ""
     assert err.count("\n") == 1 and err.startswith("termpool: ") and words in err
     assert "Traceback" not in err
+    if "shots[" in words:  # a shot is also counted as the screens count it, from 1
+        k = int(words.split("shots[")[1].split("]")[0])
+        assert err.startswith(f"termpool: shot {k + 1}: shots[{k}]"), err
 
 
 def test_missing_file_exits_2(capsys, tmp_path) -> None:

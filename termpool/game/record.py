@@ -299,8 +299,15 @@ def read_replay(path: str | os.PathLike) -> dict:
 
 def check_records(data: dict) -> list[tuple[Scene, float]]:
     """Check every shot record of a parsed replay (raises ReplayError for the first malformed
-    one, naming it): each shot's scene with its shot applied, and its fixed step."""
-    return [_check_record(rec, f"shots[{k}]") for k, rec in enumerate(data["shots"])]
+    one, naming it as the screens count shots and by its place in the file: "shot 2:
+    shots[1].dt: ..."): each shot's scene with its shot applied, and its fixed step."""
+    out = []
+    for k, rec in enumerate(data["shots"]):
+        try:
+            out.append(_check_record(rec, f"shots[{k}]"))
+        except ReplayError as e:
+            raise ReplayError(f"shot {k + 1}: {e}") from None
+    return out
 
 
 def replay(data: dict, v: Voice = RECORD) -> list[dict]:
