@@ -294,6 +294,19 @@ def test_pause_freezes_the_shot_and_any_key_resumes() -> None:
     assert app.state.box is None and shot_clock(app.state) > t
 
 
+def test_under_a_box_the_key_line_lists_none_of_the_phase_s_keys() -> None:
+    """Paused while aiming, the aim's keys do nothing (any key but S goes on, Q too): the
+    key line under the box does not offer them."""
+    app = app_for()
+    run_script(app, "enter")
+    aiming = screen_text(app.cells(80, 24)[0]).splitlines()[-1]
+    assert "aim" in aiming and "Q quit" in aiming
+    app.key(Key("p"), 1.0)
+    assert isinstance(app.state.box, Pause)
+    under = screen_text(app.cells(80, 24)[0]).splitlines()[-1]
+    assert "aim" not in under and "quit" not in under and "help" not in under, under
+
+
 def test_quit_asks_first() -> None:
     app = app_for()
     run_script(app, "q")

@@ -448,6 +448,8 @@ def hint_lines(s: State) -> list[tuple]:
         keys = s.keymap.keys_for(action)
         return pretty(keys[0]) if keys else "?"
 
+    if s.box is not None:  # a box over the table says its own keys; the phase's do nothing
+        return []
     quit_, help_ = (f"{k('quit')} quit", 0), (f"{k('help')} help", 1)
     ch = s.controls.charge
     # Practice's own keys rank with the help: a player who never sees U may never take a
