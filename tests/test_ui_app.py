@@ -1159,9 +1159,13 @@ def test_digit_then_space_strikes_at_that_power_and_the_hint_names_the_mode() ->
         (shot,) = shots(app)
         assert shot["speed"] == power_to_speed(0.3)
         hint = screen_text(app.cells(120, 40)[0]).splitlines()[-1]
-        assert "Space: strike at 30%" in hint and "Esc hold" in hint
-        app.key(Key("esc"), 100.0)  # back to holding
-        assert "Space: strike" not in screen_text(app.cells(120, 40)[0]).splitlines()[-1]
+        way = "meter" if mode == "classic" else "hold"  # what Esc gives back
+        assert "Space: strike at 30%" in hint and f"Esc {way}" in hint
+        app.key(Key("esc"), 100.0)  # back to holding, or to the meter
+        text = screen_text(app.cells(120, 40)[0])
+        assert "Space: strike" not in text.splitlines()[-1]
+        assert ("power: the meter (space starts it) again" if way == "meter" else
+                "power: hold space again") in text
     app = app_for(input_mode="repeat")
     run_script(app, "enter wait 0.2 0 space wait 5", legacy=True)
     assert shots(app)[0]["speed"] == power_to_speed(1.0)

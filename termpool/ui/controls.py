@@ -388,6 +388,11 @@ class PowerCharge:
         self.preset_level = None if level is None else min(1.0, max(self.MIN_POWER, level))
 
     @property
+    def way(self) -> str:
+        """How the key gives power without a level set: "hold" it, or the "meter"."""
+        return "meter" if self.mode == "classic" else "hold"
+
+    @property
     def active(self) -> bool:
         """Whether a charge or a meter is running."""
         return self._phase != "idle"

@@ -468,7 +468,7 @@ def hint_lines(s: State) -> list[tuple]:
     if s.phase is Phase.AIM:
         spin = "".join(k(a) for a in ("spin_up", "spin_left", "spin_down", "spin_right"))
         preset = ch.preset_level is not None
-        cancel = [(f"{k('cancel')} hold", 1)] if preset else []
+        cancel = [(f"{k('cancel')} {ch.way}", 1)] if preset else []
         # Where there is room to spare (it never shortens the rest).
         ball = [(f"{k('next_ball')} next ball", SPARE)]
         aim, fine = (f"{k('aim_ccw')}{k('aim_cw')}", f"{k('aim_fine_ccw')}{k('aim_fine_cw')}")

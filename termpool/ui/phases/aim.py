@@ -107,7 +107,9 @@ def key(s: State, key, action: str | None, t: float) -> State:
             charge.cancel()
         elif charge.preset_level is not None and s.opts.power != "digits":
             charge.preset(None)
-            return say(s, f"power: hold {charge.key_label} again")
+            again = (f"hold {charge.key_label}" if charge.way == "hold" else
+                     f"the meter ({charge.key_label} starts it)")
+            return say(s, f"power: {again} again")
         return s
     if action is None and power_digit(key) is not None:
         charge.preset(power_digit(key))
