@@ -1626,6 +1626,16 @@ def test_small_screens_keep_the_key_help_whole(size, mode) -> None:
         assert piece
 
 
+def test_a_race_s_end_gives_the_match_s_score() -> None:
+    app = app_for(mode="8ball", opponent="cpu", frames=3)
+    app.state.match.scores = [1, 3]
+    app.state.match.winner = 1
+    app.state = start_turn(app.state)
+    assert app.state.phase is Phase.OVER
+    text = screen_text(app.cells(80, 24)[0])
+    assert "Computer wins the match 3-1" in text, text
+
+
 def test_game_over_says_you_win_and_q_quits_at_once() -> None:
     app = app_for(mode="8ball", opponent="cpu")
     app.state.match.winner = 0

@@ -226,7 +226,10 @@ def _question(s: State, cells, lay: Layout) -> None:
     elif s.phase is Phase.OVER:
         why = s.message[-1][0] if s.message else ""
         again = "N: the lobby" if s.remote else "N: new game"  # online: a new challenge
-        lines = [words.game_won(voice(s), m.winner), why, "",
+        w = m.winner
+        won = (words.match_won(voice(s), w, f" {m.scores[w]}-{m.scores[1 - w]}")
+               if s.opts.frames > 1 else words.game_won(voice(s), w))  # a race: its score
+        lines = [won, why, "",
                  f"{again}   M: menu   Q: quit", "W: watch this match"]
         records = s.files.records
         where = records.kept_at(m) if records is not None else None
