@@ -475,12 +475,20 @@ def _outline(path) -> str:
         return "(cannot be read)"
 
 
+def _started(path) -> tuple[str, str, int]:
+    """When a kept match began, from its name (day, time, then its number in that second)."""
+    day, clock, *rest = path.name.split(".")[0].split("-")
+    return day, clock, int(rest[0]) if len(rest) > 1 else 0
+
+
 def _records(args: argparse.Namespace) -> int:
     from termpool.files import kept_records, records_dir
     from termpool.text import shown
 
     folder = records_dir()
-    kept = kept_records(folder)[::-1]
+    # Newest first by when each began, the time the list shows (a match left open and
+    # written last may have begun before one played through since).
+    kept = sorted(kept_records(folder), key=_started, reverse=True)
     if not kept:
         sys.stdout.write(f"no match is kept in {shown(folder)} yet\n")
         return 0

@@ -280,3 +280,19 @@ def test_termpool_records_says_who_played_and_how_it_stands(capsys, tmp_path) ->
     lines = capsys.readouterr().out.splitlines()
     assert "Ann v Bob · Ann won 0-0" in lines[1]
     assert "(cannot be read)" in lines[2]
+
+
+def test_termpool_records_lists_them_by_when_they_began(capsys, tmp_path) -> None:
+    """A match begun first but written last (left open, finished later) is listed after
+    the one begun since: the list shows when each began."""
+    folder = files.records_dir()
+    folder.mkdir(parents=True, exist_ok=True)
+    names = ["20261208-010000-8ball.json", "20261208-020000-9ball.json",
+             "20261208-020000-2-9ball.json", "20261208-020000-10-9ball.json"]
+    written = [1050, 1001, 1002, 1003]  # the first begun, written last
+    for name, t in zip(names, written, strict=True):
+        (folder / name).write_text("{}")
+        os.utime(folder / name, (t, t))
+    assert cli.main(["records"]) == 0
+    listed = [line.split()[-1] for line in capsys.readouterr().out.splitlines()[1:-1]]
+    assert [os.path.basename(x) for x in listed] == [names[3], names[2], names[1], names[0]]
