@@ -147,7 +147,7 @@ def _type(s: State, box: Settings, key) -> State:
         try:
             value = setting.parse(box.editing.strip())
         except ValueError as e:  # (a number out of its range)
-            return replace(s, box=replace(box, refused=f"{e}"))
+            return replace(s, box=replace(box, refused=str(e)))
         s = set_value(s, setting.key, value)
         return replace(s, box=replace(box, editing=None, refused=None, whole=False,
                                       touched=box.touched | {setting.key}))
@@ -159,7 +159,7 @@ def _type(s: State, box: Settings, key) -> State:
                 return replace(s, box=replace(box, refused=f"not typed: {setting.allowed()}"))
             return s
         if len(box.editing) >= len(str(setting.hi)):
-            return replace(s, box=replace(box, refused=f"{setting.allowed()}"))
+            return replace(s, box=replace(box, refused=setting.allowed()))
         return replace(s, box=replace(box, editing=box.editing + key.name, refused=None))
     ch = _typed(key)
     if ch is None:
