@@ -600,3 +600,12 @@ def test_the_computer_s_level_says_when_no_computer_plays() -> None:
         text = screen_text(app.cells(80, 24)[0])
         assert "Computer's level" in text
         assert ("‹ normal ›  (not in this game)" in text) == said, text
+
+
+def test_the_menu_names_the_computer_s_level() -> None:
+    app = app_at_menu(level="hard")
+    text = screen_text(app.cells(80, 24)[0])
+    assert "8-ball vs computer (hard)" in text and "9-ball vs computer (hard)" in text
+    assert "8-ball, two players" in text and "two players (" not in text
+    keys(app, menu_item("Settings"), "left", "esc")  # the level changed: the menu says so
+    assert "8-ball vs computer (normal)" in screen_text(app.cells(80, 24)[0])

@@ -549,8 +549,10 @@ def _lobby_cells(s: State, cols: int, rows: int, mono: bool):
 
 def _menu_cells(s: State, cols: int, rows: int, mono: bool):
     lines = [("termpool", TURN_C), ("real pool in your terminal", DIM_TEXT_C.rgb), ("", None)]
-    for k, (label, _what) in enumerate(menu_entries(s)):
+    for k, (label, what) in enumerate(menu_entries(s)):
         sel = k == s.menu_index
+        if isinstance(what, tuple) and what[1] == "cpu":  # whom the game is against
+            label += f" ({s.opts.level})"
         digit = (k + 1) % 10  # the key that picks it: 0 for the tenth
         lines.append(((f"▶ {digit}. {label}" if sel else f"  {digit}. {label}"),
                       TURN_C if sel else TEXT_C.rgb))
