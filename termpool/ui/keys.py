@@ -64,6 +64,12 @@ class Key:
     alt: bool = False
 
     @property
+    def digit(self) -> str | None:
+        """The digit 0-9 the key types (without Ctrl or Alt), else None."""
+        plain = len(self.name) == 1 and self.name in "0123456789"
+        return self.name if plain and not (self.ctrl or self.alt) else None
+
+    @property
     def spec(self) -> str:
         """The key as written in keys.conf and scripts: "ctrl+alt+shift+name" (no kind)."""
         mods = [m for m in MODIFIERS if getattr(self, m)]

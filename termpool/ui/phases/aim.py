@@ -33,10 +33,9 @@ AID_WORDS = {"full": "aim aid: every path (G: ghost ball only)",
 
 def power_digit(key) -> float | None:
     """The power a digit key sets (1-9: 10-90%, 0: 100%), or None for any other key."""
-    if key.kind != "press" or key.ctrl or key.alt or len(key.name) != 1 \
-            or key.name not in "0123456789":
+    if key.kind != "press" or key.digit is None:
         return None
-    return (int(key.name) or 10) / 10
+    return (int(key.digit) or 10) / 10
 
 
 def strike(s: State, level: float) -> State:

@@ -115,7 +115,7 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
     if key.name in ("down", "j", "tab"):
         return replace(s, box=replace(box, index=(box.index + 1) % len(SETTINGS)))
     touched = replace(box, touched=box.touched | {setting.key})
-    if setting.kind == "count" and _digit(key):  # a number typed starts with its first digit
+    if setting.kind == "count" and key.digit is not None:  # a number starts with a digit
         return replace(s, box=replace(box, editing=key.name, refused=None, whole=False))
     if key.name in ("left", "right") and setting.kind != "name":
         d = -1 if key.name == "left" else 1
@@ -130,11 +130,6 @@ def settings_key(s: State, box: Settings, key, action: str | None) -> State:
     if key.name in ("esc", "q") or action in ("cancel", "quit"):
         return _close(s, box)
     return s
-
-
-def _digit(key) -> bool:
-    return len(key.name) == 1 and key.name.isdigit() and key.name.isascii() and not (
-        key.ctrl or key.alt)
 
 
 def _type(s: State, box: Settings, key) -> State:
@@ -154,7 +149,7 @@ def _type(s: State, box: Settings, key) -> State:
     if key.name == "backspace":
         return replace(s, box=replace(box, editing=box.editing[:-1], whole=False))
     if setting.kind == "count":
-        if not _digit(key):
+        if key.digit is None:
             if len(key.name) == 1 and not (key.ctrl or key.alt):
                 return replace(s, box=replace(box, refused=f"not typed: {setting.allowed()}"))
             return s
