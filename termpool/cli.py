@@ -475,10 +475,11 @@ def _outline(path) -> str:
         return "(cannot be read)"
 
 
-def _started(path) -> tuple[str, str, int]:
-    """When a kept match began, from its name (day, time, then its number in that second)."""
+def _kept_name(path) -> tuple[str, str, int, str]:
+    """A kept match's name (`files.KEPT_NAME`) read: the day and time it began, its number
+    in that second (0 for the first) and its mode."""
     day, clock, *rest = path.name.split(".")[0].split("-")
-    return day, clock, int(rest[0]) if len(rest) > 1 else 0
+    return day, clock, int(rest[0]) if len(rest) > 1 else 0, rest[-1]
 
 
 def _records(args: argparse.Namespace) -> int:
@@ -488,7 +489,7 @@ def _records(args: argparse.Namespace) -> int:
     folder = records_dir()
     # Newest first by when each began, the time the list shows (a match left open and
     # written last may have begun before one played through since).
-    kept = sorted(kept_records(folder), key=_started, reverse=True)
+    kept = sorted(kept_records(folder), key=lambda p: _kept_name(p)[:3], reverse=True)
     if not kept:
         sys.stdout.write(f"no match is kept in {shown(folder)} yet\n")
         return 0
@@ -496,13 +497,13 @@ def _records(args: argparse.Namespace) -> int:
     lines = [f"{len(kept)} {'match' if len(kept) == 1 else 'matches'} kept in "
              f"{shown(folder)} (newest first):"]
     for p in shown_:
-        day, clock, *rest = p.name.split(".")[0].split("-")
+        day, clock, _, mode = _kept_name(p)
         when = f"{day[:4]}-{day[4:6]}-{day[6:]} {clock[:2]}:{clock[2:4]}:{clock[4:]}"
         try:
             size = f"{p.stat().st_size / 1024:.0f} KiB"
         except OSError:
             size = "?"
-        lines.append(f"  {when}  {rest[-1]:<8} {shown(_outline(p)):<34} {size:>8}  {shown(p)}")
+        lines.append(f"  {when}  {mode:<8} {shown(_outline(p)):<34} {size:>8}  {shown(p)}")
     lines.append("watch one with: termpool replay FILE --watch")
     sys.stdout.write("\n".join(lines) + "\n")
     sys.stdout.flush()
