@@ -373,8 +373,9 @@ def game_won(v: Voice, winner: int) -> str:
     return _start(f"{v.does(winner, 'wins', 'win')}!")
 
 
-def match_won(v: Voice, winner: int, score: str = "") -> str:
-    """"Bob wins the match 2-1" (`score` may be empty)."""
+def match_won(v: Voice, winner: int, scores: Sequence[int] | None = None) -> str:
+    """"Bob wins the match 2-1", the winner's frames first (no score without `scores`)."""
+    score = f" {scores[winner]}-{scores[1 - winner]}" if scores is not None else ""
     return _start(f"{v.does(winner, 'wins', 'win')} the match{score}")
 
 

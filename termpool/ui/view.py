@@ -227,8 +227,8 @@ def _question(s: State, cells, lay: Layout) -> None:
         why = s.message[-1][0] if s.message else ""
         again = "N: the lobby" if s.remote else "N: new game"  # online: a new challenge
         w = m.winner
-        won = (words.match_won(voice(s), w, f" {m.scores[w]}-{m.scores[1 - w]}")
-               if m.frames > 1 else words.game_won(voice(s), w))  # a race: its score
+        won = (words.match_won(voice(s), w, m.scores) if m.frames > 1
+               else words.game_won(voice(s), w))  # a race: its score
         lines = [won, why, "",
                  f"{again}   M: menu   Q: quit", "W: watch this match"]
         records = s.files.records

@@ -395,8 +395,7 @@ class Watch:
         need = self.race or 1
         for p in (0, 1):
             if won[p] >= need:
-                score = f" {won[p]}-{won[1 - p]}" if self.race else ""
-                return words.match_won(self.voice(), p, score)
+                return words.match_won(self.voice(), p, won if self.race else None)
         return "the record stops here"
 
     def status(self) -> list[tuple[str, str]]:
