@@ -251,7 +251,7 @@ def _cells_of(lay: Layout, pos, radius) -> tuple[int, int, int, int]:
 def panel_info(s: State, lay: Layout | None = None) -> PanelInfo:
     m = s.match
     st = m.state
-    frames = s.opts.frames
+    frames = m.frames
     theme = shown_theme(s)
     players = []
     for p in range(2):
